@@ -1,0 +1,47 @@
+#pragma once
+// Errors: every failure noether reports derives from noether::Error and carries a message a
+// user can act on (what went wrong, where, and what to change).
+#include <noether/export.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace noether {
+
+class NOETHER_API Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A scene that cannot be run: malformed YAML, a missing or unknown key, impossible physics.
+// The message starts with "file:line:" when the place is known.
+class NOETHER_API SceneError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A plugin that cannot be found, loaded or used.
+class NOETHER_API PluginError : public Error {
+ public:
+  using Error::Error;
+};
+
+// An integrator that cannot continue (a Newton solve that fails, a step too large for the
+// spin, a solver error). `t_reached` is the last time at which the state was valid.
+class NOETHER_API IntegrationError : public Error {
+ public:
+  IntegrationError(const std::string& what, double t_reached)
+      : Error(what), t_reached_(t_reached) {}
+  double t_reached() const { return t_reached_; }
+
+ private:
+  double t_reached_;
+};
+
+// Output files that cannot be written.
+class NOETHER_API OutputError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace noether

@@ -1,0 +1,43 @@
+#pragma once
+// Output: the HDF5 writer (layout after H5MD, ARCHITECTURE.md "Output"). Frames are buffered
+// and written in blocks; the file is flushed after every block, so a run killed at any moment
+// leaves a readable file with every frame up to its last block.
+#include <noether/diagnostics.hpp>
+#include <noether/integrator.hpp>
+#include <noether/scene.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct OutputOptions {
+  std::size_t block_frames = 256;  // write a block at least every this many frames
+  double block_seconds = 1.0;      // and at least this often in wall time
+};
+
+class H5Writer {
+ public:
+  H5Writer(const std::filesystem::path& file, const Scene& scene, OutputOptions options = {});
+  ~H5Writer();
+  H5Writer(const H5Writer&) = delete;
+  H5Writer& operator=(const H5Writer&) = delete;
+
+  void write_frame(std::int64_t step, const State& state, const Diagnostics& diagnostics);
+  // Writes buffered frames and flushes the file.
+  void flush();
+  // Writes /work and the run's outcome ("completed" or the error message), then closes.
+  void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome);
+  std::size_t frames_written() const { return frames_written_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::size_t frames_written_ = 0;
+};
+
+}  // namespace noether

@@ -1,0 +1,59 @@
+#pragma once
+// The ABI between core and plugins (ARCHITECTURE.md, "Plugins"). A plugin is a MODULE shared
+// library, named noether-<name>.so, that exports one C symbol, `noether_plugin_descriptor`,
+// of type PluginDescriptor.
+//
+// Version policy: NOETHER_PLUGIN_API_VERSION changes whenever PluginDescriptor, Potential,
+// Integrator, System, State, Forces or Params change in a way that breaks binary
+// compatibility. `api_version` stays the first member in every version, so a registry can
+// always read it and refuse a plugin built for another version, naming both.
+#include <noether/integrator.hpp>
+#include <noether/params.hpp>
+#include <noether/potential.hpp>
+#include <noether/system.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#define NOETHER_PLUGIN_API_VERSION 1u
+
+namespace noether {
+
+enum class PluginKind : std::uint32_t { Potential = 1, Integrator = 2 };
+
+const char* to_string(PluginKind kind);
+
+// One documented parameter. `default_value` is nullptr for a required parameter.
+struct ParamDoc {
+  const char* name;
+  const char* type;  // "number", "integer", "string", "bool", "list"
+  const char* default_value;
+  const char* description;
+};
+
+using PotentialFactory = std::unique_ptr<Potential> (*)(const System& system,
+                                                        const Params& params);
+using IntegratorFactory = std::unique_ptr<Integrator> (*)(
+    const System& system, std::shared_ptr<const Potential> potential, const Params& params);
+
+struct PluginDescriptor {
+  std::uint32_t api_version;  // must stay the first member in every API version
+  PluginKind kind;
+  const char* name;
+  const char* description;  // one line
+  const ParamDoc* params;
+  std::size_t param_count;
+  PotentialFactory make_potential;    // set for PluginKind::Potential
+  IntegratorFactory make_integrator;  // set for PluginKind::Integrator
+};
+
+}  // namespace noether
+
+// The symbol the registry looks up in every plugin library.
+#define NOETHER_PLUGIN_SYMBOL "noether_plugin_descriptor"
+
+// Use as:  NOETHER_PLUGIN_DESCRIPTOR = { NOETHER_PLUGIN_API_VERSION, ... };
+#define NOETHER_PLUGIN_DESCRIPTOR                      \
+  extern "C" __attribute__((visibility("default"))) \
+  const noether::PluginDescriptor noether_plugin_descriptor

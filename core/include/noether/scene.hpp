@@ -1,0 +1,42 @@
+#pragma once
+// Scene: reads a YAML scene (ARCHITECTURE.md, "Scenes"), applies --set overrides, validates
+// it, and builds the System and the initial State. Every error names file, line and field.
+#include <noether/params.hpp>
+#include <noether/state.hpp>
+#include <noether/system.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct PluginConfig {
+  std::string plugin;  // plugin name
+  Params params;       // the whole mapping, including "plugin"
+};
+
+struct RunSettings {
+  double t_end = 0.0;
+  double output_every = 0.0;
+};
+
+struct Scene {
+  std::string file;                      // as given, for messages
+  std::string text;                      // the scene text as read (before overrides)
+  std::vector<std::string> overrides;    // "key=value" as given
+  Params root;                           // the resolved tree (after overrides)
+  System system;
+  State initial;
+  std::vector<PluginConfig> potentials;  // summed when more than one
+  PluginConfig integrator;
+  RunSettings run;
+};
+
+// Overrides are "dotted.key=value" (value parsed as YAML); sequence items by index, bodies
+// also by name: "bodies.alpha.mass=2".
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+Scene parse_scene(const std::string& text, const std::string& file,
+                  const std::vector<std::string>& overrides = {});
+
+}  // namespace noether

@@ -1,0 +1,43 @@
+#pragma once
+// Simulation: one run of a scene — plugins made by name, the integrator driven to t_end,
+// diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
+#include <noether/diagnostics.hpp>
+#include <noether/integrator.hpp>
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace noether {
+
+struct RunOptions {
+  std::optional<std::filesystem::path> output;  // HDF5 file, none if empty
+  bool progress = false;                        // progress line on stderr for long runs
+};
+
+struct RunSummary {
+  std::string potential;            // plugin names, "+"-joined
+  std::string integrator;
+  Diagnostics initial;
+  Diagnostics final;
+  double max_abs_energy_error = 0.0;            // max |E − E0| over output frames
+  double max_rel_linear_momentum_error = 0.0;   // max ‖P − P0‖ / Σ‖γ_i(0)‖
+  double max_rel_angular_momentum_error = 0.0;  // max ‖L − L0‖ / Σ(‖x_i×γ_i‖ + ‖Π_k‖) at t0
+  double max_orthogonality_error = 0.0;         // max ‖I − RᵀR‖_F over frames and bodies
+  double min_distance = 0.0;                    // closest approach of two body centres seen
+  double t_of_min_distance = 0.0;
+  std::size_t frames = 0;
+  WorkCounters work;
+  double wall_seconds = 0.0;
+};
+
+// Runs the scene. On an IntegrationError the output written so far is finalized (readable,
+// with the error recorded) and the error is rethrown.
+RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options);
+
+// The summary as printed by `noether run`.
+std::string format_summary(const RunSummary& summary);
+
+}  // namespace noether

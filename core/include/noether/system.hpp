@@ -1,0 +1,51 @@
+#pragma once
+// System: the constants of a scene (MATH.md §1). Bodies with an inertia are rigid bodies on
+// SE(3); bodies without one are point masses and carry no attitude at all.
+#include <noether/lie.hpp>
+#include <noether/params.hpp>
+
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct Body {
+  std::string name;
+  double mass = 0.0;
+  bool rigid = false;
+  Mat3 inertia = Mat3::Zero();              // J, standard inertia, body frame (rigid only)
+  Mat3 inertia_inverse = Mat3::Zero();      // J⁻¹
+  Mat3 inertia_nonstandard = Mat3::Zero();  // Jd = ½ tr(J) I − J
+  Params shape;                             // model-specific shape (e.g. {dumbbell: {length}})
+};
+
+class System {
+ public:
+  System() = default;
+  // Validates the physics (positive masses, symmetric positive-definite inertia that satisfies
+  // the triangle inequality, unique names) and fills the derived inertia matrices.
+  // Throws SceneError with `where` prefixed when given.
+  System(double G, std::vector<Body> bodies);
+
+  double G() const { return G_; }
+  const std::vector<Body>& bodies() const { return bodies_; }
+  const Body& body(std::size_t i) const { return bodies_[i]; }
+  std::size_t size() const { return bodies_.size(); }
+  std::size_t rigid_count() const { return body_of_rigid_.size(); }
+  // Index into the rigid-body arrays of State, or -1 for a point mass.
+  int rigid_index(std::size_t body) const { return rigid_of_body_[body]; }
+  std::size_t body_of_rigid(std::size_t k) const { return body_of_rigid_[k]; }
+  int index_of(const std::string& name) const;  // -1 if absent
+
+ private:
+  double G_ = 1.0;
+  std::vector<Body> bodies_;
+  std::vector<int> rigid_of_body_;
+  std::vector<std::size_t> body_of_rigid_;
+};
+
+// Checks that J is symmetric positive definite and satisfies the triangle inequality of
+// principal moments (J1 + J2 ≥ J3 and permutations). Throws SceneError with `context`.
+void validate_inertia(const Mat3& J, const std::string& context);
+
+}  // namespace noether

@@ -1,0 +1,39 @@
+#include <noether/lie.hpp>
+
+#include <cmath>
+
+namespace noether {
+
+RodriguesCoefficients rodrigues_coefficients(double x) {
+  if (x < 1e-4) {
+    // Taylor series; the first omitted terms are O(x⁶) relative to 1, below round-off here.
+    const double x2 = x * x;
+    return {1.0 - x2 / 6.0 + x2 * x2 / 120.0, 0.5 - x2 / 24.0 + x2 * x2 / 720.0};
+  }
+  const double s = std::sin(0.5 * x);
+  return {std::sin(x) / x, 2.0 * s * s / (x * x)};  // 1 − cos x = 2 sin²(x/2)
+}
+
+Mat3 exp_so3(const Vec3& f) {
+  const auto [a, b] = rodrigues_coefficients(f.norm());
+  const Mat3 S = hat(f);
+  return Mat3::Identity() + a * S + b * S * S;
+}
+
+double orthogonality_error(const Mat3& R) {
+  return (Mat3::Identity() - R.transpose() * R).norm();
+}
+
+Vec4 quaternion_from_rotation(const Mat3& R) {
+  Eigen::Quaterniond q(R);
+  q.normalize();
+  Vec4 v(q.w(), q.x(), q.y(), q.z());
+  if (v[0] < 0) v = -v;
+  return v;
+}
+
+Mat3 rotation_from_quaternion(const Vec4& q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+}
+
+}  // namespace noether

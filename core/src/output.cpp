@@ -1,0 +1,329 @@
+#include <noether/error.hpp>
+#include <noether/output.hpp>
+#include <noether/version.hpp>
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+
+namespace noether {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void check(herr_t status, const char* what) {
+  if (status < 0) throw OutputError(std::string("HDF5 error while ") + what);
+}
+hid_t check_id(hid_t id, const char* what) {
+  if (id < 0) throw OutputError(std::string("HDF5 error while ") + what);
+  return id;
+}
+
+hid_t make_group(hid_t parent, const char* name) {
+  return check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
+}
+
+void string_attribute(hid_t obj, const char* name, const std::string& value) {
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, std::max<std::size_t>(1, value.size()));
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = check_id(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), name);
+  check(H5Awrite(attr, type, value.empty() ? "" : value.data()), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+template <class T>
+void numeric_attribute(hid_t obj, const char* name, hid_t type, const std::vector<T>& values) {
+  const hsize_t n = values.size();
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t attr = check_id(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), name);
+  check(H5Awrite(attr, type, values.data()), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+}
+
+void string_list_dataset(hid_t parent, const char* name, const std::vector<std::string>& list) {
+  std::vector<const char*> ptrs;
+  for (const auto& s : list) ptrs.push_back(s.c_str());
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  const hsize_t n = list.size();
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t d = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                     name);
+  if (n) check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), name);
+  H5Dclose(d);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+// An extendible dataset [frame][shape...], appended to in blocks.
+template <class T>
+struct Series {
+  hid_t dataset = -1;
+  hid_t type = -1;
+  std::vector<hsize_t> frame_shape;
+  std::size_t frame_size = 1;
+  std::vector<T> buffer;
+
+  Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape)
+      : type(h5type), frame_shape(std::move(shape)) {
+    for (auto d : frame_shape) frame_size *= d;
+    std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk;
+    const hsize_t frames_per_chunk =
+        std::max<hsize_t>(1, std::min<hsize_t>(1024, 8192 / std::max<std::size_t>(1, frame_size)));
+    chunk.push_back(frames_per_chunk);
+    for (auto d : frame_shape) {
+      dims.push_back(d);
+      maxdims.push_back(d);
+      chunk.push_back(std::max<hsize_t>(1, d));
+    }
+    hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
+    dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+                       name);
+    H5Pclose(plist);
+    H5Sclose(space);
+  }
+  ~Series() {
+    if (dataset >= 0) H5Dclose(dataset);
+  }
+  Series(const Series&) = delete;
+  Series& operator=(const Series&) = delete;
+
+  void push(const T* values) { buffer.insert(buffer.end(), values, values + frame_size); }
+
+  void write(hsize_t first_frame) {
+    if (buffer.empty() || frame_size == 0) {
+      buffer.clear();
+      return;
+    }
+    const hsize_t frames = buffer.size() / frame_size;
+    std::vector<hsize_t> dims{first_frame + frames}, start{first_frame}, count{frames};
+    for (auto d : frame_shape) {
+      dims.push_back(d);
+      start.push_back(0);
+      count.push_back(d);
+    }
+    check(H5Dset_extent(dataset, dims.data()), "extending a dataset");
+    hid_t file_space = H5Dget_space(dataset);
+    H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+    hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
+    check(H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, buffer.data()),
+          "writing a block of frames");
+    H5Sclose(mem_space);
+    H5Sclose(file_space);
+    buffer.clear();
+  }
+};
+
+}  // namespace
+
+struct H5Writer::Impl {
+  hid_t file = -1;
+  OutputOptions options;
+  Clock::time_point last_flush = Clock::now();
+  std::size_t n_bodies = 0, n_rigid = 0;
+  std::vector<double> masses;
+  std::vector<std::unique_ptr<Series<double>>> doubles;  // all double series, for flushing
+  Series<std::int64_t>* step = nullptr;
+  Series<double>* time = nullptr;
+  Series<double>*position = nullptr, *velocity = nullptr, *orientation = nullptr,
+  *angular_momentum = nullptr, *energy = nullptr, *kinetic_translational = nullptr,
+  *kinetic_rotational = nullptr, *potential_energy = nullptr, *linear_momentum_total = nullptr,
+  *angular_momentum_total = nullptr, *orthogonality = nullptr;
+  std::unique_ptr<Series<std::int64_t>> step_series;
+  std::size_t buffered = 0;
+
+  Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape) {
+    doubles.push_back(
+        std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape)));
+    return doubles.back().get();
+  }
+
+  // An H5MD time-series group: {step, time, value}; step and time are hard links to one pair.
+  hid_t element(hid_t parent, const char* name) {
+    hid_t g = make_group(parent, name);
+    if (step) {
+      check(H5Lcreate_hard(file, "/particles/bodies/position/step", g, "step", H5P_DEFAULT,
+                           H5P_DEFAULT), "linking step");
+      check(H5Lcreate_hard(file, "/particles/bodies/position/time", g, "time", H5P_DEFAULT,
+                           H5P_DEFAULT), "linking time");
+    }
+    return g;
+  }
+};
+
+H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, OutputOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become OutputError, not stderr noise
+  Impl& m = *impl_;
+  m.options = options;
+  m.file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (m.file < 0)
+    throw OutputError("cannot create the output file " + path.string() +
+                      " (does its folder exist, and is it writable?)");
+  const System& sys = scene.system;
+  m.n_bodies = sys.size();
+  m.n_rigid = sys.rigid_count();
+
+  hid_t h5md = make_group(m.file, "h5md");
+  numeric_attribute<int>(h5md, "version", H5T_NATIVE_INT, {1, 1});
+  hid_t creator = make_group(h5md, "creator");
+  string_attribute(creator, "name", "noether");
+  string_attribute(creator, "version", NOETHER_VERSION);
+  H5Gclose(creator);
+  H5Gclose(h5md);
+
+  hid_t parameters = make_group(m.file, "parameters");
+  string_attribute(parameters, "scene_file", scene.file);
+  string_attribute(parameters, "scene", scene.text);
+  std::string overrides;
+  for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
+  string_attribute(parameters, "overrides", overrides);
+  std::string potentials;
+  for (const auto& p : scene.potentials) potentials += (potentials.empty() ? "" : "+") + p.plugin;
+  string_attribute(parameters, "potential", potentials);
+  string_attribute(parameters, "integrator", scene.integrator.plugin);
+  numeric_attribute<double>(parameters, "G", H5T_NATIVE_DOUBLE, {sys.G()});
+  numeric_attribute<double>(parameters, "t_end", H5T_NATIVE_DOUBLE, {scene.run.t_end});
+  numeric_attribute<double>(parameters, "output_every", H5T_NATIVE_DOUBLE,
+                            {scene.run.output_every});
+  H5Gclose(parameters);
+
+  hid_t particles = make_group(m.file, "particles");
+  hid_t bodies = make_group(particles, "bodies");
+  std::vector<std::string> names;
+  for (const auto& b : sys.bodies()) {
+    names.push_back(b.name);
+    m.masses.push_back(b.mass);
+  }
+  string_list_dataset(bodies, "name", names);
+  const hsize_t nb = m.n_bodies, nr = m.n_rigid;
+  hid_t pos = make_group(bodies, "position");
+  m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,
+                                                         std::vector<hsize_t>{});
+  m.step = m.step_series.get();
+  m.time = m.add(pos, "time", {});
+  m.position = m.add(pos, "value", {nb, 3});
+  H5Gclose(pos);
+  hid_t g = m.element(bodies, "velocity");
+  m.velocity = m.add(g, "value", {nb, 3});
+  H5Gclose(g);
+  if (m.n_rigid > 0) {
+    std::vector<int> rigid_index;
+    for (std::size_t k = 0; k < sys.rigid_count(); ++k)
+      rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
+    g = m.element(bodies, "orientation");  // quaternion (w, x, y, z), rigid bodies only
+    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
+    m.orientation = m.add(g, "value", {nr, 4});
+    H5Gclose(g);
+    g = m.element(bodies, "angular_momentum");  // Π, body frame, rigid bodies only
+    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
+    m.angular_momentum = m.add(g, "value", {nr, 3});
+    H5Gclose(g);
+  }
+  H5Gclose(bodies);
+  H5Gclose(particles);
+
+  hid_t obs = make_group(m.file, "observables");
+  const std::pair<const char*, Series<double>**> scalars[] = {
+      {"energy", &m.energy},
+      {"kinetic_energy_translational", &m.kinetic_translational},
+      {"kinetic_energy_rotational", &m.kinetic_rotational},
+      {"potential_energy", &m.potential_energy},
+      {"orthogonality_error", &m.orthogonality}};
+  for (const auto& [name, target] : scalars) {
+    g = m.element(obs, name);
+    *target = m.add(g, "value", {});
+    H5Gclose(g);
+  }
+  g = m.element(obs, "linear_momentum");
+  m.linear_momentum_total = m.add(g, "value", {3});
+  H5Gclose(g);
+  g = m.element(obs, "angular_momentum");
+  m.angular_momentum_total = m.add(g, "value", {3});
+  H5Gclose(g);
+  H5Gclose(obs);
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing");
+}
+
+H5Writer::~H5Writer() {
+  if (impl_ && impl_->file >= 0) {
+    try {
+      flush();
+    } catch (...) {
+    }
+    impl_->doubles.clear();
+    impl_->step_series.reset();
+    H5Fclose(impl_->file);
+  }
+}
+
+void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnostics& d) {
+  Impl& m = *impl_;
+  m.step->push(&step);
+  m.time->push(&state.t);
+  m.position->push(state.x.data());
+  for (Eigen::Index i = 0; i < state.p.cols(); ++i) {
+    const Vec3 v = state.p.col(i) / m.masses[static_cast<std::size_t>(i)];  // v = γ/m
+    m.velocity->push(v.data());
+  }
+  if (m.orientation) {
+    for (const auto& R : state.R) {
+      const Vec4 q = quaternion_from_rotation(R);
+      m.orientation->push(q.data());
+    }
+    m.angular_momentum->push(state.Pi.data());
+  }
+  m.energy->push(&d.energy);
+  m.kinetic_translational->push(&d.kinetic_translational);
+  m.kinetic_rotational->push(&d.kinetic_rotational);
+  m.potential_energy->push(&d.potential);
+  m.orthogonality->push(&d.orthogonality_error);
+  m.linear_momentum_total->push(d.linear_momentum.data());
+  m.angular_momentum_total->push(d.angular_momentum.data());
+  ++m.buffered;
+  const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();
+  if (m.buffered >= m.options.block_frames || since >= m.options.block_seconds) flush();
+}
+
+void H5Writer::flush() {
+  Impl& m = *impl_;
+  if (m.file < 0) return;
+  const hsize_t first = frames_written_;
+  m.step->write(first);
+  for (auto& s : m.doubles) s->write(first);
+  frames_written_ += m.buffered;
+  m.buffered = 0;
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  m.last_flush = Clock::now();
+}
+
+void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome) {
+  Impl& m = *impl_;
+  flush();
+  hid_t g = make_group(m.file, "work");
+  numeric_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, {work.steps});
+  numeric_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64,
+                                  {work.potential_evaluations});
+  numeric_attribute<std::int64_t>(g, "newton_iterations", H5T_NATIVE_INT64,
+                                  {work.newton_iterations});
+  numeric_attribute<std::int64_t>(g, "rejected_steps", H5T_NATIVE_INT64, {work.rejected_steps});
+  numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
+  string_attribute(g, "outcome", outcome);
+  H5Gclose(g);
+  m.doubles.clear();
+  m.step_series.reset();
+  check(H5Fclose(m.file), "closing the output file");
+  m.file = -1;
+}
+
+}  // namespace noether

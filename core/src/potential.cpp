@@ -1,0 +1,30 @@
+#include <noether/error.hpp>
+#include <noether/potential.hpp>
+
+#include <algorithm>
+
+namespace noether {
+
+SumPotential::SumPotential(std::vector<std::shared_ptr<const Potential>> terms)
+    : terms_(std::move(terms)) {
+  if (terms_.empty()) throw Error("a sum of potentials needs at least one term");
+}
+
+void SumPotential::evaluate(const State& state, Forces& forces) const {
+  terms_.front()->evaluate(state, forces);
+  for (std::size_t m = 1; m < terms_.size(); ++m) {
+    scratch_.f.resize(forces.f.rows(), forces.f.cols());
+    scratch_.M.resize(forces.M.rows(), forces.M.cols());
+    terms_[m]->evaluate(state, scratch_);
+    forces.U += scratch_.U;
+    forces.f += scratch_.f;
+    forces.M += scratch_.M;
+  }
+}
+
+bool SumPotential::needs_attitudes() const {
+  return std::any_of(terms_.begin(), terms_.end(),
+                     [](const auto& t) { return t->needs_attitudes(); });
+}
+
+}  // namespace noether

@@ -1,0 +1,204 @@
+#include <noether/error.hpp>
+#include <noether/registry.hpp>
+
+#include <boost/dll/shared_library.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+#include <system_error>
+
+#ifndef NOETHER_BUILD_PLUGIN_DIR
+#define NOETHER_BUILD_PLUGIN_DIR ""
+#endif
+#ifndef NOETHER_INSTALL_PLUGIN_DIR
+#define NOETHER_INSTALL_PLUGIN_DIR ""
+#endif
+
+namespace fs = std::filesystem;
+
+namespace noether {
+
+const char* to_string(PluginKind kind) {
+  switch (kind) {
+    case PluginKind::Potential: return "potential";
+    case PluginKind::Integrator: return "integrator";
+  }
+  return "unknown";
+}
+
+std::string plugin_name_from_file(const fs::path& file) {
+  const std::string f = file.filename().string();
+  const std::string prefix = "noether-", suffix = ".so";
+  if (f.size() <= prefix.size() + suffix.size()) return {};
+  if (f.compare(0, prefix.size(), prefix) != 0) return {};
+  if (f.compare(f.size() - suffix.size(), suffix.size(), suffix) != 0) return {};
+  return f.substr(prefix.size(), f.size() - prefix.size() - suffix.size());
+}
+
+std::vector<fs::path> PluginRegistry::default_search_path() {
+  std::vector<fs::path> dirs;
+  if (const char* env = std::getenv("NOETHER_PLUGIN_PATH")) {
+    std::stringstream ss(env);
+    std::string dir;
+    while (std::getline(ss, dir, ':'))
+      if (!dir.empty()) dirs.emplace_back(dir);
+  }
+  for (const char* d : {NOETHER_BUILD_PLUGIN_DIR, NOETHER_INSTALL_PLUGIN_DIR})
+    if (*d) dirs.emplace_back(d);
+  return dirs;
+}
+
+PluginRegistry::PluginRegistry(std::vector<fs::path> search_path)
+    : search_path_(std::move(search_path)) {
+  for (const auto& dir : search_path_) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+      const std::string name = plugin_name_from_file(file);
+      if (!name.empty()) files_.emplace(name, file);  // first in search order wins
+    }
+  }
+}
+
+std::vector<std::string> PluginRegistry::names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, file] : files_) out.push_back(name);
+  return out;
+}
+
+const PluginRegistry::Loaded& PluginRegistry::load(const std::string& name) {
+  if (auto it = loaded_.find(name); it != loaded_.end()) return it->second;
+  auto file = files_.find(name);
+  if (file == files_.end()) {
+    std::ostringstream msg;
+    msg << "unknown plugin '" << name << "'";
+    const std::string guess = closest_match(name, names());
+    if (!guess.empty()) msg << " (did you mean '" << guess << "'?)";
+    msg << "; plugins found:";
+    if (files_.empty()) msg << " none";
+    for (const auto& [n, f] : files_) msg << ' ' << n;
+    msg << ". Searched:";
+    for (const auto& d : search_path_) msg << ' ' << d.string();
+    msg << " (add folders with NOETHER_PLUGIN_PATH)";
+    throw PluginError(msg.str());
+  }
+  const fs::path& path = file->second;
+  auto library = std::make_shared<boost::dll::shared_library>();
+  try {
+    library->load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+  } catch (const std::exception& e) {
+    throw PluginError("plugin '" + name + "' (" + path.string() +
+                      ") could not be loaded: " + e.what());
+  }
+  if (!library->has(NOETHER_PLUGIN_SYMBOL))
+    throw PluginError("plugin '" + name + "' (" + path.string() + ") has no symbol '" +
+                      NOETHER_PLUGIN_SYMBOL +
+                      "': it is not a noether plugin, or was not built with "
+                      "noether_add_plugin() and NOETHER_PLUGIN_DESCRIPTOR");
+  const auto& d = library->get<const PluginDescriptor>(NOETHER_PLUGIN_SYMBOL);
+  if (d.api_version != NOETHER_PLUGIN_API_VERSION) {
+    std::ostringstream msg;
+    msg << "plugin '" << name << "' (" << path.string() << ") was built for plugin API version "
+        << d.api_version << ", but this noether uses plugin API version "
+        << NOETHER_PLUGIN_API_VERSION << "; rebuild the plugin against this noether";
+    throw PluginError(msg.str());
+  }
+  const bool potential_ok = d.kind == PluginKind::Potential && d.make_potential;
+  const bool integrator_ok = d.kind == PluginKind::Integrator && d.make_integrator;
+  if (!potential_ok && !integrator_ok)
+    throw PluginError("plugin '" + name + "' (" + path.string() +
+                      ") has an invalid descriptor: unknown kind or no factory");
+  if (!d.name || name != d.name)
+    throw PluginError("plugin file " + path.string() + " describes itself as '" +
+                      (d.name ? d.name : "") + "'; the file name says '" + name + "'");
+  Loaded loaded;
+  loaded.descriptor = &d;
+  loaded.info = {name, d.kind, d.description ? d.description : "",
+                 std::vector<ParamDoc>(d.params, d.params + d.param_count), path};
+  loaded.library = library;
+  spdlog::debug("loaded plugin '{}' from {}", name, path.string());
+  return loaded_.emplace(name, std::move(loaded)).first->second;
+}
+
+const PluginInfo& PluginRegistry::info(const std::string& name) { return load(name).info; }
+
+std::vector<PluginInfo> PluginRegistry::load_all(std::vector<std::string>& failures) {
+  std::vector<PluginInfo> out;
+  for (const auto& name : names()) {
+    try {
+      out.push_back(load(name).info);
+    } catch (const PluginError& e) {
+      failures.emplace_back(e.what());
+    }
+  }
+  return out;
+}
+
+const PluginRegistry::Loaded& PluginRegistry::load_kind(const std::string& name,
+                                                        PluginKind kind) {
+  const Loaded& l = load(name);
+  if (l.info.kind != kind) {
+    std::vector<std::string> same_kind;
+    for (const auto& n : names()) {
+      try {
+        if (load(n).info.kind == kind) same_kind.push_back(n);
+      } catch (const PluginError&) {
+      }
+    }
+    std::ostringstream msg;
+    msg << "plugin '" << name << "' is " << (l.info.kind == PluginKind::Potential ? "a " : "an ")
+        << to_string(l.info.kind) << ", not " << (kind == PluginKind::Potential ? "a " : "an ")
+        << to_string(kind) << "; " << to_string(kind) << " plugins found:";
+    for (const auto& n : same_kind) msg << ' ' << n;
+    throw PluginError(msg.str());
+  }
+  return l;
+}
+
+namespace {
+
+void check_params(const PluginInfo& info, const Params& params) {
+  if (params.is_null()) return;
+  const std::string what = std::string(to_string(info.kind)) + " plugin '" + info.name + "'";
+  std::vector<std::string> allowed{"plugin"};
+  for (const auto& p : info.params) allowed.emplace_back(p.name);
+  params.check_keys(allowed, what);
+  for (const auto& p : info.params)
+    if (!p.default_value && !params.has(p.name))
+      throw SceneError(params.here() + what + " needs '" + p.name + "': " + p.description);
+}
+
+// Wraps an object so that its plugin library outlives it.
+template <class T>
+std::shared_ptr<T> keep_library_alive(std::unique_ptr<T> object, std::shared_ptr<void> library) {
+  return std::shared_ptr<T>(object.release(), [library](T* p) { delete p; });
+}
+
+}  // namespace
+
+std::shared_ptr<const Potential> PluginRegistry::make_potential(const std::string& name,
+                                                                const System& system,
+                                                                const Params& params) {
+  const Loaded& l = load_kind(name, PluginKind::Potential);
+  check_params(l.info, params);
+  auto object = l.descriptor->make_potential(system, params);
+  if (!object) throw PluginError("potential plugin '" + name + "' returned no object");
+  return keep_library_alive<Potential>(std::move(object), l.library);
+}
+
+std::shared_ptr<Integrator> PluginRegistry::make_integrator(
+    const std::string& name, const System& system, std::shared_ptr<const Potential> potential,
+    const Params& params) {
+  const Loaded& l = load_kind(name, PluginKind::Integrator);
+  check_params(l.info, params);
+  auto object = l.descriptor->make_integrator(system, std::move(potential), params);
+  if (!object) throw PluginError("integrator plugin '" + name + "' returned no object");
+  return keep_library_alive<Integrator>(std::move(object), l.library);
+}
+
+}  // namespace noether

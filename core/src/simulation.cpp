@@ -1,0 +1,163 @@
+#include <noether/error.hpp>
+#include <noether/output.hpp>
+#include <noether/simulation.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+#include <unistd.h>
+
+namespace noether {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Prints "t = … / t_end (…%)" on stderr once a run has taken a few seconds: in place on a
+// terminal, as a line every ten seconds otherwise.
+class Progress {
+ public:
+  Progress(bool enabled, double t0, double t_end)
+      : enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0), t0_(t0), t_end_(t_end) {}
+  void update(double t) {
+    if (!enabled_) return;
+    const auto now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double interval = tty_ ? 0.5 : 10.0;
+    if (elapsed < 3.0 || std::chrono::duration<double>(now - last_).count() < interval) return;
+    last_ = now;
+    const double fraction = (t - t0_) / (t_end_ - t0_);
+    const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+    std::fprintf(stderr, "%st = %.6g / %.6g (%3.0f%%), %.1f s elapsed, about %.1f s left%s",
+                 tty_ ? "\r" : "", t, t_end_, 100.0 * fraction, elapsed, eta, tty_ ? "" : "\n");
+    printed_ = true;
+  }
+  ~Progress() {
+    if (printed_ && tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  bool enabled_, tty_;
+  double t0_, t_end_;
+  Clock::time_point start_ = Clock::now(), last_ = Clock::now();
+  bool printed_ = false;
+};
+
+class RunObserver final : public Observer {
+ public:
+  RunObserver(const System& system, RunSummary& summary, H5Writer* writer,
+              const Integrator*& integrator, Progress& progress)
+      : system_(system), s_(summary), writer_(writer), integrator_(integrator),
+        progress_(progress) {}
+
+  void observe(const State& state, const Forces& forces) override {
+    const Diagnostics d = diagnose(system_, state, forces.U);
+    if (s_.frames == 0) {
+      s_.initial = d;
+      // Scales for the relative momentum errors: the sum of the magnitudes of the parts.
+      for (Eigen::Index i = 0; i < state.p.cols(); ++i) {
+        p_scale_ += state.p.col(i).norm();
+        L_scale_ += Vec3(state.x.col(i)).cross(Vec3(state.p.col(i))).norm();
+      }
+      for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
+      s_.min_distance = std::numeric_limits<double>::infinity();
+    }
+    s_.final = d;
+    s_.max_abs_energy_error = std::max(s_.max_abs_energy_error, std::abs(d.energy - s_.initial.energy));
+    if (p_scale_ > 0)
+      s_.max_rel_linear_momentum_error = std::max(
+          s_.max_rel_linear_momentum_error, (d.linear_momentum - s_.initial.linear_momentum).norm() / p_scale_);
+    if (L_scale_ > 0)
+      s_.max_rel_angular_momentum_error =
+          std::max(s_.max_rel_angular_momentum_error,
+                   (d.angular_momentum - s_.initial.angular_momentum).norm() / L_scale_);
+    s_.max_orthogonality_error = std::max(s_.max_orthogonality_error, d.orthogonality_error);
+    if (state.x.cols() <= 64)  // closest approach of centres, O(n²): small scenes only
+      for (Eigen::Index i = 0; i < state.x.cols(); ++i)
+        for (Eigen::Index j = i + 1; j < state.x.cols(); ++j) {
+          const double r = (state.x.col(i) - state.x.col(j)).norm();
+          if (r < s_.min_distance) {
+            s_.min_distance = r;
+            s_.t_of_min_distance = state.t;
+          }
+        }
+    ++s_.frames;
+    if (writer_) writer_->write_frame(integrator_ ? integrator_->work().steps : 0, state, d);
+    progress_.update(state.t);
+  }
+
+ private:
+  const System& system_;
+  RunSummary& s_;
+  H5Writer* writer_;
+  const Integrator*& integrator_;
+  Progress& progress_;
+  double p_scale_ = 0.0, L_scale_ = 0.0;
+};
+
+}  // namespace
+
+RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options) {
+  RunSummary summary;
+  std::vector<std::shared_ptr<const Potential>> terms;
+  for (const auto& p : scene.potentials) {
+    terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
+    summary.potential += (summary.potential.empty() ? "" : "+") + p.plugin;
+  }
+  std::shared_ptr<const Potential> potential =
+      terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
+  auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, potential,
+                                             scene.integrator.params);
+  summary.integrator = scene.integrator.plugin;
+
+  std::unique_ptr<H5Writer> writer;
+  if (options.output) writer = std::make_unique<H5Writer>(*options.output, scene);
+  State state = scene.initial;
+  const Integrator* current = integrator.get();
+  Progress progress(options.progress, state.t, scene.run.t_end);
+  RunObserver observer(scene.system, summary, writer.get(), current, progress);
+
+  const auto start = Clock::now();
+  try {
+    integrator->integrate(state, {scene.run.t_end, scene.run.output_every}, observer);
+  } catch (const Error& e) {
+    summary.work = integrator->work();
+    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (writer) writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what());
+    throw;
+  }
+  summary.work = integrator->work();
+  summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (writer) writer->finish(summary.work, summary.wall_seconds, "completed");
+  return summary;
+}
+
+std::string format_summary(const RunSummary& s) {
+  char buf[2048];
+  const double steps = static_cast<double>(std::max<std::int64_t>(1, s.work.steps));
+  std::snprintf(
+      buf, sizeof buf,
+      "potential                     %s\n"
+      "integrator                    %s\n"
+      "E0                            %.10f\n"
+      "max |E - E0|                  %.4e\n"
+      "max rel. linear momentum err  %.3e\n"
+      "max rel. angular momentum err %.3e\n"
+      "max ||I - R^T R||_F           %.4e\n"
+      "closest approach              %.6f at t = %.4f\n"
+      "output frames                 %zu\n"
+      "steps                         %lld\n"
+      "potential evaluations         %lld\n"
+      "Newton iterations per step    %.3f\n"
+      "wall time                     %.3f s\n",
+      s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
+      s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
+      s.max_orthogonality_error, s.min_distance, s.t_of_min_distance, s.frames,
+      static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
+      static_cast<double>(s.work.newton_iterations) / steps, s.wall_seconds);
+  return buf;
+}
+
+}  // namespace noether

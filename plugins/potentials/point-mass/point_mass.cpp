@@ -1,0 +1,71 @@
+// point-mass: Newtonian gravity between body centres, U = −Σ_{i<j} G m_i m_j / ‖x_i − x_j‖.
+// Rigid bodies feel no moment in this model (their attitude does not enter U).
+#include <noether/error.hpp>
+#include <noether/plugin.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace {
+
+using noether::Forces;
+using noether::State;
+using noether::System;
+
+class PointMass final : public noether::Potential {
+ public:
+  explicit PointMass(const System& system) : G_(system.G()) {
+    for (const auto& b : system.bodies()) {
+      mass_.push_back(b.mass);
+      name_.push_back(b.name);
+    }
+  }
+
+  void evaluate(const State& s, Forces& out) const override {
+    out.set_zero();
+    const Eigen::Index n = s.x.cols();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      for (Eigen::Index j = i + 1; j < n; ++j) {
+        const Eigen::Vector3d d = s.x.col(i) - s.x.col(j);
+        const double r2 = d.squaredNorm();
+        if (!(r2 > 0.0)) collision(i, j, s.t);
+        const double r = std::sqrt(r2);
+        const double Gmm = G_ * mass_[static_cast<std::size_t>(i)] * mass_[static_cast<std::size_t>(j)];
+        out.U -= Gmm / r;
+        const Eigen::Vector3d F = (-Gmm / (r2 * r)) * d;  // force on i, towards j
+        out.f.col(i) += F;
+        out.f.col(j) -= F;
+      }
+    }
+  }
+
+  bool needs_attitudes() const override { return false; }
+
+ private:
+  [[noreturn]] void collision(Eigen::Index i, Eigen::Index j, double t) const {
+    std::ostringstream msg;
+    msg << "point-mass: bodies '" << name_[static_cast<std::size_t>(i)] << "' and '"
+        << name_[static_cast<std::size_t>(j)] << "' are at the same position at t = " << t
+        << " (a collision); U is singular there";
+    throw noether::IntegrationError(msg.str(), t);
+  }
+
+  double G_;
+  std::vector<double> mass_;
+  std::vector<std::string> name_;
+};
+
+std::unique_ptr<noether::Potential> make(const System& system, const noether::Params&) {
+  return std::make_unique<PointMass>(system);
+}
+
+}  // namespace
+
+NOETHER_PLUGIN_DESCRIPTOR = {NOETHER_PLUGIN_API_VERSION,
+                             noether::PluginKind::Potential,
+                             "point-mass",
+                             "Newtonian gravity between body centres (no moments)",
+                             nullptr,
+                             0,
+                             &make,
+                             nullptr};

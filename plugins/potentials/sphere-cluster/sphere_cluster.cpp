@@ -1,0 +1,175 @@
+// sphere-cluster: every rigid body is a set of point masses ρ fixed in its body frame (MATH.md
+// §2); point masses are a single point at their centre. For two dumbbells this is the
+// potential of seed 000 §5.1:  U = −Σ_{p,q} G (m1/2)(m2/2) / ‖x1 + R1ρ1p − x2 − R2ρ2q‖.
+//
+// Forces f_i = Σ_ρ F_ρ, moments M_i = Σ_ρ ρ × (R_iᵀ F_ρ) (MATH.md §2, from (24)).
+#include <noether/error.hpp>
+#include <noether/plugin.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace {
+
+using noether::Forces;
+using noether::Params;
+using noether::SceneError;
+using noether::State;
+using noether::System;
+using Vec3 = Eigen::Vector3d;
+
+struct Cluster {
+  std::vector<double> mass;  // m_p
+  std::vector<Vec3> rho;     // ρ_p, body frame
+};
+
+// A body's cluster from its `shape`: {dumbbell: {length: l}} or
+// {spheres: [{mass: m_p, position: [ρx, ρy, ρz]}, ...]}.
+Cluster cluster_of(const noether::Body& body) {
+  Cluster c;
+  const std::string who = "sphere-cluster: body '" + body.name + "'";
+  if (!body.rigid) {
+    if (!body.shape.is_null())
+      throw SceneError(body.shape.here() + who +
+                       " is a point mass (no 'inertia') and cannot have a 'shape'");
+    c.mass.push_back(body.mass);
+    c.rho.push_back(Vec3::Zero());
+    return c;
+  }
+  const Params& shape = body.shape;
+  if (shape.is_null())
+    throw SceneError(who + " is rigid but has no 'shape'; give shape: {dumbbell: {length: L}} "
+                           "or shape: {spheres: [{mass: m, position: [x, y, z]}, ...]}, or "
+                           "use the point-mass potential");
+  shape.check_keys({"dumbbell", "spheres"}, "the shape of body '" + body.name + "'");
+  if (shape.size() != 1)
+    throw SceneError(shape.here() + who + ": give exactly one of 'dumbbell' or 'spheres'");
+  if (shape.has("dumbbell")) {
+    const Params& d = shape.at("dumbbell");
+    d.check_keys({"length"}, "dumbbell of body '" + body.name + "'");
+    const double l = d.at("length").as_double();
+    if (l <= 0.0) throw SceneError(d.at("length").here() + who + ": dumbbell length must be positive");
+    // Two equal spheres of mass m/2 at ±(l/2) e1 (seed 000 §5.1).
+    c.mass = {0.5 * body.mass, 0.5 * body.mass};
+    c.rho = {Vec3(0.5 * l, 0, 0), Vec3(-0.5 * l, 0, 0)};
+    return c;
+  }
+  double total = 0.0;
+  Vec3 moment = Vec3::Zero();
+  double extent = 0.0;
+  for (const auto& s : shape.at("spheres").items()) {
+    s.check_keys({"mass", "position"}, "a sphere of body '" + body.name + "'");
+    const double m = s.at("mass").as_double();
+    const auto p = s.at("position").as_doubles();
+    if (m <= 0.0) throw SceneError(s.here() + who + ": sphere masses must be positive");
+    if (p.size() != 3) throw SceneError(s.here() + who + ": sphere position needs 3 numbers");
+    c.mass.push_back(m);
+    c.rho.emplace_back(p[0], p[1], p[2]);
+    total += m;
+    moment += m * c.rho.back();
+    extent = std::max(extent, c.rho.back().norm());
+  }
+  if (c.mass.empty()) throw SceneError(shape.here() + who + ": 'spheres' is empty");
+  if (std::abs(total - body.mass) > 1e-12 * body.mass) {
+    std::ostringstream msg;
+    msg << shape.here() << who << ": sphere masses sum to " << total << ", the body's mass is "
+        << body.mass;
+    throw SceneError(msg.str());
+  }
+  if ((moment / total).norm() > 1e-12 * std::max(extent, 1e-300)) {
+    std::ostringstream msg;
+    msg << shape.here() << who << ": the spheres' centre of mass is at "
+        << (moment / total).transpose()
+        << " in the body frame; it must be at the origin (the body's position is its centre "
+           "of mass)";
+    throw SceneError(msg.str());
+  }
+  return c;
+}
+
+class SphereCluster final : public noether::Potential {
+ public:
+  explicit SphereCluster(const System& system) : G_(system.G()) {
+    for (std::size_t i = 0; i < system.size(); ++i) {
+      clusters_.push_back(cluster_of(system.body(i)));
+      rigid_.push_back(system.rigid_index(i));
+      name_.push_back(system.body(i).name);
+    }
+  }
+
+  void evaluate(const State& s, Forces& out) const override {
+    out.set_zero();
+    const std::size_t n = clusters_.size();
+    // Inertial positions of every point: x_i + R_i ρ_p.
+    points_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& c = clusters_[i];
+      points_[i].resize(c.rho.size());
+      for (std::size_t p = 0; p < c.rho.size(); ++p)
+        points_[i][p] = rigid_[i] >= 0
+                            ? Vec3(s.x.col(static_cast<Eigen::Index>(i)) +
+                                   s.R[static_cast<std::size_t>(rigid_[i])] * c.rho[p])
+                            : Vec3(s.x.col(static_cast<Eigen::Index>(i)));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const auto &ci = clusters_[i], &cj = clusters_[j];
+        Vec3 fi = Vec3::Zero(), ti = Vec3::Zero(), tj = Vec3::Zero();  // ti, tj inertial
+        for (std::size_t p = 0; p < ci.rho.size(); ++p) {
+          for (std::size_t q = 0; q < cj.rho.size(); ++q) {
+            const Vec3 d = points_[i][p] - points_[j][q];
+            const double r2 = d.squaredNorm();
+            if (!(r2 > 0.0)) collision(i, j, s.t);
+            const double r = std::sqrt(r2);
+            const double Gmm = G_ * ci.mass[p] * cj.mass[q];
+            out.U -= Gmm / r;
+            const Vec3 F = (-Gmm / (r2 * r)) * d;  // inertial force on point p of body i
+            fi += F;
+            // Moment arms in the inertial frame: R ρ; rotated back to the body below.
+            if (rigid_[i] >= 0) ti += (points_[i][p] - Vec3(s.x.col(static_cast<Eigen::Index>(i)))).cross(F);
+            if (rigid_[j] >= 0) tj -= (points_[j][q] - Vec3(s.x.col(static_cast<Eigen::Index>(j)))).cross(F);
+          }
+        }
+        out.f.col(static_cast<Eigen::Index>(i)) += fi;
+        out.f.col(static_cast<Eigen::Index>(j)) -= fi;
+        // ρ × (Rᵀ F) = Rᵀ ((Rρ) × F): the body-frame moment (MATH.md §2).
+        if (rigid_[i] >= 0)
+          out.M.col(rigid_[i]) += s.R[static_cast<std::size_t>(rigid_[i])].transpose() * ti;
+        if (rigid_[j] >= 0)
+          out.M.col(rigid_[j]) += s.R[static_cast<std::size_t>(rigid_[j])].transpose() * tj;
+      }
+    }
+  }
+
+  bool needs_attitudes() const override { return true; }
+
+ private:
+  [[noreturn]] void collision(std::size_t i, std::size_t j, double t) const {
+    std::ostringstream msg;
+    msg << "sphere-cluster: a sphere of body '" << name_[i] << "' and one of body '" << name_[j]
+        << "' are at the same position at t = " << t << " (a collision)";
+    throw noether::IntegrationError(msg.str(), t);
+  }
+
+  double G_;
+  std::vector<Cluster> clusters_;
+  std::vector<int> rigid_;
+  std::vector<std::string> name_;
+  mutable std::vector<std::vector<Vec3>> points_;  // scratch
+};
+
+std::unique_ptr<noether::Potential> make(const System& system, const Params&) {
+  return std::make_unique<SphereCluster>(system);
+}
+
+}  // namespace
+
+NOETHER_PLUGIN_DESCRIPTOR = {
+    NOETHER_PLUGIN_API_VERSION,
+    noether::PluginKind::Potential,
+    "sphere-cluster",
+    "rigid bodies as point masses fixed in their body frames (dumbbells, sphere clusters)",
+    nullptr,
+    0,
+    &make,
+    nullptr};

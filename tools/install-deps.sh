@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs what noether needs to build and test, from Debian 12 packages only.
+# Called by both README command lines and by .ci/run; safe to run repeatedly:
+# it installs only what is missing.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev
+  libsundials-dev
+  libboost-dev libboost-filesystem-dev
+  libspdlog-dev libfmt-dev
+  libhdf5-dev hdf5-helpers hdf5-tools
+  libyaml-cpp-dev
+  libcli11-dev
+  libgtest-dev libgmock-dev
+  libbenchmark-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
