@@ -272,15 +272,17 @@ void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnost
   m.step->push(&step);
   m.time->push(&state.t);
   m.position->push(state.x.data());
-  for (Eigen::Index i = 0; i < state.p.cols(); ++i) {
-    const Vec3 v = state.p.col(i) / m.masses[static_cast<std::size_t>(i)];  // v = γ/m
-    m.velocity->push(v.data());
-  }
+  frame_.resize(3 * std::max(m.n_bodies, m.n_rigid) + 4 * m.n_rigid);
+  for (std::size_t i = 0; i < m.n_bodies; ++i)  // v = γ/m
+    for (int a = 0; a < 3; ++a)
+      frame_[3 * i + a] = state.p(a, static_cast<Eigen::Index>(i)) / m.masses[i];
+  m.velocity->push(frame_.data());
   if (m.orientation) {
-    for (const auto& R : state.R) {
-      const Vec4 q = quaternion_from_rotation(R);
-      m.orientation->push(q.data());
+    for (std::size_t k = 0; k < m.n_rigid; ++k) {
+      const Vec4 q = quaternion_from_rotation(state.R[k]);
+      for (int a = 0; a < 4; ++a) frame_[4 * k + a] = q[a];
     }
+    m.orientation->push(frame_.data());
     m.angular_momentum->push(state.Pi.data());
   }
   m.energy->push(&d.energy);

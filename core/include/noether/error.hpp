@@ -1,6 +1,10 @@
 #pragma once
 // Errors: every failure noether reports derives from noether::Error and carries a message a
 // user can act on (what went wrong, where, and what to change).
+//
+// Each class has its destructor defined in libnoether (its key function), so that its vtable
+// lives there and not in a plugin: an exception thrown by a plugin stays valid after the
+// plugin library is unloaded during stack unwinding.
 #include <noether/export.hpp>
 
 #include <stdexcept>
@@ -11,6 +15,7 @@ namespace noether {
 class NOETHER_API Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  ~Error() override;
 };
 
 // A scene that cannot be run: malformed YAML, a missing or unknown key, impossible physics.
@@ -18,12 +23,14 @@ class NOETHER_API Error : public std::runtime_error {
 class NOETHER_API SceneError : public Error {
  public:
   using Error::Error;
+  ~SceneError() override;
 };
 
 // A plugin that cannot be found, loaded or used.
 class NOETHER_API PluginError : public Error {
  public:
   using Error::Error;
+  ~PluginError() override;
 };
 
 // An integrator that cannot continue (a Newton solve that fails, a step too large for the
@@ -32,6 +39,7 @@ class NOETHER_API IntegrationError : public Error {
  public:
   IntegrationError(const std::string& what, double t_reached)
       : Error(what), t_reached_(t_reached) {}
+  ~IntegrationError() override;
   double t_reached() const { return t_reached_; }
 
  private:
@@ -42,6 +50,7 @@ class NOETHER_API IntegrationError : public Error {
 class NOETHER_API OutputError : public Error {
  public:
   using Error::Error;
+  ~OutputError() override;
 };
 
 }  // namespace noether

@@ -38,6 +38,7 @@ class H5Writer {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::size_t frames_written_ = 0;
+  std::vector<double> frame_;  // scratch for one frame of a derived field
 };
 
 }  // namespace noether

@@ -1,0 +1,116 @@
+// HDF5 output: the layout of ARCHITECTURE.md, and a run killed with SIGKILL half way leaves a
+// file h5dump reads, with every frame up to its last flushed block.
+#include "test_support.hpp"
+
+#include <noether/simulation.hpp>
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <sys/wait.h>
+#include <thread>
+#include <fcntl.h>
+#include <unistd.h>
+
+using namespace noether;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<hsize_t> dims(hid_t file, const char* path) {
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  EXPECT_GE(d, 0) << path;
+  if (d < 0) return {};
+  hid_t space = H5Dget_space(d);
+  std::vector<hsize_t> out(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+  H5Sget_simple_extent_dims(space, out.data(), nullptr);
+  H5Sclose(space);
+  H5Dclose(d);
+  return out;
+}
+
+std::vector<double> read_doubles(hid_t file, const char* path) {
+  const auto n = dims(file, path);
+  std::size_t count = 1;
+  for (auto v : n) count *= v;
+  std::vector<double> out(count);
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  if (count) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  H5Dclose(d);
+  return out;
+}
+
+fs::path temp_file(const std::string& name) {
+  return fs::temp_directory_path() / (name + "-" + std::to_string(getpid()) + ".h5");
+}
+
+}  // namespace
+
+TEST(Output, LayoutAndContents) {
+  const fs::path file = temp_file("noether-layout");
+  auto registry = test::bundled_plugins();
+  RunOptions options;
+  options.output = file;
+  const RunSummary s = run_scene(test::dumbbell_scene({"run.t_end=1"}), registry, options);
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  EXPECT_EQ(dims(f, "/particles/bodies/position/value"), (std::vector<hsize_t>{101, 2, 3}));
+  EXPECT_EQ(dims(f, "/particles/bodies/orientation/value"), (std::vector<hsize_t>{101, 2, 4}));
+  EXPECT_EQ(dims(f, "/observables/energy/time"), (std::vector<hsize_t>{101}));
+  const auto energy = read_doubles(f, "/observables/energy/value");
+  EXPECT_DOUBLE_EQ(energy.front(), s.initial.energy);
+  const auto time = read_doubles(f, "/particles/bodies/velocity/time");
+  EXPECT_NEAR(time.back(), 1.0, 1e-12);
+  const auto q = read_doubles(f, "/particles/bodies/orientation/value");
+  for (std::size_t i = 0; i < q.size(); i += 4)
+    EXPECT_NEAR(std::hypot(std::hypot(q[i], q[i + 1]), std::hypot(q[i + 2], q[i + 3])), 1.0, 1e-14);
+  const auto v = read_doubles(f, "/particles/bodies/velocity/value");
+  EXPECT_NEAR(v[1], 0.67, 1e-15);  // alpha's initial v_y
+  EXPECT_TRUE(H5Lexists(f, "/work", H5P_DEFAULT) > 0);
+  H5Fclose(f);
+  fs::remove(file);
+}
+
+TEST(Output, SigkillLeavesAReadableFile) {
+  const fs::path file = temp_file("noether-killed");
+  fs::remove(file);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const std::string scene = test::source_path("examples/dumbbells.yaml");
+    const int devnull = open("/dev/null", O_WRONLY);
+    dup2(devnull, STDOUT_FILENO);
+    dup2(devnull, STDERR_FILENO);
+    execl(NOETHER_EXECUTABLE, "noether", "run", scene.c_str(), "-o", file.c_str(), "--set",
+          "run.t_end=100000", "--no-progress", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before it was killed";
+
+  const std::string h5dump = "h5dump -H " + file.string() + " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(h5dump.c_str()), 0) << "h5dump cannot read the killed run's file";
+
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const auto time = read_doubles(f, "/particles/bodies/position/time");
+  const std::size_t n = time.size();
+  EXPECT_GE(n, 200u) << "fewer frames than 2.5 s of running should have flushed";
+  for (std::size_t k = 0; k < n; ++k) ASSERT_NEAR(time[k], 0.01 * static_cast<double>(k), 1e-9);
+  // Every dataset holds the same, complete frames.
+  EXPECT_EQ(dims(f, "/particles/bodies/position/value")[0], n);
+  EXPECT_EQ(dims(f, "/particles/bodies/orientation/value")[0], n);
+  EXPECT_EQ(dims(f, "/observables/energy/value")[0], n);
+  const auto energy = read_doubles(f, "/observables/energy/value");
+  for (double E : energy) ASSERT_NEAR(E, 0.44068740, 1e-6);  // real frames, not zeros
+  EXPECT_FALSE(H5Lexists(f, "/work", H5P_DEFAULT) > 0);     // the run never finished
+  H5Fclose(f);
+  fs::remove(file);
+}

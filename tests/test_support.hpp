@@ -1,0 +1,21 @@
+#pragma once
+// Helpers shared by the tests: paths of the source tree and of the built plugins.
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+
+#include <string>
+
+namespace noether::test {
+
+inline std::string source_path(const std::string& relative) {
+  return std::string(NOETHER_SOURCE_DIR) + "/" + relative;
+}
+
+// A registry of the plugins built in this tree only (no NOETHER_PLUGIN_PATH, no install).
+inline PluginRegistry bundled_plugins() { return PluginRegistry({NOETHER_TEST_PLUGIN_DIR}); }
+
+inline Scene dumbbell_scene(const std::vector<std::string>& overrides = {}) {
+  return load_scene(source_path("examples/dumbbells.yaml"), overrides);
+}
+
+}  // namespace noether::test
