@@ -1,0 +1,50 @@
+#!/usr/bin/python3
+"""Plots a noether run (HDF5): energy exchange, energy error and ‖I − RᵀR‖ against time.
+
+    tools/plot_run.py RUN.h5 OUT.png [--title TITLE]
+
+Uses Debian's python3-matplotlib and python3-h5py (installed by tools/install-deps.sh).
+"""
+import argparse
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run")
+    ap.add_argument("png")
+    ap.add_argument("--title", default=None)
+    args = ap.parse_args()
+    with h5py.File(args.run, "r") as f:
+        obs = f["observables"]
+        t = obs["energy/time"][:]
+        E = obs["energy/value"][:]
+        T_tr = obs["kinetic_energy_translational/value"][:]
+        T_rot = obs["kinetic_energy_rotational/value"][:]
+        U = obs["potential_energy/value"][:]
+        orth = obs["orthogonality_error/value"][:]
+        integrator = f["parameters"].attrs["integrator"]
+        integrator = integrator.decode() if isinstance(integrator, bytes) else integrator
+    fig, ax = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
+    ax[0].plot(t, T_tr, label="translational kinetic")
+    ax[0].plot(t, T_rot, label="rotational kinetic")
+    ax[0].plot(t, U, label="potential")
+    ax[0].set_ylabel("energy")
+    ax[0].legend(fontsize=8)
+    ax[1].plot(t, E - E[0])
+    ax[1].set_ylabel("E − E0")
+    ax[2].semilogy(t, orth + 1e-18)
+    ax[2].set_ylabel("‖I − RᵀR‖_F")
+    ax[2].set_xlabel("t")
+    fig.suptitle(args.title or f"{args.run} ({integrator})")
+    fig.tight_layout()
+    fig.savefig(args.png, dpi=90)
+
+
+if __name__ == "__main__":
+    main()
