@@ -1,6 +1,7 @@
 #include <noether/error.hpp>
 #include <noether/registry.hpp>
 
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <spdlog/spdlog.h>
 
@@ -9,12 +10,6 @@
 #include <sstream>
 #include <system_error>
 
-#ifndef NOETHER_BUILD_PLUGIN_DIR
-#define NOETHER_BUILD_PLUGIN_DIR ""
-#endif
-#ifndef NOETHER_INSTALL_PLUGIN_DIR
-#define NOETHER_INSTALL_PLUGIN_DIR ""
-#endif
 
 namespace fs = std::filesystem;
 
@@ -45,8 +40,12 @@ std::vector<fs::path> PluginRegistry::default_search_path() {
     while (std::getline(ss, dir, ':'))
       if (!dir.empty()) dirs.emplace_back(dir);
   }
-  for (const char* d : {NOETHER_BUILD_PLUGIN_DIR, NOETHER_INSTALL_PLUGIN_DIR})
-    if (*d) dirs.emplace_back(d);
+  // The bundled plugins sit in <folder of libnoether>/noether/plugins, both in the build tree
+  // (build/lib) and under an install prefix (<prefix>/lib), wherever that prefix is.
+  std::error_code ec;
+  const fs::path core = boost::dll::this_line_location(ec);
+  if (!ec && !core.empty())
+    dirs.push_back(fs::weakly_canonical(core.parent_path() / "noether" / "plugins", ec));
   return dirs;
 }
 

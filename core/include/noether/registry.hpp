@@ -1,6 +1,7 @@
 #pragma once
-// PluginRegistry: finds plugins by name on the search path ($NOETHER_PLUGIN_PATH, the build
-// tree, the install prefix, in that order) and loads them on demand with Boost.DLL. Every
+// PluginRegistry: finds plugins by name on the search path ($NOETHER_PLUGIN_PATH, then the
+// folder of bundled plugins next to libnoether: build/lib/noether/plugins in the build tree,
+// <prefix>/lib/noether/plugins when installed) and loads them on demand with Boost.DLL. Every
 // object a plugin makes keeps its library loaded for as long as the object lives.
 #include <noether/integrator.hpp>
 #include <noether/params.hpp>
@@ -27,7 +28,7 @@ class PluginRegistry {
  public:
   explicit PluginRegistry(std::vector<std::filesystem::path> search_path = default_search_path());
 
-  // $NOETHER_PLUGIN_PATH (colon-separated), then the build tree, then the install prefix.
+  // $NOETHER_PLUGIN_PATH (colon-separated), then <folder of libnoether>/noether/plugins.
   static std::vector<std::filesystem::path> default_search_path();
 
   const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
