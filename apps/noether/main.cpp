@@ -1,5 +1,6 @@
 // noether: the driver. `noether run SCENE`, `noether plugins`, `noether --version`.
 #include <noether/error.hpp>
+#include <noether/potential_check.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
@@ -58,6 +59,18 @@ int list_plugins() {
   return failures.empty() ? 0 : 1;
 }
 
+int check_potential(const std::string& scene_file, const std::vector<std::string>& overrides,
+                    const noether::PotentialCheckOptions& options) {
+  const noether::Scene scene = noether::load_scene(scene_file, overrides);
+  noether::PluginRegistry registry;
+  const auto potential = noether::make_scene_potential(scene, registry);
+  const auto report = noether::check_potential(scene.system, *potential, scene.initial, options);
+  std::string names;
+  for (const auto& p : scene.potentials) names += (names.empty() ? "" : "+") + p.plugin;
+  std::cout << "potential " << names << " of " << scene_file << "\n" << report.format();
+  return report.passed() ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,11 +93,31 @@ int main(int argc, char** argv) {
 
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin found");
 
+  auto* check_cmd = app.add_subcommand(
+      "check-potential",
+      "check a scene's potential: forces and moments against finite differences of U, and "
+      "Newton's third law, at the scene's state and at perturbed states");
+  noether::PotentialCheckOptions check_options;
+  bool no_third_law = false;
+  check_cmd->add_option("scene", scene, "scene file (YAML)")->required();
+  check_cmd->add_option("--set", overrides, "override a scene key")->take_all();
+  check_cmd->add_option("--tolerance", check_options.tolerance,
+                        "finite-difference agreement, relative to the largest force or moment")
+      ->capture_default_str();
+  check_cmd->add_option("--states", check_options.perturbed_states, "perturbed states to check")
+      ->capture_default_str();
+  check_cmd->add_flag("--no-third-law", no_third_law,
+                      "skip the net force and torque rows (for external-field models)");
+
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(level));
   try {
     if (*run_cmd) return run(scene, output, overrides, !no_progress);
     if (*plugins_cmd) return list_plugins();
+    if (*check_cmd) {
+      check_options.third_law = !no_third_law;
+      return check_potential(scene, overrides, check_options);
+    }
   } catch (const noether::Error& e) {
     std::cerr << "noether: " << e.what() << "\n";
     return 2;

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <system_error>
@@ -172,6 +173,60 @@ void check_params(const PluginInfo& info, const Params& params) {
       throw SceneError(params.here() + what + " needs '" + p.name + "': " + p.description);
 }
 
+// Every potential a plugin makes is wrapped so that a non-finite energy, force or moment stops
+// the run with the plugin's name instead of propagating NaN silently (an O(n) check against an
+// evaluation that is at least O(n)).
+class FiniteChecked final : public Potential {
+ public:
+  FiniteChecked(std::shared_ptr<const Potential> inner, std::string plugin, const System& system)
+      : inner_(std::move(inner)), plugin_(std::move(plugin)) {
+    for (const auto& b : system.bodies()) names_.push_back(b.name);
+    for (std::size_t k = 0; k < system.rigid_count(); ++k) rigid_.push_back(system.body_of_rigid(k));
+  }
+  void evaluate(const State& state, Forces& forces) const override {
+    inner_->evaluate(state, forces);
+    if (std::isfinite(forces.U) && forces.f.allFinite() && forces.M.allFinite()) return;
+    std::string what = "the energy U";
+    for (Eigen::Index i = 0; i < forces.f.cols(); ++i)
+      if (!forces.f.col(i).allFinite()) what = "the force on body '" + names_[static_cast<std::size_t>(i)] + "'";
+    for (Eigen::Index k = 0; k < forces.M.cols(); ++k)
+      if (!forces.M.col(k).allFinite())
+        what = "the moment on body '" + names_[rigid_[static_cast<std::size_t>(k)]] + "'";
+    std::ostringstream msg;
+    msg << "potential plugin '" << plugin_ << "' returned a non-finite value for " << what
+        << " at t = " << state.t;
+    throw IntegrationError(msg.str(), state.t);
+  }
+  bool needs_attitudes() const override { return inner_->needs_attitudes(); }
+
+ private:
+  std::shared_ptr<const Potential> inner_;
+  std::string plugin_;
+  std::vector<std::string> names_;
+  std::vector<std::size_t> rigid_;
+};
+
+// Calls a plugin's factory: noether errors (bad parameters) pass through, anything else is
+// reported with the plugin's name.
+template <class Make>
+auto construct(const PluginInfo& info, Make&& make) {
+  try {
+    auto object = make();
+    if (!object)
+      throw PluginError(std::string(to_string(info.kind)) + " plugin '" + info.name +
+                        "' returned no object");
+    return object;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw PluginError(std::string(to_string(info.kind)) + " plugin '" + info.name +
+                      "' failed to construct: " + e.what());
+  } catch (...) {
+    throw PluginError(std::string(to_string(info.kind)) + " plugin '" + info.name +
+                      "' failed to construct (unknown exception)");
+  }
+}
+
 // Wraps an object so that its plugin library outlives it.
 template <class T>
 std::shared_ptr<T> keep_library_alive(std::unique_ptr<T> object, std::shared_ptr<void> library) {
@@ -185,9 +240,9 @@ std::shared_ptr<const Potential> PluginRegistry::make_potential(const std::strin
                                                                 const Params& params) {
   const Loaded& l = load_kind(name, PluginKind::Potential);
   check_params(l.info, params);
-  auto object = l.descriptor->make_potential(system, params);
-  if (!object) throw PluginError("potential plugin '" + name + "' returned no object");
-  return keep_library_alive<Potential>(std::move(object), l.library);
+  auto object = construct(l.info, [&] { return l.descriptor->make_potential(system, params); });
+  return std::make_shared<FiniteChecked>(
+      keep_library_alive<Potential>(std::move(object), l.library), name, system);
 }
 
 std::shared_ptr<Integrator> PluginRegistry::make_integrator(
@@ -195,8 +250,8 @@ std::shared_ptr<Integrator> PluginRegistry::make_integrator(
     const Params& params) {
   const Loaded& l = load_kind(name, PluginKind::Integrator);
   check_params(l.info, params);
-  auto object = l.descriptor->make_integrator(system, std::move(potential), params);
-  if (!object) throw PluginError("integrator plugin '" + name + "' returned no object");
+  auto object =
+      construct(l.info, [&] { return l.descriptor->make_integrator(system, potential, params); });
   return keep_library_alive<Integrator>(std::move(object), l.library);
 }
 

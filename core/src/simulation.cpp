@@ -99,15 +99,19 @@ class RunObserver final : public Observer {
 
 }  // namespace
 
+std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
+                                                      PluginRegistry& registry) {
+  std::vector<std::shared_ptr<const Potential>> terms;
+  for (const auto& p : scene.potentials)
+    terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
+  return terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
+}
+
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options) {
   RunSummary summary;
-  std::vector<std::shared_ptr<const Potential>> terms;
-  for (const auto& p : scene.potentials) {
-    terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
+  for (const auto& p : scene.potentials)
     summary.potential += (summary.potential.empty() ? "" : "+") + p.plugin;
-  }
-  std::shared_ptr<const Potential> potential =
-      terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
+  const auto potential = make_scene_potential(scene, registry);
   auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, potential,
                                              scene.integrator.params);
   summary.integrator = scene.integrator.plugin;

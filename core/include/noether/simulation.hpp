@@ -33,6 +33,9 @@ struct RunSummary {
   double wall_seconds = 0.0;
 };
 
+// The scene's potential: its plugins made by name, summed when more than one.
+std::shared_ptr<const Potential> make_scene_potential(const Scene& scene, PluginRegistry& registry);
+
 // Runs the scene. On an IntegrationError the output written so far is finalized (readable,
 // with the error recorded) and the error is rethrown.
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options);
