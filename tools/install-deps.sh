@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config bc
   libeigen3-dev
   libsundials-dev
   libboost-dev libboost-filesystem-dev

@@ -15,7 +15,8 @@ namespace noether {
 struct PotentialCheckOptions {
   int perturbed_states = 3;      // random states besides the given one
   double tolerance = 1e-6;       // finite-difference agreement, relative to the largest force
-                                 // (or moment) of the state
+                                 // (or moment) of the state; the round-off floor of central
+                                 // differences, 64 ε |U| / h, is added to it
   double third_law_tolerance = 1e-12;  // ‖Σ f‖ and ‖Σ torque‖, relative to Σ of magnitudes
   bool third_law = true;         // external-field models do not satisfy it: turn off
   unsigned seed = 1;

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The out-of-tree plugin workflow as a user meets it: install noether to a fresh prefix, build
+# examples/custom-potential against the installed package only, list it with the installed
+# driver, and run the example's own tests (its scene through the installed driver, the J2
+# nodal precession against the analytic rate, check-potential).
+#   out_of_tree.sh BUILD_DIR SOURCE_DIR
+set -euo pipefail
+build=$1 src=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+start=$(date +%s.%N)
+cmake -S "$src/examples/custom-potential" -B "$work/build" -G Ninja \
+      -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"
+cmake --build "$work/build"
+end=$(date +%s.%N)
+printf 'out-of-tree configure + build: %.1f s\n' "$(echo "$end - $start" | bc)"
+NOETHER_PLUGIN_PATH="$work/build" "$work/prefix/bin/noether" plugins | tee "$work/plugins.txt"
+grep -Eq '^potential +j2 +point masses plus the J2' "$work/plugins.txt"
+grep -Eq 'radius +reference' "$work/plugins.txt"
+ctest --test-dir "$work/build" --output-on-failure
