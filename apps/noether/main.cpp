@@ -1,4 +1,5 @@
 // noether: the driver. `noether run SCENE`, `noether plugins`, `noether --version`.
+#include <noether/compare.hpp>
 #include <noether/error.hpp>
 #include <noether/potential_check.hpp>
 #include <noether/registry.hpp>
@@ -10,7 +11,10 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <unistd.h>
 
 namespace {
 
@@ -59,6 +63,60 @@ int list_plugins() {
   return failures.empty() ? 0 : 1;
 }
 
+// The work–precision plot is drawn by tools/plot_compare.py (Debian's python3-matplotlib):
+// installed in <prefix>/share/noether, or found in the source tree of a build.
+std::string plot_script() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  for (const fs::path& candidate :
+       {exe.parent_path() / ".." / "share" / "noether" / "plot_compare.py",
+        fs::path(NOETHER_SOURCE_DIR) / "tools" / "plot_compare.py"})
+    if (fs::exists(candidate, ec)) return candidate.string();
+  return {};
+}
+
+int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
+            const std::vector<std::string>& runs, const std::string& spec_file, int repeats,
+            std::string csv, std::string h5, std::string png, bool plot) {
+  const noether::Scene scene = noether::load_scene(scene_file, overrides);
+  noether::PluginRegistry registry;
+  noether::CompareSpec spec = spec_file.empty() ? noether::default_compare_spec(scene)
+                                                : noether::load_compare_spec(spec_file, scene);
+  if (!runs.empty()) {
+    spec.runs.clear();
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      for (auto& r : noether::expand_runs(noether::parse_params(runs[k], "--run " + std::to_string(k + 1))))
+        spec.runs.push_back(std::move(r));
+  }
+  if (repeats > 0) spec.repeats = repeats;
+  const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";
+  if (csv.empty()) csv = stem + ".csv";
+  if (h5.empty()) h5 = stem + ".h5";
+  if (png.empty()) png = stem + ".png";
+  const auto result = noether::compare(scene, registry, spec, [](const std::string& m) {
+    std::cerr << "compare: " << m << "\n";
+  });
+  std::cout << "scene " << scene_file << "\n" << noether::format_compare(result);
+  noether::write_compare_csv(result, csv);
+  noether::write_compare_h5(result, scene, h5);
+  std::cout << "table: " << csv << ", " << h5 << "\n";
+  if (plot) {
+    const std::string script = plot_script();
+    const std::string python = access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
+    const std::string command = python + " '" + script + "' '" + csv + "' '" + png + "' --title '" +
+                                scene_file + "'";
+    if (script.empty() || std::system(command.c_str()) != 0)
+      std::cerr << "noether: could not draw the plot (needs python3-matplotlib; command: "
+                << command << "); the table is written\n";
+    else
+      std::cout << "plot: " << png << "\n";
+  }
+  for (const auto& row : result.rows)
+    if (!row.ok) return 3;
+  return 0;
+}
+
 int check_potential(const std::string& scene_file, const std::vector<std::string>& overrides,
                     const noether::PotentialCheckOptions& options) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
@@ -93,6 +151,24 @@ int main(int argc, char** argv) {
 
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin found");
 
+  auto* compare_cmd = app.add_subcommand(
+      "compare", "run a scene under several integrators against a reference: work against precision");
+  std::vector<std::string> runs;
+  std::string spec_file, csv, h5, png;
+  int repeats = 0;
+  bool no_plot = false;
+  compare_cmd->add_option("scene", scene, "scene file (YAML)")->required();
+  compare_cmd->add_option("--set", overrides, "override a scene key")->take_all();
+  compare_cmd->add_option("--run", runs,
+                          "an integrator setting as YAML, lists expand: "
+                          "'{plugin: lgvi, step: [1e-3, 5e-4]}' (repeatable; default: a standard sweep)");
+  compare_cmd->add_option("--spec", spec_file, "compare file: {repeats, reference, runs: [...]}");
+  compare_cmd->add_option("--repeats", repeats, "repeats per run for the median wall time (default 3)");
+  compare_cmd->add_option("-o,--csv", csv, "CSV table (default SCENE-compare.csv)");
+  compare_cmd->add_option("--h5", h5, "HDF5 table (default SCENE-compare.h5)");
+  compare_cmd->add_option("--plot", png, "work–precision plot (default SCENE-compare.png)");
+  compare_cmd->add_flag("--no-plot", no_plot, "do not draw the plot");
+
   auto* check_cmd = app.add_subcommand(
       "check-potential",
       "check a scene's potential: forces and moments against finite differences of U, and "
@@ -114,6 +190,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(scene, output, overrides, !no_progress);
     if (*plugins_cmd) return list_plugins();
+    if (*compare_cmd) return compare(scene, overrides, runs, spec_file, repeats, csv, h5, png, !no_plot);
     if (*check_cmd) {
       check_options.third_law = !no_third_law;
       return check_potential(scene, overrides, check_options);

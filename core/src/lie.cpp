@@ -37,3 +37,15 @@ Mat3 rotation_from_quaternion(const Vec4& q) {
 }
 
 }  // namespace noether
+
+#include <Eigen/SVD>
+
+namespace noether {
+Mat3 nearest_rotation(const Mat3& M) {
+  Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 U = svd.matrixU();
+  const Mat3 V = svd.matrixV();
+  if ((U * V.transpose()).determinant() < 0) U.col(2) *= -1;
+  return U * V.transpose();
+}
+}  // namespace noether

@@ -250,12 +250,28 @@ Scene parse_scene(const std::string& text, const std::string& file,
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+namespace {
+std::string read_file(const std::filesystem::path& file, const char* what) {
   std::ifstream in(file);
-  if (!in) throw SceneError(file.string() + ": cannot open the scene file");
+  if (!in) throw SceneError(file.string() + ": cannot open the " + what);
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse_scene(buffer.str(), file.string(), overrides);
+  return buffer.str();
+}
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return parse_scene(read_file(file, "scene file"), file.string(), overrides);
+}
+
+Params parse_params(const std::string& text, const std::string& file) {
+  Params p = parse_yaml(text, file);
+  p.set_path("");
+  return p;
+}
+
+Params load_params_file(const std::filesystem::path& file) {
+  return parse_params(read_file(file, "file"), file.string());
 }
 
 }  // namespace noether

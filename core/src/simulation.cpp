@@ -134,7 +134,11 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   }
   summary.work = integrator->work();
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (writer) writer->finish(summary.work, summary.wall_seconds, "completed");
+  summary.stop_reason = integrator->stop_reason();
+  summary.final_state = std::move(state);
+  if (writer)
+    writer->finish(summary.work, summary.wall_seconds,
+                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason);
   return summary;
 }
 
@@ -155,13 +159,18 @@ std::string format_summary(const RunSummary& s) {
       "steps                         %lld\n"
       "potential evaluations         %lld\n"
       "Newton iterations per step    %.3f\n"
+      "rejected steps                %s\n"
       "wall time                     %.3f s\n",
       s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
       s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
       s.max_orthogonality_error, s.min_distance, s.t_of_min_distance, s.frames,
       static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
-      static_cast<double>(s.work.newton_iterations) / steps, s.wall_seconds);
-  return buf;
+      static_cast<double>(s.work.newton_iterations) / steps,
+      s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
+      s.wall_seconds);
+  std::string out = buf;
+  if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
+  return out;
 }
 
 }  // namespace noether

@@ -9,6 +9,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace noether {
 
@@ -34,13 +36,25 @@ struct OutputSchedule {
 class NOETHER_API Integrator {
  public:
   virtual ~Integrator() = default;
-  // Advances `state` to schedule.t_end. On IntegrationError, `state` holds the last valid
-  // state (at e.t_reached()).
+  // Advances `state` to schedule.t_end, or to an event that ends the run early (then
+  // stop_reason() says which). On IntegrationError, `state` holds the last valid state (at
+  // e.t_reached()).
   virtual void integrate(State& state, const OutputSchedule& schedule, Observer& observer) = 0;
   const WorkCounters& work() const { return work_; }
+  // Empty when the run reached t_end; otherwise the event that stopped it (e.g. a close
+  // approach found by root finding).
+  const std::string& stop_reason() const { return stop_reason_; }
 
  protected:
   WorkCounters work_;
+  std::string stop_reason_;
 };
+
+// For fixed-step methods: the number of steps of size h in `interval`. Throws SceneError
+// (naming `plugin` and `what`) when the interval is not a whole number of steps.
+std::int64_t whole_steps(double interval, double h, const char* what, const char* plugin);
+
+// For adaptive methods: the output times from t0, t0 + Δ, t0 + 2Δ, ..., and t_end.
+std::vector<double> output_times(double t0, double t_end, double output_every);
 
 }  // namespace noether

@@ -43,3 +43,9 @@ Vec4 quaternion_from_rotation(const Mat3& R);
 Mat3 rotation_from_quaternion(const Vec4& q);
 
 }  // namespace noether
+
+namespace noether {
+// The rotation nearest to M in the Frobenius norm (polar factor U Vᵀ of M = U Σ Vᵀ): used
+// only where a user asks for re-orthonormalisation (rk's `renormalize`), never silently.
+Mat3 nearest_rotation(const Mat3& M);
+}  // namespace noether

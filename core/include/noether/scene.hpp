@@ -33,6 +33,10 @@ struct Scene {
   RunSettings run;
 };
 
+// YAML text or file → Params (for compare specs and other YAML inputs), with file:line.
+Params parse_params(const std::string& text, const std::string& file);
+Params load_params_file(const std::filesystem::path& file);
+
 // Overrides are "dotted.key=value" (value parsed as YAML); sequence items by index, bodies
 // also by name: "bodies.alpha.mass=2".
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});

@@ -29,6 +29,8 @@ struct RunSummary {
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::size_t frames = 0;
+  std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it
+  State final_state;        // the state at the end of the run
   WorkCounters work;
   double wall_seconds = 0.0;
 };

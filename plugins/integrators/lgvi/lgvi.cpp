@@ -21,19 +21,6 @@ using noether::State;
 using noether::System;
 using noether::Vec3;
 
-// The number of steps of size h in an interval, refusing intervals that are not a whole
-// number of steps (a fixed-step method cannot land on them).
-std::int64_t whole_steps(double interval, double h, const char* what) {
-  const double n = std::round(interval / h);
-  if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
-    std::ostringstream msg;
-    msg << "lgvi: " << what << " = " << interval << " is not a whole number of steps of "
-        << h << " (" << interval / h << " steps); choose integrator.step = " << what << "/N";
-    throw SceneError(msg.str());
-  }
-  return static_cast<std::int64_t>(n);
-}
-
 class Lgvi final : public noether::Integrator {
  public:
   Lgvi(const System& system, std::shared_ptr<const noether::Potential> potential,
@@ -54,8 +41,8 @@ class Lgvi final : public noether::Integrator {
   void integrate(State& s, const noether::OutputSchedule& schedule,
                  noether::Observer& observer) override {
     const double t0 = s.t;
-    const std::int64_t n = whole_steps(schedule.t_end - t0, h_, "run.t_end - t0");
-    const std::int64_t stride = whole_steps(schedule.output_every, h_, "run.output_every");
+    const std::int64_t n = noether::whole_steps(schedule.t_end - t0, h_, "run.t_end - t0", "lgvi");
+    const std::int64_t stride = noether::whole_steps(schedule.output_every, h_, "run.output_every", "lgvi");
     evaluate(s, current_);
     observer.observe(s, current_);
     for (std::int64_t k = 0; k < n; ++k) {

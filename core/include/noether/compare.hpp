@@ -1,0 +1,69 @@
+#pragma once
+// Compare: one scene under several integrator settings, each measured against a reference
+// solution — the speed–accuracy trade of noether's integrators on a user's own scene.
+#include <noether/params.hpp>
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct CompareRun {
+  std::string family;  // e.g. "lgvi", "cvode adams", "rk dopri5": one line in the plot
+  std::string label;   // e.g. "step=0.001", "rtol=1e-08"
+  Params integrator;   // the scene's `integrator` mapping for this run
+};
+
+struct CompareSpec {
+  std::vector<CompareRun> runs;
+  Params reference;        // integrator mapping of the reference solution
+  Params reference_check;  // a looser reference, to estimate the reference's own error
+  int repeats = 3;         // wall time is the median of this many runs
+};
+
+// Expands `{plugin: cvode, method: adams, rtol: [1e-6, 1e-8]}`: every key whose value is a
+// list gives one run per item (several list keys are zipped, and must have equal lengths).
+std::vector<CompareRun> expand_runs(const Params& mapping);
+
+// The default sweep: lgvi and rk4 at output_every/{10, 20, 50}; cvode adams and bdf, rk dopri5
+// and rkf78 at rtol 1e-6, 1e-8, 1e-10 (atol = rtol/100); reference rk rkf78 rtol 1e-13.
+CompareSpec default_compare_spec(const Scene& scene);
+
+// A compare file: {repeats: N, reference: {...}, runs: [{plugin: ..., ...}, ...]}.
+CompareSpec load_compare_spec(const std::filesystem::path& file, const Scene& scene);
+
+struct CompareRow {
+  std::string family, label;
+  bool ok = false;
+  std::string error;               // why the run failed, when !ok
+  double wall_seconds = 0.0;       // median over repeats
+  long long potential_evaluations = 0, steps = 0, rejected_steps = 0;
+  double final_position_error = 0.0;  // max_i ‖x_i(T) − x_i^ref(T)‖
+  double final_attitude_error = 0.0;  // max_k ‖R_k(T) − R_k^ref(T)‖_F
+  double max_abs_energy_error = 0.0;
+  double max_rel_angular_momentum_error = 0.0;
+  double max_orthogonality_error = 0.0;
+};
+
+struct CompareResult {
+  std::string reference;         // description of the reference run
+  double reference_error = 0.0;  // estimate: its final-state difference to the looser check
+  double reference_seconds = 0.0;
+  std::vector<CompareRow> rows;
+};
+
+using CompareProgress = std::function<void(const std::string& message)>;
+
+CompareResult compare(const Scene& scene, PluginRegistry& registry, const CompareSpec& spec,
+                      const CompareProgress& progress = {});
+
+std::string format_compare(const CompareResult& result);
+void write_compare_csv(const CompareResult& result, const std::filesystem::path& file);
+void write_compare_h5(const CompareResult& result, const Scene& scene,
+                      const std::filesystem::path& file);
+
+}  // namespace noether

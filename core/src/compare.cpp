@@ -1,0 +1,282 @@
+#include <noether/compare.hpp>
+#include <noether/error.hpp>
+#include <noether/simulation.hpp>
+
+#include "h5_helpers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace noether {
+
+std::vector<CompareRun> expand_runs(const Params& mapping) {
+  if (!mapping.is_map() || !mapping.has("plugin"))
+    throw SceneError(mapping.here() + "a compare run must be a mapping naming a plugin, e.g. "
+                                      "{plugin: lgvi, step: [1e-3, 5e-4]}");
+  std::size_t n = 1;
+  std::string list_key;
+  for (const auto& [key, value] : mapping.entries()) {
+    if (!value.is_sequence()) continue;
+    if (list_key.empty()) {
+      n = value.size();
+      list_key = key;
+    } else if (value.size() != n) {
+      throw SceneError(value.here() + "compare run: the lists '" + list_key + "' and '" + key +
+                       "' must have the same length");
+    }
+  }
+  if (n == 0) throw SceneError(mapping.here() + "compare run: an empty list gives no runs");
+  // The family (one line in the plot): the plugin, its method, and every other scalar setting
+  // that is not a number (renormalize=true, frame=relative, ...).
+  std::string family = mapping.at("plugin").as_string();
+  if (mapping.has("method") && mapping.at("method").is_scalar())
+    family += " " + mapping.at("method").as_string();
+  auto is_number = [](const Params& v) {
+    try {
+      v.as_double();
+      return true;
+    } catch (const SceneError&) {
+      return false;
+    }
+  };
+  for (const auto& [key, value] : mapping.entries())
+    if (key != "plugin" && key != "method" && value.is_scalar() && !is_number(value))
+      family += " " + key + "=" + value.as_string();
+  std::vector<CompareRun> runs;
+  for (std::size_t k = 0; k < n; ++k) {
+    CompareRun run;
+    run.family = family;
+    std::vector<std::pair<std::string, Params>> entries;
+    for (const auto& [key, value] : mapping.entries()) {
+      const Params item = value.is_sequence() ? value.items()[k] : value;
+      entries.emplace_back(key, item);
+      if (key != "plugin" && key != "method" && (value.is_sequence() || list_key.empty()) &&
+          (value.is_sequence() || is_number(value)))
+        run.label += (run.label.empty() ? "" : " ") + key + "=" + item.as_string();
+    }
+    run.integrator = Params::map(std::move(entries), mapping.where());
+    run.integrator.set_path("integrator");
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+namespace {
+
+Params flow(const std::string& yaml) { return parse_params(yaml, "default compare spec"); }
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+CompareSpec default_compare_spec(const Scene& scene) {
+  const double dt = scene.run.output_every;
+  const std::string steps =
+      "[" + number(dt / 10) + ", " + number(dt / 20) + ", " + number(dt / 50) + "]";
+  CompareSpec spec;
+  for (const std::string& run :
+       {"{plugin: lgvi, step: " + steps + "}",
+        std::string("{plugin: cvode, method: adams, rtol: [1.0e-6, 1.0e-8, 1.0e-10], "
+                    "atol: [1.0e-8, 1.0e-10, 1.0e-12]}"),
+        std::string("{plugin: cvode, method: bdf, rtol: [1.0e-6, 1.0e-8, 1.0e-10], "
+                    "atol: [1.0e-8, 1.0e-10, 1.0e-12]}"),
+        std::string("{plugin: rk, method: dopri5, rtol: [1.0e-6, 1.0e-8, 1.0e-10], "
+                    "atol: [1.0e-8, 1.0e-10, 1.0e-12]}"),
+        std::string("{plugin: rk, method: rkf78, rtol: [1.0e-6, 1.0e-8, 1.0e-10], "
+                    "atol: [1.0e-8, 1.0e-10, 1.0e-12]}"),
+        "{plugin: rk, method: rk4, step: " + steps + "}"})
+    for (auto& r : expand_runs(flow(run))) spec.runs.push_back(std::move(r));
+  spec.reference = flow("{plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-15}");
+  spec.reference_check = flow("{plugin: rk, method: rkf78, rtol: 1.0e-12, atol: 1.0e-14}");
+  return spec;
+}
+
+CompareSpec load_compare_spec(const std::filesystem::path& file, const Scene& scene) {
+  const Params p = load_params_file(file);
+  if (!p.is_map()) throw SceneError(file.string() + ": a compare file must be a mapping");
+  p.check_keys({"repeats", "reference", "reference_check", "runs"}, "the compare file");
+  CompareSpec spec = default_compare_spec(scene);
+  spec.runs.clear();
+  spec.repeats = static_cast<int>(p.get("repeats", 3L));
+  if (p.has("reference")) spec.reference = p.at("reference");
+  if (p.has("reference_check")) spec.reference_check = p.at("reference_check");
+  for (const auto& run : p.at("runs").items())
+    for (auto& r : expand_runs(run)) spec.runs.push_back(std::move(r));
+  if (spec.repeats < 1) throw SceneError(p.at("repeats").here() + "repeats must be at least 1");
+  return spec;
+}
+
+namespace {
+
+Scene with_integrator(const Scene& scene, const Params& integrator) {
+  Scene s = scene;
+  s.integrator = {integrator.at("plugin").as_string(), integrator};
+  return s;
+}
+
+// max_i ‖x_i − y_i‖ and max_k ‖R_k − Q_k‖_F.
+std::pair<double, double> state_difference(const State& a, const State& b) {
+  double dx = 0, dR = 0;
+  for (Eigen::Index i = 0; i < a.x.cols(); ++i) dx = std::max(dx, (a.x.col(i) - b.x.col(i)).norm());
+  for (std::size_t k = 0; k < a.R.size(); ++k) dR = std::max(dR, (a.R[k] - b.R[k]).norm());
+  return {dx, dR};
+}
+
+std::string describe(const Params& p) {
+  std::string out;
+  for (const auto& [key, value] : p.entries())
+    out += (out.empty() ? "" : ", ") + key + ": " + (value.is_scalar() ? value.as_string() : "...");
+  return "{" + out + "}";
+}
+
+}  // namespace
+
+CompareResult compare(const Scene& scene, PluginRegistry& registry, const CompareSpec& spec,
+                      const CompareProgress& progress) {
+  auto say = [&](const std::string& m) {
+    if (progress) progress(m);
+  };
+  CompareResult result;
+  result.reference = describe(spec.reference);
+  say("reference " + result.reference);
+  const RunSummary ref = run_scene(with_integrator(scene, spec.reference), registry, {});
+  result.reference_seconds = ref.wall_seconds;
+  if (!ref.stop_reason.empty())
+    throw Error("compare: the reference run stopped early (" + ref.stop_reason + ")");
+  if (!spec.reference_check.is_null()) {
+    const RunSummary check = run_scene(with_integrator(scene, spec.reference_check), registry, {});
+    const auto [dx, dR] = state_difference(ref.final_state, check.final_state);
+    result.reference_error = std::max(dx, dR);
+  }
+  for (const auto& run : spec.runs) {
+    CompareRow row;
+    row.family = run.family;
+    row.label = run.label;
+    say(run.family + " " + run.label);
+    try {
+      const Scene s = with_integrator(scene, run.integrator);
+      std::vector<double> seconds;
+      RunSummary summary = run_scene(s, registry, {});
+      seconds.push_back(summary.wall_seconds);
+      // Repeat for a stable median, but not runs that take more than two seconds.
+      for (int k = 1; k < spec.repeats && summary.wall_seconds < 2.0; ++k)
+        seconds.push_back(run_scene(s, registry, {}).wall_seconds);
+      std::sort(seconds.begin(), seconds.end());
+      row.wall_seconds = seconds[seconds.size() / 2];
+      row.potential_evaluations = summary.work.potential_evaluations;
+      row.steps = summary.work.steps;
+      row.rejected_steps = summary.work.rejected_steps;
+      row.max_abs_energy_error = summary.max_abs_energy_error;
+      row.max_rel_angular_momentum_error = summary.max_rel_angular_momentum_error;
+      row.max_orthogonality_error = summary.max_orthogonality_error;
+      if (!summary.stop_reason.empty()) throw Error("stopped early: " + summary.stop_reason);
+      std::tie(row.final_position_error, row.final_attitude_error) =
+          state_difference(summary.final_state, ref.final_state);
+      row.ok = true;
+    } catch (const Error& e) {
+      row.ok = false;
+      row.error = e.what();
+      row.final_position_error = row.final_attitude_error = NAN;
+    }
+    result.rows.push_back(std::move(row));
+  }
+  return result;
+}
+
+std::string format_compare(const CompareResult& r) {
+  std::ostringstream out;
+  char line[512];
+  out << "reference: " << r.reference << ", " << r.reference_seconds << " s; estimated error "
+      << r.reference_error << " (final-state difference to a 10x looser run)\n";
+  std::snprintf(line, sizeof line, "%-14s %-28s %10s %10s %10s %10s %10s %10s %10s\n", "family",
+                "setting", "wall [s]", "U evals", "pos err", "att err", "max|dE|", "max dL/L",
+                "max orth");
+  out << line;
+  for (const auto& row : r.rows) {
+    if (!row.ok) {
+      std::snprintf(line, sizeof line, "%-14s %-28s failed: %s\n", row.family.c_str(),
+                    row.label.c_str(), row.error.c_str());
+      out << line;
+      continue;
+    }
+    std::snprintf(line, sizeof line,
+                  "%-14s %-28s %10.4f %10lld %10.2e %10.2e %10.2e %10.2e %10.2e\n",
+                  row.family.c_str(), row.label.c_str(), row.wall_seconds,
+                  row.potential_evaluations, row.final_position_error, row.final_attitude_error,
+                  row.max_abs_energy_error, row.max_rel_angular_momentum_error,
+                  row.max_orthogonality_error);
+    out << line;
+  }
+  return out.str();
+}
+
+void write_compare_csv(const CompareResult& r, const std::filesystem::path& file) {
+  std::ofstream out(file);
+  if (!out) throw OutputError("cannot write " + file.string());
+  out << "family,setting,ok,wall_seconds,potential_evaluations,steps,rejected_steps,"
+         "final_position_error,final_attitude_error,max_abs_energy_error,"
+         "max_rel_angular_momentum_error,max_orthogonality_error,error\n";
+  out.precision(6);
+  for (const auto& row : r.rows) {
+    std::string err = row.error;
+    std::replace(err.begin(), err.end(), '"', '\'');
+    out << row.family << ',' << row.label << ',' << (row.ok ? 1 : 0) << ',' << row.wall_seconds
+        << ',' << row.potential_evaluations << ',' << row.steps << ',' << row.rejected_steps << ','
+        << row.final_position_error << ',' << row.final_attitude_error << ','
+        << row.max_abs_energy_error << ',' << row.max_rel_angular_momentum_error << ','
+        << row.max_orthogonality_error << ",\"" << err << "\"\n";
+  }
+}
+
+void write_compare_h5(const CompareResult& r, const Scene& scene, const std::filesystem::path& file) {
+  using namespace h5;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (f < 0) throw OutputError("cannot create " + file.string());
+  hid_t g = make_group(f, "compare");
+  string_attribute(g, "scene_file", scene.file);
+  string_attribute(g, "scene", scene.text);
+  string_attribute(g, "reference", r.reference);
+  numeric_attribute<double>(g, "reference_error", H5T_NATIVE_DOUBLE, {r.reference_error});
+  std::vector<std::string> family, label, error;
+  std::vector<double> ok, wall, evals, steps, rejected, pos, att, dE, dL, orth;
+  for (const auto& row : r.rows) {
+    family.push_back(row.family);
+    label.push_back(row.label);
+    error.push_back(row.error);
+    ok.push_back(row.ok ? 1 : 0);
+    wall.push_back(row.wall_seconds);
+    evals.push_back(static_cast<double>(row.potential_evaluations));
+    steps.push_back(static_cast<double>(row.steps));
+    rejected.push_back(static_cast<double>(row.rejected_steps));
+    pos.push_back(row.final_position_error);
+    att.push_back(row.final_attitude_error);
+    dE.push_back(row.max_abs_energy_error);
+    dL.push_back(row.max_rel_angular_momentum_error);
+    orth.push_back(row.max_orthogonality_error);
+  }
+  string_list_dataset(g, "family", family);
+  string_list_dataset(g, "setting", label);
+  string_list_dataset(g, "error", error);
+  double_dataset(g, "ok", ok);
+  double_dataset(g, "wall_seconds", wall);
+  double_dataset(g, "potential_evaluations", evals);
+  double_dataset(g, "steps", steps);
+  double_dataset(g, "rejected_steps", rejected);
+  double_dataset(g, "final_position_error", pos);
+  double_dataset(g, "final_attitude_error", att);
+  double_dataset(g, "max_abs_energy_error", dE);
+  double_dataset(g, "max_rel_angular_momentum_error", dL);
+  double_dataset(g, "max_orthogonality_error", orth);
+  H5Gclose(g);
+  check(H5Fclose(f), "closing the compare file");
+}
+
+}  // namespace noether
