@@ -5,6 +5,7 @@
 #include "h5_helpers.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -68,10 +69,10 @@ namespace {
 
 Params flow(const std::string& yaml) { return parse_params(yaml, "default compare spec"); }
 
-std::string number(double v) {
+std::string number(double v) {  // shortest text that reads back as exactly v
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  const auto end = std::to_chars(buf, buf + sizeof buf, v).ptr;
+  return std::string(buf, end);
 }
 
 }  // namespace

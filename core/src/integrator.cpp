@@ -11,7 +11,7 @@ std::int64_t whole_steps(double interval, double h, const char* what, const char
   if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
     std::ostringstream msg;
     msg << plugin << ": " << what << " = " << interval << " is not a whole number of steps of "
-        << h << " (" << interval / h << " steps); choose integrator.step = " << what << "/N";
+        << h << " (" << interval / h << " steps); choose integrator.step = (" << what << ")/N";
     throw SceneError(msg.str());
   }
   return static_cast<std::int64_t>(n);

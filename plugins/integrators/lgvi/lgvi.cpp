@@ -41,7 +41,7 @@ class Lgvi final : public noether::Integrator {
   void integrate(State& s, const noether::OutputSchedule& schedule,
                  noether::Observer& observer) override {
     const double t0 = s.t;
-    const std::int64_t n = noether::whole_steps(schedule.t_end - t0, h_, "run.t_end - t0", "lgvi");
+    const std::int64_t n = noether::whole_steps(schedule.t_end - t0, h_, "run.t_end − t0", "lgvi");
     const std::int64_t stride = noether::whole_steps(schedule.output_every, h_, "run.output_every", "lgvi");
     evaluate(s, current_);
     observer.observe(s, current_);

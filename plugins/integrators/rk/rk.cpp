@@ -85,7 +85,7 @@ class Rk final : public noether::Integrator {
   template <class Rhs, class Emit>
   void fixed(Rhs& rhs, Vector& y, double& t, const noether::OutputSchedule& s, Emit& emit) {
     const double t0 = t;
-    const std::int64_t n = noether::whole_steps(s.t_end - t0, step_, "run.t_end - t0", "rk");
+    const std::int64_t n = noether::whole_steps(s.t_end - t0, step_, "run.t_end − t0", "rk");
     const std::int64_t stride = noether::whole_steps(s.output_every, step_, "run.output_every", "rk");
     odeint::runge_kutta4<Vector> rk4;
     for (std::int64_t k = 0; k < n; ++k) {
