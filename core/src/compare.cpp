@@ -30,8 +30,9 @@ std::vector<CompareRun> expand_runs(const Params& mapping) {
     }
   }
   if (n == 0) throw SceneError(mapping.here() + "compare run: an empty list gives no runs");
-  // The family (one line in the plot): the plugin, its method, and every other scalar setting
-  // that is not a number (renormalize=true, frame=relative, ...).
+  // The family (one line in the plot): the plugin, its method, and the settings that stay
+  // fixed — every non-list setting when some settings are lists, else the non-numeric ones
+  // (renormalize=true, frame=relative, ...). The label: the settings that vary.
   std::string family = mapping.at("plugin").as_string();
   if (mapping.has("method") && mapping.at("method").is_scalar())
     family += " " + mapping.at("method").as_string();
@@ -43,9 +44,9 @@ std::vector<CompareRun> expand_runs(const Params& mapping) {
       return false;
     }
   };
+  auto fixed = [&](const Params& v) { return !v.is_sequence() && (!list_key.empty() || !is_number(v)); };
   for (const auto& [key, value] : mapping.entries())
-    if (key != "plugin" && key != "method" && value.is_scalar() && !is_number(value))
-      family += " " + key + "=" + value.as_string();
+    if (key != "plugin" && key != "method" && fixed(value)) family += " " + key + "=" + value.as_string();
   std::vector<CompareRun> runs;
   for (std::size_t k = 0; k < n; ++k) {
     CompareRun run;
@@ -54,8 +55,7 @@ std::vector<CompareRun> expand_runs(const Params& mapping) {
     for (const auto& [key, value] : mapping.entries()) {
       const Params item = value.is_sequence() ? value.items()[k] : value;
       entries.emplace_back(key, item);
-      if (key != "plugin" && key != "method" && (value.is_sequence() || list_key.empty()) &&
-          (value.is_sequence() || is_number(value)))
+      if (key != "plugin" && key != "method" && !fixed(value))
         run.label += (run.label.empty() ? "" : " ") + key + "=" + item.as_string();
     }
     run.integrator = Params::map(std::move(entries), mapping.where());

@@ -49,3 +49,15 @@ Mat3 nearest_rotation(const Mat3& M) {
   return U * V.transpose();
 }
 }  // namespace noether
+
+namespace noether {
+Vec3 log_so3(const Mat3& R) {
+  Eigen::Quaterniond q(R);
+  q.normalize();
+  if (q.w() < 0) q.coeffs() = -q.coeffs();
+  const Vec3 v = q.vec();
+  const double n = v.norm();
+  const double theta = 2.0 * std::atan2(n, q.w());
+  return n > 0 ? Vec3((theta / n) * v) : Vec3((2.0 / q.w()) * v);
+}
+}  // namespace noether

@@ -1,10 +1,19 @@
 #pragma once
-// The continuous equations of motion, inertial frame, Hamiltonian form (MATH.md §3; seed 000
-// eqs. (29)–(32)), as a first-order system y' = F(t, y) for general-purpose ODE solvers:
-//     ẋ_i = γ_i / m_i        γ̇_i = −∂U/∂x_i
-//     Ṙ_k = R_k S(Ω_k)       Π̇_k = Π_k × Ω_k + M_k,    Ω_k = J_k⁻¹ Π_k
-// R is carried as nine plain numbers, as the seed's Runge–Kutta does: a general-purpose solver
-// lets it drift off SO(3), and that drift is part of what noether reports.
+// The continuous equations of motion as first-order systems y' = F(t, y) for general-purpose
+// ODE solvers (MATH.md §3; seed 000 §2–3, the left face of the cube of Fig. 7). Four forms:
+//
+//   inertial, Hamiltonian (29)–(32):  ẋ = γ/m, γ̇ = −∂U/∂x, Ṙ = R S(Ω), Π̇ = Π × Ω + M, Ω = J⁻¹Π
+//   inertial, Lagrangian (25)–(28):   ẋ = v, m v̇ = −∂U/∂x, Ṙ = R S(Ω), J Ω̇ + Ω × J Ω = M
+//   relative, Hamiltonian (two rigid bodies; X = R2ᵀ(x1 − x2), Γ = m R2ᵀ(v1 − v2),
+//     R = R2ᵀR1, Π = R Π1, ω = J_R⁻¹ Π with J_R = R J1 Rᵀ):
+//     Ẋ = Γ/m + X × Ω2,  Γ̇ = Γ × Ω2 − ∂U/∂X,  Ṙ = S(ω) R − S(Ω2) R,
+//     Π̇ = Π × Ω2 + M,  Π̇2 = Π2 × Ω2 + M2,  and body 2: ẋ2 = γ2/m2, γ̇2 = R2 ∂U/∂X, Ṙ2 = R2 S(Ω2)
+//   relative, Lagrangian (55)–(62): the same with V = Γ/m, ω and Ω2 as variables:
+//     V̇ = V × Ω2 − (1/m) ∂U/∂X,  ω̇ = J_R⁻¹(M − ω × J_R ω) − Ω2 × ω,  J2 Ω̇2 + Ω2 × J2 Ω2 = M2
+// with M = R M1 (moment on body 1 seen from body 2) and M2 = X × ∂U/∂X − M the moment on body 2
+// (our sign of M is the negative of the seed's in the relative equations). Attitudes are
+// carried as nine plain numbers, as the seed's Runge–Kutta does: a general-purpose solver lets
+// them drift off SO(3), and that drift is part of what noether reports.
 #include <noether/forces.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
@@ -12,34 +21,39 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace noether {
 
-class InertialEquations {
+class ContinuousEquations {
  public:
-  InertialEquations(const System& system, std::shared_ptr<const Potential> potential);
-
-  // Length of y: 6 per body, 12 more per rigid body.
-  std::size_t size() const { return size_; }
-  // y = [x (3n) | γ (3n) | R (9 per rigid body, column-major) | Π (3 per rigid body)].
-  void pack(const State& state, double* y) const;
-  void unpack(const double* y, double t, State& state) const;
+  virtual ~ContinuousEquations() = default;
+  virtual std::size_t size() const = 0;
+  // Inertial State ↔ y of this form.
+  virtual void pack(const State& state, double* y) const = 0;
+  virtual void unpack(const double* y, double t, State& state) const = 0;
   // dydt = F(t, y): one potential evaluation.
-  void rhs(double t, const double* y, double* dydt);
-  // Forces of the last rhs() call.
-  const Forces& forces() const { return forces_; }
+  virtual void rhs(double t, const double* y, double* dydt) = 0;
+  // Offsets in y of every 3×3 attitude (column-major), for optional re-orthonormalisation.
+  virtual std::vector<std::size_t> rotation_offsets() const = 0;
+
   std::int64_t evaluations() const { return evaluations_; }
   const System& system() const { return system_; }
   const Potential& potential() const { return *potential_; }
 
- private:
+ protected:
+  ContinuousEquations(const System& system, std::shared_ptr<const Potential> potential)
+      : system_(system), potential_(std::move(potential)) {}
   System system_;
   std::shared_ptr<const Potential> potential_;
-  std::size_t size_;
-  State scratch_;
-  Forces forces_;
   std::int64_t evaluations_ = 0;
 };
+
+// frame: "inertial" or "relative" (two rigid bodies only); form: "hamiltonian" or
+// "lagrangian". Throws SceneError for anything else, or a relative frame the scene cannot have.
+std::unique_ptr<ContinuousEquations> make_continuous_equations(
+    const System& system, std::shared_ptr<const Potential> potential,
+    const std::string& frame = "inertial", const std::string& form = "hamiltonian");
 
 }  // namespace noether

@@ -49,3 +49,9 @@ namespace noether {
 // only where a user asks for re-orthonormalisation (rk's `renormalize`), never silently.
 Mat3 nearest_rotation(const Mat3& M);
 }  // namespace noether
+
+namespace noether {
+// The rotation vector f of R = exp(S(f)), ‖f‖ ≤ π (via the unit quaternion, accurate for
+// small angles).
+Vec3 log_so3(const Mat3& R);
+}  // namespace noether

@@ -46,7 +46,9 @@ class Cvode final : public noether::Integrator {
  public:
   Cvode(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
         const Params& p)
-      : equations_(system, std::move(potential)) {
+      : equations_(noether::make_continuous_equations(
+            system, std::move(potential), p.get("frame", std::string("inertial")),
+            p.get("form", std::string("hamiltonian")))) {
     method_ = p.get("method", std::string("adams"));
     if (method_ != "adams" && method_ != "bdf")
       throw SceneError(p.at("method").here() + "cvode: method must be adams or bdf, not '" +
@@ -55,6 +57,7 @@ class Cvode final : public noether::Integrator {
     atol_ = p.get("atol", 1e-10);
     max_steps_ = p.get("max_steps", 500000L);
     close_approach_ = p.get("close_approach", 0.0);
+    p_frame_ = p.get("frame", std::string("inertial"));
     if (rtol_ <= 0 || atol_ < 0 || max_steps_ < 1 || close_approach_ < 0)
       throw SceneError(p.here() + "cvode: rtol and max_steps must be positive, atol and "
                                   "close_approach non-negative");
@@ -66,9 +69,9 @@ class Cvode final : public noether::Integrator {
                  noether::Observer& observer) override {
     CvodeSession s;
     check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create", state.t);
-    const auto n = static_cast<sunindextype>(equations_.size());
+    const auto n = static_cast<sunindextype>(equations_->size());
     s.y = N_VNew_Serial(n, s.context);
-    equations_.pack(state, N_VGetArrayPointer(s.y));
+    equations_->pack(state, N_VGetArrayPointer(s.y));
     s.memory = CVodeCreate(method_ == "adams" ? CV_ADAMS : CV_BDF, s.context);
     if (!s.memory) throw IntegrationError("cvode: CVodeCreate failed", state.t);
     CVodeSetErrHandlerFn(s.memory, &Cvode::on_error, this);
@@ -84,15 +87,17 @@ class Cvode final : public noether::Integrator {
       s.linear = SUNLinSol_Dense(s.y, s.matrix, s.context);
       check(CVodeSetLinearSolver(s.memory, s.linear, s.matrix), "CVodeSetLinearSolver", state.t);
     }
+    if (close_approach_ > 0 && p_frame_ == "relative")
+      throw noether::SceneError("cvode: close_approach needs frame: inertial");
     if (close_approach_ > 0 && !pairs_.empty())
       check(CVodeRootInit(s.memory, static_cast<int>(pairs_.size()), &Cvode::roots),
             "CVodeRootInit", state.t);
 
     noether::Forces forces;
-    forces.resize(equations_.system());
+    forces.resize(equations_->system());
     auto emit = [&](double t) {  // forces at the output state for diagnostics (not counted)
-      equations_.unpack(N_VGetArrayPointer(s.y), t, state);
-      equations_.potential().evaluate(state, forces);
+      equations_->unpack(N_VGetArrayPointer(s.y), t, state);
+      equations_->potential().evaluate(state, forces);
       observer.observe(state, forces);
     };
     emit(state.t);
@@ -107,7 +112,7 @@ class Cvode final : public noether::Integrator {
         return;
       }
       if (flag < 0) {
-        equations_.unpack(N_VGetArrayPointer(s.y), t_reached, state);
+        equations_->unpack(N_VGetArrayPointer(s.y), t_reached, state);
         std::ostringstream msg;
         msg << "cvode (" << method_ << ", rtol " << rtol_ << ", atol " << atol_ << ") stopped at t = "
             << t_reached << ": " << CVodeGetReturnFlagName(flag) << ": " << last_error_ << hint(flag);
@@ -121,7 +126,7 @@ class Cvode final : public noether::Integrator {
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
     auto* me = static_cast<Cvode*>(self);
     try {
-      me->equations_.rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      me->equations_->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
       return 0;
     } catch (const std::exception& e) {
       me->last_error_ = e.what();
@@ -164,8 +169,8 @@ class Cvode final : public noether::Integrator {
     std::ostringstream msg;
     for (std::size_t k = 0; k < pairs_.size(); ++k)
       if (found[k] < 0) {  // distance decreasing through the threshold
-        msg << "close approach: bodies '" << equations_.system().body(pairs_[k].first).name
-            << "' and '" << equations_.system().body(pairs_[k].second).name
+        msg << "close approach: bodies '" << equations_->system().body(pairs_[k].first).name
+            << "' and '" << equations_->system().body(pairs_[k].second).name
             << "' came within " << close_approach_ << " at t = " << t;
         break;
       }
@@ -195,12 +200,13 @@ class Cvode final : public noether::Integrator {
                              t);
   }
 
-  noether::InertialEquations equations_;
+  std::unique_ptr<noether::ContinuousEquations> equations_;
   std::string method_;
   double rtol_ = 0, atol_ = 0, close_approach_ = 0;
   long max_steps_ = 0;
   std::vector<std::pair<std::size_t, std::size_t>> pairs_;
   std::string last_error_;
+  std::string p_frame_;
 };
 
 const noether::ParamDoc params[] = {
@@ -211,6 +217,8 @@ const noether::ParamDoc params[] = {
     {"max_steps", "integer", "500000", "internal steps allowed between two output times"},
     {"close_approach", "number", "0 (off)",
      "stop the run (an event, not an error) when two body centres come closer than this"},
+    {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
+    {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };
 
 std::unique_ptr<noether::Integrator> make(const noether::System& system,

@@ -1,137 +1,114 @@
-// lgvi: the Lie group variational integrator of the full body problem, inertial frame,
-// Hamiltonian form (MATH.md §4; seed 000 eqs. (93)–(97), attitude solve (128)–(130)).
-// Symmetric, second order, symplectic; conserves total linear and angular momentum to
-// round-off and keeps every R on SO(3) to round-off. One potential evaluation per step.
-// With point masses only it is velocity Verlet.
-#include <noether/discrete_attitude.hpp>
+// lgvi: the Lie group variational integrator of the full body problem (seed 000; MATH.md §4–5).
+// Four discrete forms — inertial or relative frame, Hamiltonian or Lagrangian — chosen by the
+// scene (`frame`, `form`); order 4 by Yoshida's symmetric composition of the one-step
+// (Hamiltonian) forms. Every form is symmetric and symplectic, conserves total linear and
+// angular momentum to round-off and keeps every R on SO(3) to round-off.
+#include "discrete_flow.hpp"
+
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
 
 #include <cmath>
-#include <sstream>
 
 namespace {
 
-using noether::Forces;
-using noether::IntegrationError;
-using noether::Mat3;
 using noether::Params;
 using noether::SceneError;
-using noether::State;
-using noether::System;
-using noether::Vec3;
 
 class Lgvi final : public noether::Integrator {
  public:
-  Lgvi(const System& system, std::shared_ptr<const noether::Potential> potential,
-       const Params& params)
-      : system_(system), potential_(std::move(potential)) {
+  Lgvi(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
+       const Params& params) {
     h_ = params.at("step").as_double();
-    if (!(h_ > 0.0))
-      throw SceneError(params.at("step").here() + "lgvi: 'step' must be positive");
-    newton_.tolerance = params.get("newton_tolerance", 1e-15);
-    newton_.max_iterations = static_cast<int>(params.get("newton_max_iterations", 30L));
-    if (newton_.tolerance <= 0.0 || newton_.max_iterations < 1)
-      throw SceneError(params.here() +
-                       "lgvi: newton_tolerance and newton_max_iterations must be positive");
-    for (auto* f : {&current_, &next_}) f->resize(system_);
-    F_.resize(system_.rigid_count());
+    if (!(h_ > 0.0)) throw SceneError(params.at("step").here() + "lgvi: 'step' must be positive");
+    lgvi::Settings settings;
+    settings.newton.tolerance = params.get("newton_tolerance", 1e-15);
+    settings.newton.max_iterations = static_cast<int>(params.get("newton_max_iterations", 30L));
+    if (settings.newton.tolerance <= 0.0 || settings.newton.max_iterations < 1)
+      throw SceneError(params.here() + "lgvi: newton_tolerance and newton_max_iterations must be positive");
+    const std::string frame = params.get("frame", std::string("inertial"));
+    const std::string form = params.get("form", std::string("hamiltonian"));
+    order_ = static_cast<int>(params.get("order", 2L));
+    if (frame != "inertial" && frame != "relative")
+      throw SceneError(params.at("frame").here() + "lgvi: frame must be inertial or relative, not '" + frame + "'");
+    if (form != "hamiltonian" && form != "lagrangian")
+      throw SceneError(params.at("form").here() + "lgvi: form must be hamiltonian or lagrangian, not '" + form + "'");
+    if (order_ != 2 && order_ != 4)
+      throw SceneError(params.at("order").here() + "lgvi: order must be 2 or 4");
+    if (order_ == 4 && form == "lagrangian")
+      throw SceneError(params.at("order").here() +
+                       "lgvi: order 4 (Yoshida composition) needs a one-step map: use form: hamiltonian");
+    if (frame == "inertial")
+      flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, potential, settings)
+                                    : lgvi::make_inertial_lagrangian(system, potential, settings);
+    else
+      flow_ = form == "hamiltonian" ? lgvi::make_relative_hamiltonian(system, potential, settings)
+                                    : lgvi::make_relative_lagrangian(system, potential, settings);
   }
 
-  void integrate(State& s, const noether::OutputSchedule& schedule,
+  void integrate(noether::State& state, const noether::OutputSchedule& schedule,
                  noether::Observer& observer) override {
-    const double t0 = s.t;
+    const double t0 = state.t;
     const std::int64_t n = noether::whole_steps(schedule.t_end - t0, h_, "run.t_end − t0", "lgvi");
     const std::int64_t stride = noether::whole_steps(schedule.output_every, h_, "run.output_every", "lgvi");
-    evaluate(s, current_);
-    observer.observe(s, current_);
+    noether::Forces forces;
+    flow_->start(state);
+    auto emit = [&](double t) {
+      flow_->current(state, forces);
+      state.t = t;  // exactly t0 + k h, not a sum of steps
+      observer.observe(state, forces);
+    };
+    emit(t0);
     for (std::int64_t k = 0; k < n; ++k) {
-      step(s, t0 + static_cast<double>(k + 1) * h_);
-      if ((k + 1) % stride == 0 || k + 1 == n) observer.observe(s, current_);
+      try {
+        step();
+      } catch (const noether::IntegrationError&) {
+        flow_->current(state, forces);
+        collect();
+        throw;
+      }
+      if ((k + 1) % stride == 0 || k + 1 == n) emit(t0 + static_cast<double>(k + 1) * h_);
     }
+    collect();
   }
 
  private:
-  void evaluate(const State& s, Forces& forces) {
-    potential_->evaluate(s, forces);
-    ++work_.potential_evaluations;
+  // One step of size h: the base map, or Yoshida's composition λ1 h, λ2 h, λ1 h with
+  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (MATH.md §4), which is of order 4.
+  void step() {
+    if (order_ == 2) {
+      flow_->advance(h_);
+      return;
+    }
+    const double c = std::cbrt(2.0), l1 = 1.0 / (2.0 - c), l2 = -c / (2.0 - c);
+    flow_->advance(l1 * h_);
+    flow_->advance(l2 * h_);
+    flow_->advance(l1 * h_);
+  }
+  void collect() {
+    work_ = flow_->work;
+    if (order_ == 4) work_.steps /= 3;  // steps of size h, each of three substeps
   }
 
-  // One step (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}. `current_` holds the forces at k on entry
-  // and at k+1 on exit. If the attitude solve fails, `s` is left untouched at step k.
-  void step(State& s, double t_next) {
-    const Forces& fk = current_;
-    // Solve h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ for every rigid body first (93).
-    for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
-      const auto k = static_cast<Eigen::Index>(r);
-      const Vec3 g = h_ * (Vec3(s.Pi.col(k)) + 0.5 * h_ * Vec3(fk.M.col(k)));
-      const auto& body = system_.body(system_.body_of_rigid(r));
-      try {
-        const auto solved = noether::solve_discrete_attitude(g, body.inertia, newton_);
-        F_[r] = solved.F;
-        work_.newton_iterations += solved.iterations;
-      } catch (const noether::Error& e) {
-        const Vec3 omega = body.inertia_inverse * Vec3(s.Pi.col(k));
-        std::ostringstream msg;
-        msg << "lgvi: step too large for the spin of body '" << body.name << "' at t = " << s.t
-            << " with step h = " << h_ << " (|Ω| h = " << omega.norm() * h_ << " rad): "
-            << e.what() << ". Reduce integrator.step (|Ω| h well below 1 is safe)";
-        throw IntegrationError(msg.str(), s.t);
-      }
-    }
-    // Keep step k so that a failing potential evaluation (a collision) leaves it intact.
-    x_prev_ = s.x;
-    R_prev_ = s.R;
-    const double t_prev = s.t;
-    // x_{k+1} = x_k + (h/m) γ_k − (h²/2m) ∂U_k/∂x                                   (94)
-    for (std::size_t i = 0; i < system_.size(); ++i) {
-      const auto c = static_cast<Eigen::Index>(i);
-      const double m = system_.body(i).mass;
-      s.x.col(c) += (h_ / m) * s.p.col(c) + (0.5 * h_ * h_ / m) * fk.f.col(c);
-    }
-    // R_{k+1} = R_k F_k                                                              (95)
-    for (std::size_t r = 0; r < system_.rigid_count(); ++r) s.R[r] = s.R[r] * F_[r];
-    s.t = t_next;
-    try {
-      evaluate(s, next_);  // the only potential evaluation of the step
-    } catch (...) {
-      s.x = x_prev_;
-      s.R = R_prev_;
-      s.t = t_prev;
-      throw;
-    }
-    // γ_{k+1} = γ_k − (h/2) ∂U_k/∂x − (h/2) ∂U_{k+1}/∂x                             (96)
-    s.p += (0.5 * h_) * (fk.f + next_.f);
-    // Π_{k+1} = F_kᵀ Π_k + (h/2) F_kᵀ M_k + (h/2) M_{k+1}                            (97)
-    for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
-      const auto k = static_cast<Eigen::Index>(r);
-      s.Pi.col(k) = F_[r].transpose() * (Vec3(s.Pi.col(k)) + 0.5 * h_ * Vec3(fk.M.col(k))) +
-                    0.5 * h_ * next_.M.col(k);
-    }
-    std::swap(current_, next_);
-    ++work_.steps;
-  }
-
-  const System system_;
-  std::shared_ptr<const noether::Potential> potential_;
+  std::unique_ptr<lgvi::DiscreteFlow> flow_;
   double h_ = 0.0;
-  noether::DiscreteAttitudeOptions newton_;
-  Forces current_, next_;
-  std::vector<Mat3> F_;
-  Eigen::Matrix3Xd x_prev_;
-  std::vector<Mat3> R_prev_;
+  int order_ = 2;
 };
 
 const noether::ParamDoc params[] = {
-    {"step", "number", nullptr, "time step h (fixed); run.t_end and run.output_every must be "
-                                "whole multiples of it"},
+    {"step", "number", nullptr,
+     "time step h (fixed); run.t_end and run.output_every must be whole multiples of it"},
+    {"frame", "string", "inertial",
+     "inertial (93)–(97) / (78)–(80), or relative (118)–(127) / (112)–(117): two rigid bodies only"},
+    {"form", "string", "hamiltonian", "hamiltonian (one-step) or lagrangian (two-step)"},
+    {"order", "integer", "2", "2, or 4 by Yoshida's symmetric composition (hamiltonian form)"},
     {"newton_tolerance", "number", "1e-15",
      "relative tolerance ‖Δf‖/‖f‖ of the Newton solve for F_k (128)"},
     {"newton_max_iterations", "integer", "30",
      "Newton iterations before the step is declared too large for the spin"},
 };
 
-std::unique_ptr<noether::Integrator> make(const System& system,
+std::unique_ptr<noether::Integrator> make(const noether::System& system,
                                           std::shared_ptr<const noether::Potential> potential,
                                           const Params& p) {
   return std::make_unique<Lgvi>(system, std::move(potential), p);
@@ -143,7 +120,8 @@ NOETHER_PLUGIN_DESCRIPTOR = {
     NOETHER_PLUGIN_API_VERSION,
     noether::PluginKind::Integrator,
     "lgvi",
-    "Lie group variational integrator, inertial frame, Hamiltonian form (order 2, symplectic)",
+    "Lie group variational integrator: inertial or relative frame, Hamiltonian or Lagrangian "
+    "form, order 2 or 4",
     params,
     std::size(params),
     nullptr,

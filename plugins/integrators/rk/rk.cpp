@@ -29,7 +29,9 @@ class Rk final : public noether::Integrator {
  public:
   Rk(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
      const Params& p)
-      : equations_(system, std::move(potential)) {
+      : equations_(noether::make_continuous_equations(
+            system, std::move(potential), p.get("frame", std::string("inertial")),
+            p.get("form", std::string("hamiltonian")))) {
     method_ = p.get("method", std::string("dopri5"));
     if (method_ != "rk4" && method_ != "dopri5" && method_ != "rkf78")
       throw SceneError(p.at("method").here() + "rk: method must be rk4, dopri5 or rkf78, not '" +
@@ -47,17 +49,17 @@ class Rk final : public noether::Integrator {
 
   void integrate(noether::State& state, const noether::OutputSchedule& schedule,
                  noether::Observer& observer) override {
-    Vector y(equations_.size());
-    equations_.pack(state, y.data());
+    Vector y(equations_->size());
+    equations_->pack(state, y.data());
     auto rhs = [this](const Vector& x, Vector& dxdt, double t) {
-      equations_.rhs(t, x.data(), dxdt.data());
+      equations_->rhs(t, x.data(), dxdt.data());
     };
     noether::Forces forces;
-    forces.resize(equations_.system());
+    forces.resize(equations_->system());
     double t = state.t;
     auto emit = [&] {  // diagnostics need the forces at the output state (not counted as work)
-      equations_.unpack(y.data(), t, state);
-      equations_.potential().evaluate(state, forces);
+      equations_->unpack(y.data(), t, state);
+      equations_->potential().evaluate(state, forces);
       observer.observe(state, forces);
     };
     emit();
@@ -74,11 +76,11 @@ class Rk final : public noether::Integrator {
         adaptive(odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>()),
                  rhs, y, t, schedule, emit);
     } catch (const IntegrationError&) {
-      equations_.unpack(y.data(), t, state);
-      work_.potential_evaluations = equations_.evaluations();
+      equations_->unpack(y.data(), t, state);
+      work_.potential_evaluations = equations_->evaluations();
       throw;
     }
-    work_.potential_evaluations = equations_.evaluations();
+    work_.potential_evaluations = equations_->evaluations();
   }
 
  private:
@@ -185,9 +187,8 @@ class Rk final : public noether::Integrator {
     for (double v : y)
       if (!std::isfinite(v)) fail("the solution became non-finite", t);
     if (!renormalize_) return false;
-    const std::size_t n = equations_.system().size(), nr = equations_.system().rigid_count();
-    for (std::size_t k = 0; k < nr; ++k) {
-      Eigen::Map<noether::Mat3> R(y.data() + 6 * n + 9 * k);
+    for (const std::size_t offset : equations_->rotation_offsets()) {
+      Eigen::Map<noether::Mat3> R(y.data() + offset);
       R = noether::nearest_rotation(R);
     }
     return true;
@@ -200,7 +201,7 @@ class Rk final : public noether::Integrator {
     throw IntegrationError(msg.str(), t);
   }
 
-  noether::InertialEquations equations_;
+  std::unique_ptr<noether::ContinuousEquations> equations_;
   std::string method_;
   double step_ = 0, rtol_ = 0, atol_ = 0;
   bool renormalize_ = false;
@@ -217,6 +218,8 @@ const noether::ParamDoc params[] = {
     {"renormalize", "bool", "false",
      "project every R onto SO(3) after each step (opt-in; the drift is reported otherwise)"},
     {"max_steps", "integer", "10000000", "steps (accepted + rejected) before giving up"},
+    {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
+    {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };
 
 std::unique_ptr<noether::Integrator> make(const noether::System& system,

@@ -1,0 +1,57 @@
+#pragma once
+// The four discrete forms of the LGVI (seed 000, Fig. 7, right face of the cube) behind one
+// interface, so that the plugin drives any of them, and composes the one-step (Hamiltonian)
+// forms for order 4.
+#include <noether/discrete_attitude.hpp>
+#include <noether/forces.hpp>
+#include <noether/integrator.hpp>
+#include <noether/potential.hpp>
+#include <noether/state.hpp>
+#include <noether/system.hpp>
+
+#include <memory>
+#include <string>
+
+namespace lgvi {
+
+using noether::Forces;
+using noether::Mat3;
+using noether::State;
+using noether::System;
+using noether::Vec3;
+
+struct Settings {
+  noether::DiscreteAttitudeOptions newton;
+};
+
+class DiscreteFlow {
+ public:
+  virtual ~DiscreteFlow() = default;
+  // Starts at an inertial state (evaluates the potential there).
+  virtual void start(const State& s) = 0;
+  // One step of size h. The Lagrangian (two-step) forms need the same h every step.
+  virtual void advance(double h) = 0;
+  // The current inertial state (momenta by the discrete Legendre transform where needed) and
+  // the forces there (U, inertial f, body-frame M), for output and diagnostics.
+  virtual void current(State& s, Forces& f) const = 0;
+  virtual double time() const = 0;
+
+  noether::WorkCounters work;
+};
+
+// Solves (93)/(123)/(124)-type equations S(g) = F Jd − Jd Fᵀ for F = exp(S(f)), turning a
+// failure into an IntegrationError that names the body, the time and the step.
+noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Settings& settings, const std::string& body,
+                    double t, double h, const Vec3& omega, noether::WorkCounters& work);
+
+// vee(Jd F − Fᵀ Jd) for F = exp(S(f)), the left side of (79) and (114) at step k − 1,
+// evaluated from f as a J f − b f × J f (= Fᵀ G(f)) instead of from the matrices, whose I
+// parts cancel and would lose a factor 1/‖f‖ of precision every step.
+Vec3 lagrangian_momentum(const Vec3& f, const Mat3& J);
+
+std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
+std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
+std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
+std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
+
+}  // namespace lgvi

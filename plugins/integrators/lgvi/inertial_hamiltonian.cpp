@@ -1,0 +1,119 @@
+// LGVI, inertial frame, Hamiltonian form: seed 000 eqs. (93)–(97) (MATH.md §4).
+#include "discrete_flow.hpp"
+
+#include <noether/error.hpp>
+
+#include <sstream>
+
+namespace lgvi {
+
+noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Settings& settings, const std::string& body,
+                    double t, double h, const Vec3& omega, noether::WorkCounters& work) {
+  try {
+    const auto solved = noether::solve_discrete_attitude(g, J, settings.newton);
+    work.newton_iterations += solved.iterations;
+    return solved;
+  } catch (const noether::Error& e) {
+    std::ostringstream msg;
+    msg << "lgvi: step too large for the spin of body '" << body << "' at t = " << t
+        << " with step h = " << h << " (|Ω| h = " << omega.norm() * std::abs(h) << " rad): " << e.what()
+        << ". Reduce integrator.step (|Ω| h well below 1 is safe)";
+    throw noether::IntegrationError(msg.str(), t);
+  }
+}
+
+Vec3 lagrangian_momentum(const Vec3& f, const Mat3& J) {
+  const auto [a, b] = noether::rodrigues_coefficients(f.norm());
+  const Vec3 Jf = J * f;
+  return a * Jf - b * f.cross(Jf);
+}
+
+namespace {
+
+class InertialHamiltonian final : public DiscreteFlow {
+ public:
+  InertialHamiltonian(const System& system, std::shared_ptr<const noether::Potential> potential,
+                      const Settings& settings)
+      : system_(system), potential_(std::move(potential)), settings_(settings) {
+    for (auto* f : {&current_, &next_}) f->resize(system_);
+    F_.resize(system_.rigid_count());
+  }
+
+  void start(const State& s) override {
+    s_ = s;
+    evaluate(s_, current_);
+  }
+
+  // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
+  void advance(double h) override {
+    const Forces& fk = current_;
+    // h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ                                        (93)
+    for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
+      const auto k = static_cast<Eigen::Index>(r);
+      const auto& body = system_.body(system_.body_of_rigid(r));
+      const Vec3 g = h * (Vec3(s_.Pi.col(k)) + 0.5 * h * Vec3(fk.M.col(k)));
+      F_[r] = solve_attitude(g, body.inertia, settings_, body.name, s_.t, h,
+                             body.inertia_inverse * Vec3(s_.Pi.col(k)), work).F;
+    }
+    x_prev_ = s_.x;
+    R_prev_ = s_.R;
+    const double t_prev = s_.t;
+    // x_{k+1} = x_k + (h/m) γ_k − (h²/2m) ∂U_k/∂x                                   (94)
+    for (std::size_t i = 0; i < system_.size(); ++i) {
+      const auto c = static_cast<Eigen::Index>(i);
+      const double m = system_.body(i).mass;
+      s_.x.col(c) += (h / m) * s_.p.col(c) + (0.5 * h * h / m) * fk.f.col(c);
+    }
+    // R_{k+1} = R_k F_k                                                              (95)
+    for (std::size_t r = 0; r < system_.rigid_count(); ++r) s_.R[r] = s_.R[r] * F_[r];
+    s_.t += h;
+    try {
+      evaluate(s_, next_);  // the only potential evaluation of the step
+    } catch (...) {
+      s_.x = x_prev_;
+      s_.R = R_prev_;
+      s_.t = t_prev;
+      throw;
+    }
+    // γ_{k+1} = γ_k − (h/2) ∂U_k/∂x − (h/2) ∂U_{k+1}/∂x                             (96)
+    s_.p += (0.5 * h) * (fk.f + next_.f);
+    // Π_{k+1} = F_kᵀ Π_k + (h/2) F_kᵀ M_k + (h/2) M_{k+1}                            (97)
+    for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
+      const auto k = static_cast<Eigen::Index>(r);
+      s_.Pi.col(k) = F_[r].transpose() * (Vec3(s_.Pi.col(k)) + 0.5 * h * Vec3(fk.M.col(k))) +
+                     0.5 * h * next_.M.col(k);
+    }
+    std::swap(current_, next_);
+    ++work.steps;
+  }
+
+  void current(State& s, Forces& f) const override {
+    s = s_;
+    f = current_;
+  }
+  double time() const override { return s_.t; }
+
+ private:
+  void evaluate(const State& s, Forces& f) {
+    potential_->evaluate(s, f);
+    ++work.potential_evaluations;
+  }
+
+  const System system_;
+  std::shared_ptr<const noether::Potential> potential_;
+  Settings settings_;
+  State s_;
+  Forces current_, next_;
+  std::vector<Mat3> F_;
+  Eigen::Matrix3Xd x_prev_;
+  std::vector<Mat3> R_prev_;
+};
+
+}  // namespace
+
+std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System& s, std::shared_ptr<const noether::Potential> p,
+                                                        const Settings& settings) {
+  return std::make_unique<InertialHamiltonian>(s, std::move(p), settings);
+}
+
+}  // namespace lgvi

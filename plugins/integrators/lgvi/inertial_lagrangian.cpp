@@ -1,0 +1,106 @@
+// LGVI, inertial frame, Lagrangian form: seed 000 eqs. (78)–(80),
+//   (m/h)(x_{k+1} − 2x_k + x_{k−1}) = −h ∂U_k/∂x_k                                    (78)
+//   (1/h)(F_k Jd − Jd F_kᵀ − Jd F_{k−1} + F_{k−1}ᵀ Jd) = h S(M_k)                      (79)
+//   R_{k+1} = R_k F_k                                                                  (80)
+// a two-step map on (x_{k−1}, R_{k−1}, x_k, R_k). Carried, with no loss of precision, as
+//   D_k = x_k − x_{k−1}:     D_{k+1} = D_k − (h²/m) ∂U_k/∂x,  x_{k+1} = x_k + D_{k+1}     (78)
+//   L_k = vee(Jd F_{k−1} − F_{k−1}ᵀ Jd):  S(L_k + h² M_k) = F_k Jd − Jd F_kᵀ          (79)
+// with L evaluated from F's rotation vector (lagrangian_momentum), not from the matrices.
+// The start (x_0, R_0, x_1, R_1) is the discrete Legendre transform of the initial momenta:
+// D_0 = (h/m) γ_0 + (h²/2m) ∂U_0/∂x, L_0 = h Π_0 − (h²/2) M_0 make the first step give
+// x_1, R_1 of (94)–(95). Momenta for output (discrete Legendre transform):
+//   γ_k = m D_k/h − (h/2) ∂U_k/∂x,   Π_k = L_k/h + (h/2) M_k.
+#include "discrete_flow.hpp"
+
+#include <noether/error.hpp>
+
+namespace lgvi {
+
+namespace {
+
+class InertialLagrangian final : public DiscreteFlow {
+ public:
+  InertialLagrangian(const System& system, std::shared_ptr<const noether::Potential> potential,
+                     const Settings& settings)
+      : system_(system), potential_(std::move(potential)), settings_(settings) {
+    forces_.resize(system_);
+  }
+
+  void start(const State& s) override {
+    s_ = s;
+    potential_->evaluate(s_, forces_);
+    ++work.potential_evaluations;
+    h_ = 0;
+  }
+
+  void advance(double h) override {
+    const std::size_t n = system_.size(), nr = system_.rigid_count();
+    if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
+      h_ = h;
+      D_.resize(3, static_cast<Eigen::Index>(n));
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<Eigen::Index>(i);
+        const double m = system_.body(i).mass;
+        D_.col(c) = (h / m) * s_.p.col(c) - (0.5 * h * h / m) * forces_.f.col(c);
+      }
+      L_.resize(nr);
+      for (std::size_t r = 0; r < nr; ++r)
+        L_[r] = h * Vec3(s_.Pi.col(static_cast<Eigen::Index>(r))) -
+                0.5 * h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+    }
+    if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
+    // (79): F_k from S(L_k + h² M_k) = F_k Jd − Jd F_kᵀ
+    std::vector<noether::DiscreteAttitude> F;
+    for (std::size_t r = 0; r < nr; ++r) {
+      const auto& b = system_.body(system_.body_of_rigid(r));
+      const Vec3 g = L_[r] + h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+      F.push_back(solve_attitude(g, b.inertia, settings_, b.name, s_.t, h, b.inertia_inverse * g / h, work));
+    }
+    // (78): D_{k+1} = D_k + (h²/m) f_k,  x_{k+1} = x_k + D_{k+1}
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto c = static_cast<Eigen::Index>(i);
+      D_.col(c) += (h * h / system_.body(i).mass) * forces_.f.col(c);
+    }
+    s_.x += D_;
+    for (std::size_t r = 0; r < nr; ++r) {
+      s_.R[r] = s_.R[r] * F[r].F;  // (80)
+      L_[r] = lagrangian_momentum(F[r].f, system_.body(system_.body_of_rigid(r)).inertia);
+    }
+    s_.t += h;
+    potential_->evaluate(s_, forces_);
+    ++work.potential_evaluations;
+    ++work.steps;
+    // The discrete Legendre transform at k+1.
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto c = static_cast<Eigen::Index>(i);
+      s_.p.col(c) = (system_.body(i).mass / h) * D_.col(c) + 0.5 * h * forces_.f.col(c);
+    }
+    for (std::size_t r = 0; r < nr; ++r)
+      s_.Pi.col(static_cast<Eigen::Index>(r)) = L_[r] / h + 0.5 * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+  }
+
+  void current(State& s, Forces& f) const override {
+    s = s_;
+    f = forces_;
+  }
+  double time() const override { return s_.t; }
+
+ private:
+  const System system_;
+  std::shared_ptr<const noether::Potential> potential_;
+  Settings settings_;
+  double h_ = 0;
+  State s_;
+  Forces forces_;
+  Eigen::Matrix3Xd D_;    // x_k − x_{k−1}
+  std::vector<Vec3> L_;   // vee(Jd F_{k−1} − F_{k−1}ᵀ Jd)
+};
+
+}  // namespace
+
+std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System& s, std::shared_ptr<const noether::Potential> p,
+                                                       const Settings& settings) {
+  return std::make_unique<InertialLagrangian>(s, std::move(p), settings);
+}
+
+}  // namespace lgvi

@@ -1,0 +1,83 @@
+// LGVI, relative frame, Hamiltonian form: seed 000 eqs. (118)–(124), with the reconstruction
+// of body 2's inertial motion (125)–(127) (MATH.md §5). Derived here by reducing (93)–(97) by
+// the symmetry U(x1, x2, R1, R2) = U(X, R), so that it reproduces the inertial trajectory for
+// the same h up to round-off; our M is the negative of the seed's relative M (see
+// relative_frame.hpp):
+//   h S(Π2_k + (h/2) M2_k) = F2_k Jd2 − Jd2 F2_kᵀ                                   (124)
+//   h S(Π_k + (h/2) M_k)   = F_k JdR_k − JdR_k F_kᵀ,  JdR = R Jd1 Rᵀ                  (123)
+//   X_{k+1} = F2_kᵀ (X_k + (h/m) Γ_k − (h²/2m) ∂U_k/∂X)                             (118)
+//   R_{k+1} = F2_kᵀ F_k R_k                                                          (122)
+//   Γ_{k+1} = F2_kᵀ (Γ_k − (h/2) ∂U_k/∂X) − (h/2) ∂U_{k+1}/∂X                       (119)
+//   Π_{k+1} = F2_kᵀ (Π_k + (h/2) M_k) + (h/2) M_{k+1}                                (120)
+//   Π2_{k+1} = F2_kᵀ (Π2_k + (h/2) M2_k) + (h/2) M2_{k+1}                            (121)
+//   x2_{k+1} = x2_k + (h/m2) γ2_k + (h²/2m2) R2_k ∂U_k/∂X                            (125)
+//   γ2_{k+1} = γ2_k + (h/2) (R2_k ∂U_k/∂X + R2_{k+1} ∂U_{k+1}/∂X)                     (126)
+//   R2_{k+1} = R2_k F2_k                                                             (127)
+// F_k = R_k F1_k R_kᵀ is body 1's F seen from body 2; (123) is (128) with J → R J1 Rᵀ.
+#include "relative_frame.hpp"
+
+namespace lgvi {
+
+namespace {
+
+class RelativeHamiltonian final : public DiscreteFlow {
+ public:
+  RelativeHamiltonian(const System& system, std::shared_ptr<const noether::Potential> potential,
+                      const Settings& settings)
+      : frame_(system, std::move(potential)), settings_(settings) {}
+
+  void start(const State& s) override {
+    r_ = frame_.reduce(s);
+    evaluate(r_, current_);
+  }
+
+  void advance(double h) override {
+    const ReducedForces& fk = current_;
+    const Mat3 F2 = solve_attitude(h * (r_.Pi2 + 0.5 * h * fk.M2), frame_.J2, settings_, frame_.name2,
+                                   r_.t, h, frame_.J2.inverse() * r_.Pi2, work).F;        // (124)
+    const Mat3 JR = r_.R * frame_.J1 * r_.R.transpose();
+    const Mat3 F = solve_attitude(h * (r_.Pi + 0.5 * h * fk.M), JR, settings_, frame_.name1, r_.t, h,
+                                  JR.inverse() * r_.Pi, work).F;                          // (123)
+    Reduced next = r_;
+    next.t = r_.t + h;
+    next.X = F2.transpose() * (r_.X + (h / frame_.m) * r_.Gamma - (0.5 * h * h / frame_.m) * fk.dU_dX);  // (118)
+    next.R = F2.transpose() * F * r_.R;                                                   // (122)
+    next.x2 = r_.x2 + (h / frame_.m2) * r_.gamma2 + (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX);  // (125)
+    next.R2 = r_.R2 * F2;                                                                 // (127)
+    evaluate(next, next_);  // on failure r_ is untouched
+    const ReducedForces& f1 = next_;
+    next.Gamma = F2.transpose() * (r_.Gamma - 0.5 * h * fk.dU_dX) - 0.5 * h * f1.dU_dX;   // (119)
+    next.Pi = F2.transpose() * (r_.Pi + 0.5 * h * fk.M) + 0.5 * h * f1.M;                 // (120)
+    next.Pi2 = F2.transpose() * (r_.Pi2 + 0.5 * h * fk.M2) + 0.5 * h * f1.M2;             // (121)
+    next.gamma2 = r_.gamma2 + 0.5 * h * (r_.R2 * fk.dU_dX + next.R2 * f1.dU_dX);          // (126)
+    r_ = next;
+    std::swap(current_, next_);
+    ++work.steps;
+  }
+
+  void current(State& s, Forces& f) const override {
+    frame_.reconstruct(r_, s);
+    frame_.inertial_forces(r_, current_, f);
+  }
+  double time() const override { return r_.t; }
+
+ private:
+  void evaluate(const Reduced& r, ReducedForces& f) {
+    frame_.evaluate(r, f);
+    ++work.potential_evaluations;
+  }
+
+  RelativeFrame frame_;
+  Settings settings_;
+  Reduced r_;
+  ReducedForces current_, next_;
+};
+
+}  // namespace
+
+std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System& s, std::shared_ptr<const noether::Potential> p,
+                                                       const Settings& settings) {
+  return std::make_unique<RelativeHamiltonian>(s, std::move(p), settings);
+}
+
+}  // namespace lgvi

@@ -1,0 +1,107 @@
+// LGVI, relative frame, Lagrangian form: seed 000 eqs. (112)–(117), our sign of M
+// (relative_frame.hpp):
+//   F2_k X_{k+1} − 2X_k + F2_{k−1}ᵀ X_{k−1} = −(h²/m) ∂U_k/∂X_k                      (112)
+//   F_k JdR_k − JdR_k F_kᵀ = F2_{k−1}ᵀ (F_{k−1} JdR_{k−1} − JdR_{k−1} F_{k−1}ᵀ) F2_{k−1}
+//                            + h² S(M_k)                                             (113)
+//   F2_k Jd2 − Jd2 F2_kᵀ = Jd2 F2_{k−1} − F2_{k−1}ᵀ Jd2 + h² S(M2_k)                  (114)
+//   R_{k+1} = F2_kᵀ F_k R_k,  R2_{k+1} = R2_k F2_k                               (115), (116)
+//   x2_{k+1} − 2 x2_k + x2_{k−1} = (h²/m2) R2_k ∂U_k/∂X_k                            (117)
+// (113), (114) are the seed's up to its sign of M, with the sides as the Hamiltonian form
+// implies (the seed's extraction is garbled there). Carried without loss of precision as
+//   D_k = X_k − F2_{k−1}ᵀ X_{k−1}:  D_{k+1} = F2_kᵀ (D_k − (h²/m) ∂U_k/∂X),
+//                                   X_{k+1} = F2_kᵀ X_k + D_{k+1}                      (112)
+//   A_k = F2_{k−1}ᵀ vee(F_{k−1} JdR_{k−1} − JdR_{k−1} F_{k−1}ᵀ):  S(A_k + h² M_k) = F_k JdR_k − …  (113)
+//   L2_k = vee(Jd2 F2_{k−1} − F2_{k−1}ᵀ Jd2):  S(L2_k + h² M2_k) = F2_k Jd2 − …     (114)
+//   Δ_k = x2_k − x2_{k−1}:  Δ_{k+1} = Δ_k + (h²/m2) R2_k ∂U_k/∂X                      (117)
+// with the vee terms evaluated from rotation vectors. The start is the discrete Legendre
+// transform of the initial momenta: D_0 = (h/m) Γ_0 + (h²/2m) ∂U_0/∂X, A_0 = h Π_0 − (h²/2) M_0,
+// L2_0 = h Π2_0 − (h²/2) M2_0, Δ_0 = (h/m2) γ2_0 − (h²/2m2) R2_0 ∂U_0/∂X. Momenta for output:
+//   Γ_k = m D_k/h − (h/2) ∂U_k/∂X,  Π_k = A_k/h + (h/2) M_k,  Π2_k = L2_k/h + (h/2) M2_k,
+//   γ2_k = m2 Δ_k/h + (h/2) R2_k ∂U_k/∂X.
+#include "relative_frame.hpp"
+
+#include <noether/error.hpp>
+
+namespace lgvi {
+
+namespace {
+
+class RelativeLagrangian final : public DiscreteFlow {
+ public:
+  RelativeLagrangian(const System& system, std::shared_ptr<const noether::Potential> potential,
+                     const Settings& settings)
+      : frame_(system, std::move(potential)), settings_(settings) {}
+
+  void start(const State& s) override {
+    r_ = frame_.reduce(s);
+    frame_.evaluate(r_, forces_);
+    ++work.potential_evaluations;
+    h_ = 0;
+  }
+
+  void advance(double h) override {
+    const ReducedForces& fk = forces_;
+    if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
+      h_ = h;
+      D_ = (h / frame_.m) * r_.Gamma + (0.5 * h * h / frame_.m) * fk.dU_dX;
+      A_ = h * r_.Pi - 0.5 * h * h * fk.M;
+      L2_ = h * r_.Pi2 - 0.5 * h * h * fk.M2;
+      Delta_ = (h / frame_.m2) * r_.gamma2 - (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX);
+    }
+    if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
+    const Vec3 g2 = L2_ + h * h * fk.M2;                                                  // (114)
+    const auto F2 = solve_attitude(g2, frame_.J2, settings_, frame_.name2, r_.t, h, frame_.J2.inverse() * g2 / h, work);
+    const Mat3 JR = r_.R * frame_.J1 * r_.R.transpose();
+    const Vec3 g = A_ + h * h * fk.M;                                                     // (113)
+    const auto F = solve_attitude(g, JR, settings_, frame_.name1, r_.t, h, JR.inverse() * g / h, work);
+    const Mat3 F2t = F2.F.transpose();
+    const Vec3 D = F2t * (D_ - (h * h / frame_.m) * fk.dU_dX);                            // (112)
+    const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX);                  // (117)
+    Reduced next = r_;
+    next.t = r_.t + h;
+    next.X = F2t * r_.X + D;
+    next.R = F2t * F.F * r_.R;   // (115)
+    next.R2 = r_.R2 * F2.F;      // (116)
+    next.x2 = r_.x2 + Delta;
+    ReducedForces f1;
+    frame_.evaluate(next, f1);  // on failure nothing has changed
+    ++work.potential_evaluations;
+    const Vec3 A = F2t * noether::discrete_attitude_residual_map(F.f, JR);  // F2ᵀ vee(F JdR − JdR Fᵀ)
+    const Vec3 L2 = lagrangian_momentum(F2.f, frame_.J2);
+    // The discrete Legendre transform at k+1.
+    next.Gamma = (frame_.m / h) * D - 0.5 * h * f1.dU_dX;
+    next.Pi = A / h + 0.5 * h * f1.M;
+    next.Pi2 = L2 / h + 0.5 * h * f1.M2;
+    next.gamma2 = (frame_.m2 / h) * Delta + 0.5 * h * (next.R2 * f1.dU_dX);
+    r_ = next;
+    forces_ = std::move(f1);
+    D_ = D;
+    A_ = A;
+    L2_ = L2;
+    Delta_ = Delta;
+    ++work.steps;
+  }
+
+  void current(State& s, Forces& f) const override {
+    frame_.reconstruct(r_, s);
+    frame_.inertial_forces(r_, forces_, f);
+  }
+  double time() const override { return r_.t; }
+
+ private:
+  RelativeFrame frame_;
+  Settings settings_;
+  double h_ = 0;
+  Reduced r_;
+  ReducedForces forces_;
+  Vec3 D_, A_, L2_, Delta_;
+};
+
+}  // namespace
+
+std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System& s, std::shared_ptr<const noether::Potential> p,
+                                                      const Settings& settings) {
+  return std::make_unique<RelativeLagrangian>(s, std::move(p), settings);
+}
+
+}  // namespace lgvi
