@@ -260,7 +260,8 @@ void H5Writer::flush() {
   m.last_flush = Clock::now();
 }
 
-void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome) {
+void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
+                      const std::vector<StepSeries>& steps) {
   Impl& m = *impl_;
   flush();
   hid_t g = make_group(m.file, "work");
@@ -273,6 +274,22 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
   string_attribute(g, "outcome", outcome);
   H5Gclose(g);
+  if (!steps.empty()) {
+    hid_t ig = make_group(m.file, "integrator");
+    for (const auto& series : steps) {
+      const hsize_t dims[2] = {series.values.size() / std::max<std::size_t>(1, series.width), series.width};
+      hid_t space = H5Screate_simple(2, dims, nullptr);
+      hid_t d = check_id(H5Dcreate2(ig, series.name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
+                                    H5P_DEFAULT, H5P_DEFAULT), series.name.c_str());
+      if (dims[0] > 0)
+        check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, series.values.data()),
+              series.name.c_str());
+      string_attribute(d, "description", series.description);
+      H5Dclose(d);
+      H5Sclose(space);
+    }
+    H5Gclose(ig);
+  }
   m.doubles.clear();
   m.step_series.reset();
   check(H5Fclose(m.file), "closing the output file");

@@ -129,7 +129,9 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   } catch (const Error& e) {
     summary.work = integrator->work();
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (writer) writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what());
+    if (writer)
+      writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what(),
+                     integrator->step_series());
     throw;
   }
   summary.work = integrator->work();
@@ -138,7 +140,8 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.final_state = std::move(state);
   if (writer)
     writer->finish(summary.work, summary.wall_seconds,
-                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason);
+                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason,
+                   integrator->step_series());
   return summary;
 }
 

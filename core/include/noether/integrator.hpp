@@ -28,6 +28,15 @@ class NOETHER_API Observer {
   virtual void observe(const State& state, const Forces& forces) = 0;
 };
 
+// A per-step record an integrator may keep (e.g. the phase and parameter coordinate of every
+// step of jm-hybrid), written to /integrator/<name> of the output: `width` numbers per step.
+struct StepSeries {
+  std::string name;
+  std::size_t width = 1;
+  std::vector<double> values;  // steps × width, row-major
+  std::string description;
+};
+
 struct OutputSchedule {
   double t_end = 0.0;         // integrate from state.t to t_end
   double output_every = 0.0;  // observer interval; the observer also sees t0 and t_end
@@ -44,6 +53,8 @@ class NOETHER_API Integrator {
   // Empty when the run reached t_end; otherwise the event that stopped it (e.g. a close
   // approach found by root finding).
   const std::string& stop_reason() const { return stop_reason_; }
+  // Per-step records, if the integrator keeps any (empty by default).
+  virtual std::vector<StepSeries> step_series() const { return {}; }
 
  protected:
   WorkCounters work_;

@@ -31,7 +31,8 @@ class H5Writer {
   // Writes buffered frames and flushes the file.
   void flush();
   // Writes /work and the run's outcome ("completed" or the error message), then closes.
-  void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome);
+  void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
+              const std::vector<StepSeries>& steps = {});
   std::size_t frames_written() const { return frames_written_; }
 
  private:
