@@ -15,6 +15,7 @@ PACKAGES=(
   libcli11-dev
   libgtest-dev libgmock-dev
   libbenchmark-dev
+  libnlopt-dev
   python3 python3-numpy python3-matplotlib python3-h5py
 )
 
