@@ -6,3 +6,4 @@ find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(HDF5 REQUIRED COMPONENTS C)     # FindHDF5 (hdf5-helpers), no config file
 find_package(Threads REQUIRED)
+find_package(NLopt REQUIRED)                 # L-BFGS for the least-action orbit finder
