@@ -1,8 +1,9 @@
-// Periodic orbits: closure, monodromy, stability with the invariant directions projected out,
-// and shooting refinement (MATH.md §8–9, seed 004).
+// Periodic orbits (MATH.md §8–9, seed 004): the least-action finder, closure, monodromy,
+// stability with the first integrals projected out, and shooting refinement.
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
+#include <noether/least_action.hpp>
 #include <noether/periodic_orbit.hpp>
 
 #include <gtest/gtest.h>
@@ -14,6 +15,8 @@ using namespace noether;
 using Eigen::VectorXd;
 
 namespace {
+
+constexpr double kPi = std::numbers::pi;
 
 // Chenciner–Montgomery figure-eight (MATH.md §9), G = m = 1.
 VectorXd figure_eight(PlanarSystem& sys) {
@@ -32,49 +35,227 @@ VectorXd lagrange(PlanarSystem& sys, double& period) {
   sys.G = 1;
   sys.masses = {1, 1, 1};
   const double w = std::pow(3.0, -0.25);
-  period = 2 * std::numbers::pi / w;
+  period = 2 * kPi / w;
   VectorXd xi(12);
   for (int j = 0; j < 3; ++j) {
-    const double th = 2 * std::numbers::pi * j / 3;
+    const double th = 2 * kPi * j / 3;
     xi.segment<2>(2 * j) << std::cos(th), std::sin(th);
     xi.segment<2>(6 + 2 * j) << -w * std::sin(th), w * std::cos(th);
   }
   return xi;
 }
 
-std::size_t nonzero(const Stability& s) {
-  std::size_t k = 0;
-  for (auto l : s.multipliers) k += std::abs(l) > 1e-6;
-  return k;
+FlowOptions tolerance(double rtol) {
+  FlowOptions o;
+  o.rtol = rtol;
+  o.atol = rtol * 1e-2;
+  return o;
+}
+
+// The orbit's state aligned to the Chenciner–Montgomery normalization: centre of mass at rest
+// at the origin, energy scaled to theirs (x → ρx, v → v/√ρ, t → ρ^{3/2} t), time shifted to
+// the moment one body crosses the origin, then the rotation, labelling, reflection and time
+// direction that match their state best. Returns the distance to it.
+double distance_to_figure_eight(const PlanarSystem& sys, VectorXd xi, double T, double* period_at_their_energy) {
+  PlanarSystem cm_sys;
+  const VectorXd cm = figure_eight(cm_sys);
+  for (int d = 0; d < 2; ++d) {  // centre of mass to rest at the origin (equal masses)
+    const double X = (xi[d] + xi[2 + d] + xi[4 + d]) / 3, V = (xi[6 + d] + xi[8 + d] + xi[10 + d]) / 3;
+    for (int j = 0; j < 3; ++j) xi[2 * j + d] -= X, xi[6 + 2 * j + d] -= V;
+  }
+  const double rho = sys.energy(xi) / cm_sys.energy(cm);
+  xi.head(6) *= rho;
+  xi.tail(6) /= std::sqrt(rho);
+  T *= std::pow(rho, 1.5);
+  *period_at_their_energy = T;
+  // The crossing: minimize |x_j|, first on a grid, then by Newton on g(τ) = x_j · v_j.
+  double best = 1e300, tau = 0;
+  int body = 0;
+  VectorXd s = xi;
+  const int grid = 600;
+  for (int i = 0; i < grid; ++i) {
+    for (int j = 0; j < 3; ++j)
+      if (s.segment<2>(2 * j).norm() < best) best = s.segment<2>(2 * j).norm(), tau = T * i / grid, body = j;
+    s = integrate_flow(sys, s, T / grid, false).end;
+  }
+  VectorXd at = integrate_flow(sys, xi, tau, false).end;
+  for (int it = 0; it < 20; ++it) {
+    const Eigen::Vector2d x = at.segment<2>(2 * body), v = at.segment<2>(6 + 2 * body);
+    const VectorXd a = sys.rhs(at).tail(6);
+    const double g = x.dot(v), dg = v.squaredNorm() + x.dot(a.segment<2>(2 * body));
+    const double dt = -g / dg;
+    tau += dt;
+    at = integrate_flow(sys, xi, tau, false).end;
+    if (std::abs(dt) < 1e-15 * T) break;
+  }
+  double closest = 1e300;
+  for (int other : {0, 1, 2}) {
+    if (other == body) continue;
+    const int third = 3 - body - other;
+    for (double reflect : {1.0, -1.0})
+      for (double reverse : {1.0, -1.0}) {
+        VectorXd c(12);
+        const int order[3] = {other, third, body};
+        for (int k = 0; k < 3; ++k) {
+          c.segment<2>(2 * k) = at.segment<2>(2 * order[k]);
+          c.segment<2>(6 + 2 * k) = reverse * at.segment<2>(6 + 2 * order[k]);
+          c[2 * k + 1] *= reflect;
+          c[6 + 2 * k + 1] *= reflect;
+        }
+        // Rotate body 1 onto their body 1.
+        const double angle = std::atan2(cm[1], cm[0]) - std::atan2(c[1], c[0]);
+        const Eigen::Rotation2Dd rot(angle);
+        for (int k = 0; k < 6; ++k) c.segment<2>(2 * k) = rot * Eigen::Vector2d(c.segment<2>(2 * k));
+        closest = std::min(closest, (c - cm).cwiseAbs().maxCoeff());
+      }
+  }
+  return closest;
 }
 
 }  // namespace
 
-TEST(PeriodicOrbit, FigureEightClosesAndIsLinearlyStable) {
+TEST(LeastAction, GradientMatchesFiniteDifferences) {
+  for (bool choreography : {true, false}) {
+    LeastActionProblem p;
+    p.masses = {1, 1, 1};
+    p.modes = 6;
+    p.points = 30;
+    p.choreography = choreography;
+    const VectorXd c = random_start(p, 7);
+    VectorXd g;
+    action(p, c, &g);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < c.size(); ++i) {
+      VectorXd cp = c, cm = c;
+      const double h = 1e-6;
+      cp[i] += h;
+      cm[i] -= h;
+      worst = std::max(worst, std::abs((action(p, cp, nullptr) - action(p, cm, nullptr)) / (2 * h) - g[i]));
+    }
+    EXPECT_LT(worst / g.cwiseAbs().maxCoeff(), 1e-7) << "choreography " << choreography;
+  }
+}
+
+// From random starts (3 bodies, 15 modes, 102 points, choreography ansatz) the finder returns
+// the figure-eight; refined by shooting and aligned, it is Chenciner–Montgomery's orbit.
+TEST(LeastAction, FinderRecoversTheFigureEight) {
+  LeastActionProblem p;
+  p.masses = {1, 1, 1};
+  p.modes = 15;
+  p.points = 102;
+  p.choreography = true;
+  int found = 0;
+  for (unsigned seed = 1; seed <= 10 && !found; ++seed) {
+    const FourierOrbit o = minimize_action(p, random_start(p, seed));
+    if (std::abs(o.action - 24.3719272) > 1e-5) continue;  // the Lagrange circle has 19.604
+    ++found;
+    EXPECT_LT(o.residual, 1e-2);  // 15 modes resolve the figure-eight to 3e-3
+    PlanarSystem sys;
+    sys.masses = p.masses;
+    const Refinement r = refine_periodic_orbit(sys, o.initial_state(p), 2 * kPi);
+    EXPECT_LT(r.closure, 1e-11);
+    double T = 0;
+    const double d = distance_to_figure_eight(sys, r.xi0, r.period, &T);
+    EXPECT_LT(d, 1e-6);
+    EXPECT_NEAR(T, kEightPeriod, 1e-6);  // the period at their energy
+  }
+  EXPECT_EQ(found, 1);
+}
+
+// Other orbits the seed names: the Lagrange triangle and choreographies of 4 and 5 bodies
+// (from random starts the finder returns their rotating regular polygons), each verified by
+// integrating one period.
+TEST(LeastAction, FinderReturnsVerifiedChoreographies) {
+  for (int n : {3, 4, 5}) {
+    LeastActionProblem p;
+    p.masses.assign(static_cast<std::size_t>(n), 1.0);
+    p.modes = 10;
+    p.points = 60;
+    p.choreography = true;
+    bool verified = false;
+    for (unsigned seed = 1; seed <= 20 && !verified; ++seed) {
+      const FourierOrbit o = minimize_action(p, random_start(p, seed));
+      if (o.residual > 1e-4) continue;
+      PlanarSystem sys;
+      sys.masses = p.masses;
+      const VectorXd xi = o.initial_state(p);
+      const double closure = (integrate_flow(sys, xi, 2 * kPi, false).end - xi).norm();
+      verified = closure < 1e-5;  // before any refinement: the Fourier curve itself
+    }
+    EXPECT_TRUE(verified) << n << " bodies";
+  }
+}
+
+TEST(LeastAction, BadProblemsAreRefused) {
+  LeastActionProblem p;
+  p.masses = {1};
+  EXPECT_THROW(p.validate(), SceneError);
+  p.masses = {1, -1, 1};
+  EXPECT_THROW(p.validate(), SceneError);
+  p.masses = {1, 1, 1};
+  p.modes = 15;
+  p.points = 30;  // aliasing: needs > 30
+  try {
+    p.validate();
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("alias"), std::string::npos);
+  }
+  p.points = 100;
+  p.choreography = true;  // 100 is not a multiple of 3
+  EXPECT_THROW(p.validate(), SceneError);
+  p.masses = {1, 2, 1};
+  p.points = 99;
+  EXPECT_THROW(p.validate(), SceneError);  // a choreography needs equal masses
+}
+
+// The figure-eight is linearly stable: every multiplier left after projecting out the first
+// integrals is on the unit circle (measured within 2e-12).
+TEST(PeriodicOrbit, FigureEightIsLinearlyStable) {
   PlanarSystem sys;
   const VectorXd xi = figure_eight(sys);
   const Refinement r = refine_periodic_orbit(sys, xi, kEightPeriod);
-  std::printf("figure-eight: closure %.3e after %d Newton steps, period %.12f\n", r.closure, r.iterations, r.period);
+  EXPECT_LT(r.closure, 1e-12);
   const FlowResult f = integrate_flow(sys, r.xi0, r.period, true);
   const Stability s = stability(sys, r.xi0, f.monodromy, 1e-6);
-  for (auto l : s.multipliers) std::printf("  %.10f%+.10fi |%.12f|\n", l.real(), l.imag(), std::abs(l));
-  std::printf("  max |λ(Λ)| %.6f, max |λ(ΠΛΠ)| %.10f: %s; max |λ(ΛΠ)| %.6f\n", s.max_unprojected, s.max_projected, s.verdict.c_str(), std::abs(s.right_projected.front()));
-  for (auto l : s.unprojected) std::printf("  unprojected %.10f%+.10fi |%.12f|\n", l.real(), l.imag(), std::abs(l));
-  const Eigen::MatrixXd first = first_order_monodromy(sys, r.xi0, r.period, 100);
-  const Stability s1 = stability(sys, r.xi0, first, 1e-6);
-  std::printf("  first-order product (100 steps): max |λ(Λ)| %.4f, max |λ(ΛΠ)| %.4f\n", s1.max_unprojected, s1.max_projected);
+  EXPECT_EQ(s.verdict, "linearly stable");
+  int on_circle = 0;
+  for (auto l : s.multipliers)
+    if (std::abs(l) > 1e-6) {
+      EXPECT_NEAR(std::abs(l), 1.0, 1e-6);
+      ++on_circle;
+    }
+  EXPECT_EQ(on_circle, 5);  // 12 − 7 projected directions
 }
 
-TEST(PeriodicOrbit, LagrangeTriangleIsUnstable) {
+// The equal-mass Lagrange triangle is unstable; its largest multiplier (85.01969522) is
+// converged to 4 digits — in fact 10 — as the tolerance is refined, and the multipliers move by
+// less than 1e-6 between tolerances a factor 100 apart.
+TEST(PeriodicOrbit, LagrangeTriangleIsUnstableAndConverged) {
   PlanarSystem sys;
   double T = 0;
   const VectorXd xi = lagrange(sys, T);
-  for (double tol : {1e-9, 1e-11, 1e-13}) {
-    FlowOptions o;
-    o.rtol = tol;
-    o.atol = tol * 1e-2;
-    const FlowResult f = integrate_flow(sys, xi, T, true, o);
-    const Stability s = stability(sys, xi, f.monodromy, 1e-6);
-    std::printf("lagrange rtol %.0e: closure %.3e max |λ(ΛΠ)| %.10f max |λ(Λ)| %.6f %s\n", tol, (f.end - xi).norm(), s.max_projected, s.max_unprojected, s.verdict.c_str());
+  std::vector<double> largest;
+  std::vector<Stability> all;
+  for (double rtol : {1e-9, 1e-11, 1e-13}) {
+    const FlowResult f = integrate_flow(sys, xi, T, true, tolerance(rtol));
+    all.push_back(stability(sys, xi, f.monodromy, 1e-6));
+    largest.push_back(all.back().max_projected);
   }
+  EXPECT_EQ(all.back().verdict, "unstable");
+  EXPECT_NEAR(largest[1], largest[2], 1e-4 * largest[2]);  // four digits
+  for (std::size_t k = 0; k < all[1].multipliers.size(); ++k)
+    EXPECT_LT(std::abs(all[1].multipliers[k] - all[2].multipliers[k]), 1e-6);
+  EXPECT_NEAR(largest[2], 85.0196952, 1e-6);
+}
+
+// The seed's first-order product Π (I + h A) at its resolution is far from the converged
+// monodromy: for the figure-eight it reports multipliers of modulus ≈ 26, not 1.
+TEST(PeriodicOrbit, FirstOrderProductIsNotConverged) {
+  PlanarSystem sys;
+  const VectorXd xi = figure_eight(sys);
+  const Stability first = stability(sys, xi, first_order_monodromy(sys, xi, kEightPeriod, 100), 1e-6);
+  const Stability converged = stability(sys, xi, integrate_flow(sys, xi, kEightPeriod, true).monodromy, 1e-6);
+  EXPECT_GT(first.max_unprojected, 10.0);
+  EXPECT_LT(converged.max_unprojected, 1.0 + 1e-5);
 }

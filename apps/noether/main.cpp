@@ -161,7 +161,10 @@ int orbit_verify(const OrbitOptions& o) {
   std::printf("period %.15g, rkf78 rtol %.1e, %zu steps\nclosure ||xi(T) - xi(0)|| = %.3e (relative %.3e)\n", T,
               o.rtol, f.steps, closure, closure / xi.norm());
   std::printf("energy %.15g\n", sys.energy(xi));
-  return closure <= o.tolerance * std::max(1.0, xi.norm()) ? 0 : 1;
+  if (closure <= o.tolerance * std::max(1.0, xi.norm())) return 0;
+  std::fprintf(stderr, "noether: the orbit does not close: relative closure %.3e > tolerance %.1e (wrong period, "
+               "or not a periodic orbit; try noether orbit refine)\n", closure / std::max(1.0, xi.norm()), o.tolerance);
+  return 1;
 }
 
 int orbit_stability(const OrbitOptions& o) {

@@ -170,7 +170,7 @@ MatrixXd first_order_monodromy(const PlanarSystem& sys, const VectorXd& xi0, dou
 }
 
 Refinement refine_periodic_orbit(const PlanarSystem& sys, const VectorXd& xi0, double T, double target,
-                                 int max_iterations, const FlowOptions& options) {
+                                 int max_iterations, const FlowOptions& options, bool free_period) {
   Refinement r;
   r.xi0 = xi0;
   r.period = T;
@@ -181,12 +181,13 @@ Refinement refine_periodic_orbit(const PlanarSystem& sys, const VectorXd& xi0, d
     r.closure = residual.norm();
     r.iterations = it;
     if (r.closure <= target || it == max_iterations) break;
-    MatrixXd J(d, d + 1);
+    MatrixXd J(d, d + (free_period ? 1 : 0));
     J.leftCols(d) = f.monodromy - MatrixXd::Identity(d, d);
-    J.col(d) = sys.rhs(f.end);
+    if (free_period) J.col(d) = sys.rhs(f.end);
     const VectorXd step = J.completeOrthogonalDecomposition().solve(-residual);  // minimum norm
+    if (free_period && std::abs(step[d]) > 0.1 * r.period) break;
     r.xi0 += step.head(d);
-    r.period += step[d];
+    if (free_period) r.period += step[d];
   }
   return r;
 }

@@ -70,10 +70,12 @@ struct Refinement {
   int iterations = 0;
 };
 
-// Newton (shooting) on (ξ0, T): minimum-norm Gauss–Newton steps on ξ(T; ξ0) − ξ0 = 0 (the
-// Jacobian [Φ(T) − I, F(ξ(T))] is singular along the symmetries, so steps are least squares).
+// Newton (shooting) on ξ0 (and T if `free_period`): minimum-norm Gauss–Newton steps on
+// ξ(T; ξ0) − ξ0 = 0 (the Jacobian [Φ(T) − I | F(ξ(T))] is singular along the symmetries, so
+// steps are least squares). With a free period a step that would change T by more than 10 %
+// is not taken (the trivial solution T → 0 attracts otherwise).
 Refinement refine_periodic_orbit(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double T,
                                  double target = 1e-12, int max_iterations = 12,
-                                 const FlowOptions& options = {});
+                                 const FlowOptions& options = {}, bool free_period = false);
 
 }  // namespace noether
