@@ -150,7 +150,12 @@ Stability stability(const PlanarSystem& sys, const VectorXd& xi0, const MatrixXd
   s.unprojected = sorted_eigenvalues(monodromy);
   s.max_projected = std::abs(s.multipliers.front());
   s.max_unprojected = std::abs(s.unprojected.front());
-  if (s.max_projected <= 1.0 + tolerance) s.verdict = "linearly stable";
+  // In exact arithmetic the projected multipliers are a subset of Φ's (span P is invariant and
+  // its multipliers are 1): if they exceed Φ's, the projection is not resolved numerically.
+  if (s.max_projected > s.max_unprojected * (1 + 1e-3) + tolerance)
+    s.verdict = "undecided: the projected multipliers exceed the unprojected ones (orbit not "
+                "converged, or neutral directions beyond the first integrals)";
+  else if (s.max_projected <= 1.0 + tolerance) s.verdict = "linearly stable";
   else if (s.max_projected > 1.0 + 100 * tolerance) s.verdict = "unstable";
   else s.verdict = "undecided";
   return s;
