@@ -1,0 +1,48 @@
+#pragma once
+// The driver's commands, one file each: run.cpp (run, plugins), compare.cpp, orbit.cpp,
+// check_potential.cpp. Each returns the process exit code; noether::Error escapes to main().
+#include <noether/potential_check.hpp>
+
+#include <string>
+#include <vector>
+
+namespace noether::app {
+
+int run(const std::string& scene_file, const std::string& output,
+        const std::vector<std::string>& overrides, bool progress);
+int list_plugins();
+
+// The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether
+// when installed, the source tree's tools/ in a build.
+std::string script_dir();
+// /usr/bin/python3 (Debian's, with matplotlib) when present, else python3 on the PATH.
+std::string python();
+
+int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
+            const std::vector<std::string>& runs, const std::string& spec_file, int repeats,
+            std::string csv, std::string h5, std::string png, bool plot);
+
+struct OrbitOptions {
+  std::string scene;
+  std::vector<std::string> overrides;
+  double period = 0;  // 0: the scene's run.t_end
+  double rtol = 1e-13, tolerance = 1e-6;
+  int first_order = 0;
+  std::string output;
+  // find
+  std::vector<double> masses;
+  int bodies = 3, modes = 15, points = 0, starts = 20;
+  unsigned seed = 1;
+  bool choreography = false, refine = true;
+  double max_residual = 1e-2;
+  std::string out_dir = ".";
+};
+int orbit_find(OrbitOptions options);
+int orbit_verify(const OrbitOptions& options);
+int orbit_stability(const OrbitOptions& options);
+int orbit_refine(const OrbitOptions& options);
+
+int check_potential(const std::string& scene_file, const std::vector<std::string>& overrides,
+                    const noether::PotentialCheckOptions& options);
+
+}  // namespace noether::app

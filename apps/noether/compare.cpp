@@ -1,0 +1,67 @@
+// noether compare: work against precision on a user's scene (docs/user-guide.md).
+#include "commands.hpp"
+
+#include <noether/compare.hpp>
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+namespace noether::app {
+
+std::string script_dir() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  for (const fs::path& candidate : {exe.parent_path() / ".." / "share" / "noether",
+                                    fs::path(NOETHER_SOURCE_DIR) / "tools"})
+    if (fs::exists(candidate / "plot_compare.py", ec)) return candidate.string();
+  return {};
+}
+
+std::string python() { return access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
+
+int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
+            const std::vector<std::string>& runs, const std::string& spec_file, int repeats,
+            std::string csv, std::string h5, std::string png, bool plot) {
+  const noether::Scene scene = noether::load_scene(scene_file, overrides);
+  noether::PluginRegistry registry;
+  noether::CompareSpec spec = spec_file.empty() ? noether::default_compare_spec(scene)
+                                                : noether::load_compare_spec(spec_file, scene);
+  if (!runs.empty()) {
+    spec.runs.clear();
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      for (auto& r : noether::expand_runs(noether::parse_params(runs[k], "--run " + std::to_string(k + 1))))
+        spec.runs.push_back(std::move(r));
+  }
+  if (repeats > 0) spec.repeats = repeats;
+  const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";
+  if (csv.empty()) csv = stem + ".csv";
+  if (h5.empty()) h5 = stem + ".h5";
+  if (png.empty()) png = stem + ".png";
+  const auto result = noether::compare(scene, registry, spec, [](const std::string& m) {
+    std::cerr << "compare: " << m << "\n";
+  });
+  std::cout << "scene " << scene_file << "\n" << noether::format_compare(result);
+  noether::write_compare_csv(result, csv);
+  noether::write_compare_h5(result, scene, h5);
+  std::cout << "table: " << csv << ", " << h5 << "\n";
+  if (plot) {
+    const std::string dir = script_dir();
+    const std::string command = python() + " '" + dir + "/plot_compare.py' '" + csv + "' '" + png +
+                                "' --title '" + scene_file + "'";
+    if (dir.empty() || std::system(command.c_str()) != 0)
+      std::cerr << "noether: could not draw the plot (needs python3-matplotlib; command: "
+                << command << "); the table is written\n";
+    else
+      std::cout << "plot: " << png << "\n";
+  }
+  for (const auto& row : result.rows)
+    if (!row.ok) return 3;
+  return 0;
+}
+
+}  // namespace noether::app

@@ -1,0 +1,160 @@
+// noether orbit find | verify | stability | refine: periodic orbits (docs/periodic-orbits.md).
+#include "commands.hpp"
+
+#include <noether/least_action.hpp>
+#include <noether/periodic_orbit.hpp>
+#include <noether/scene.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+namespace noether::app {
+
+// noether orbit …: periodic orbits of planar point masses (docs/periodic-orbits.md).
+
+namespace {
+
+noether::PlanarSystem orbit_system(const OrbitOptions& o, Eigen::VectorXd& xi, double& T) {
+  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+  auto sys = noether::PlanarSystem::from(scene.system, scene.initial, xi);
+  T = o.period > 0 ? o.period : scene.run.t_end;
+  return sys;
+}
+
+noether::FlowOptions flow_options(const OrbitOptions& o) {
+  noether::FlowOptions f;
+  f.rtol = o.rtol;
+  f.atol = o.rtol * 1e-2;
+  return f;
+}
+
+}  // namespace
+
+int orbit_verify(const OrbitOptions& o) {
+  Eigen::VectorXd xi;
+  double T;
+  const auto sys = orbit_system(o, xi, T);
+  const auto f = noether::integrate_flow(sys, xi, T, false, flow_options(o));
+  const double closure = (f.end - xi).norm();
+  std::printf("period %.15g, rkf78 rtol %.1e, %zu steps\nclosure ||xi(T) - xi(0)|| = %.3e (relative %.3e)\n", T,
+              o.rtol, f.steps, closure, closure / xi.norm());
+  std::printf("energy %.15g\n", sys.energy(xi));
+  if (closure <= o.tolerance * std::max(1.0, xi.norm())) return 0;
+  std::fprintf(stderr, "noether: the orbit does not close: relative closure %.3e > tolerance %.1e (wrong period, "
+               "or not a periodic orbit; try noether orbit refine)\n", closure / std::max(1.0, xi.norm()), o.tolerance);
+  return 1;
+}
+
+int orbit_stability(const OrbitOptions& o) {
+  Eigen::VectorXd xi;
+  double T;
+  const auto sys = orbit_system(o, xi, T);
+  const auto f = noether::integrate_flow(sys, xi, T, true, flow_options(o));
+  const auto s = noether::stability(sys, xi, f.monodromy, o.tolerance);
+  std::printf("period %.15g, closure %.3e, variational equations by rkf78 rtol %.1e (%zu steps)\n", T,
+              (f.end - xi).norm(), o.rtol, f.steps);
+  std::printf("multipliers of P Phi(T) P (first integrals projected out), by modulus:\n");
+  for (auto l : s.multipliers)
+    if (std::abs(l) > 1e-9) std::printf("  %+.10f %+.10fi   |lambda| = %.12f\n", l.real(), l.imag(), std::abs(l));
+  std::printf("max |lambda(Phi)| = %.10f, max |lambda(P Phi P)| = %.10f\n", s.max_unprojected, s.max_projected);
+  if (o.first_order > 0) {
+    const auto M = noether::first_order_monodromy(sys, xi, T, static_cast<std::size_t>(o.first_order), flow_options(o));
+    const auto s1 = noether::stability(sys, xi, M, o.tolerance);
+    std::printf("the seed's first-order product with %d steps: max |lambda| = %.4f, projected %.4f\n", o.first_order,
+                s1.max_unprojected, s1.max_projected);
+  }
+  std::printf("verdict: %s (tolerance %.1e)\n", s.verdict.c_str(), o.tolerance);
+  return 0;
+}
+
+int orbit_refine(const OrbitOptions& o) {
+  Eigen::VectorXd xi;
+  double T;
+  const auto sys = orbit_system(o, xi, T);
+  const double before = (noether::integrate_flow(sys, xi, T, false, flow_options(o)).end - xi).norm();
+  const auto r = noether::refine_periodic_orbit(sys, xi, T, 1e-12, 12, flow_options(o));
+  std::printf("closure %.3e -> %.3e in %d Newton steps; period %.15g -> %.15g\n", before, r.closure, r.iterations, T, r.period);
+  const std::string out = o.output.empty() ? o.scene : o.output;
+  std::ofstream(out) << noether::orbit_scene(sys, r.xi0, r.period, "refined by noether orbit refine from " + o.scene);
+  std::printf("written: %s\n", out.c_str());
+  return r.closure <= 1e-10 ? 0 : 1;
+}
+
+int orbit_find(OrbitOptions o) {
+  noether::LeastActionProblem p;
+  p.masses = o.masses.empty() ? std::vector<double>(static_cast<std::size_t>(o.bodies), 1.0) : o.masses;
+  p.modes = o.modes;
+  p.choreography = o.choreography;
+  p.points = o.points > 0 ? o.points : [&] {  // the seed's 100, adjusted: > 2F, multiple of n
+    int m = std::max(100, 2 * o.modes + 2);
+    while (p.choreography && m % static_cast<int>(p.masses.size()) != 0) ++m;
+    return m;
+  }();
+  p.validate();
+  std::filesystem::create_directories(o.out_dir);
+  std::vector<double> found_actions;
+  int k = 0, failures = 0;
+  for (int s = 0; s < o.starts; ++s) {
+    const auto orbit = noether::minimize_action(p, noether::random_start(p, o.seed + static_cast<unsigned>(s)));
+    std::printf("start %3d: action %.10f, EOM residual %.2e, min distance %.3f", s, orbit.action, orbit.residual,
+                orbit.min_distance);
+    bool seen = false;
+    for (double a : found_actions) seen |= std::abs(a - orbit.action) < 1e-6 * std::abs(a);
+    if (orbit.residual > o.max_residual || orbit.min_distance < 1e-3) {
+      std::printf("  (rejected: EOM residual above %.0e, not a solution at this truncation)\n", o.max_residual);
+      ++failures;
+      continue;
+    }
+    if (seen) {
+      std::printf("  (found before)\n");
+      continue;
+    }
+    noether::PlanarSystem sys;
+    sys.masses = p.masses;
+    Eigen::VectorXd xi = orbit.initial_state(p);
+    double T = 2 * std::numbers::pi;
+    double closure = (noether::integrate_flow(sys, xi, T, false).end - xi).norm();
+    if (o.refine) {
+      const auto r = noether::refine_periodic_orbit(sys, xi, T);
+      if (r.closure < closure) xi = r.xi0, T = r.period, closure = r.closure;
+    }
+    if (closure > 1e-8 * std::max(1.0, xi.norm())) {  // verified by integration, or not an orbit
+      std::printf("  (rejected: closure %.1e after one period)\n", closure);
+      ++failures;
+      continue;
+    }
+    std::printf("\n");
+    found_actions.push_back(orbit.action);
+    ++k;
+    const std::string stem = (std::filesystem::path(o.out_dir) / ("orbit-" + std::to_string(k))).string();
+    char desc[256];
+    std::snprintf(desc, sizeof desc, "least-action orbit %d: action %.10f, EOM residual %.2e, closure %.2e", k,
+                  orbit.action, orbit.residual, closure);
+    std::ofstream(stem + ".yaml") << noether::orbit_scene(sys, xi, T, desc);
+    std::ofstream curve(stem + ".csv");
+    curve << "t";
+    for (std::size_t j = 0; j < p.n(); ++j) curve << ",x" << j + 1 << ",y" << j + 1;
+    curve << "\n";
+    for (int i = 0; i <= 400; ++i) {
+      const double t = 2 * std::numbers::pi * i / 400;
+      curve << t;
+      for (std::size_t j = 0; j < p.n(); ++j) {
+        const auto z = noether::fourier_position(p, orbit.coefficients, j, t);
+        curve << ',' << z.x() << ',' << z.y();
+      }
+      curve << "\n";
+    }
+    curve.close();  // complete on disk before the plotting script reads it
+    std::printf("  -> %s.yaml (period %.12f, closure %.2e after refinement)\n", stem.c_str(), T, closure);
+    const std::string cmd = python() + " '" + script_dir() + "/plot_orbit.py' '" + stem + ".csv' '" + stem +
+                            ".png' --title '" + desc + "'";
+    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "noether: could not draw %s.png\n", stem.c_str());
+  }
+  std::printf("%d distinct orbits from %d starts (%d starts rejected)\n", k, o.starts, failures);
+  return k > 0 ? 0 : 1;
+}
+
+}  // namespace noether::app
