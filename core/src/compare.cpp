@@ -191,6 +191,27 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
   return result;
 }
 
+namespace {
+
+// The numeric columns of a compare table, written once for the CSV and the HDF5 file.
+struct Column {
+  const char* name;
+  double (*value)(const CompareRow&);
+};
+const Column kColumns[] = {
+    {"wall_seconds", [](const CompareRow& r) { return r.wall_seconds; }},
+    {"potential_evaluations", [](const CompareRow& r) { return double(r.potential_evaluations); }},
+    {"steps", [](const CompareRow& r) { return double(r.steps); }},
+    {"rejected_steps", [](const CompareRow& r) { return double(r.rejected_steps); }},
+    {"final_position_error", [](const CompareRow& r) { return r.final_position_error; }},
+    {"final_attitude_error", [](const CompareRow& r) { return r.final_attitude_error; }},
+    {"max_abs_energy_error", [](const CompareRow& r) { return r.max_abs_energy_error; }},
+    {"max_rel_angular_momentum_error", [](const CompareRow& r) { return r.max_rel_angular_momentum_error; }},
+    {"max_orthogonality_error", [](const CompareRow& r) { return r.max_orthogonality_error; }},
+};
+
+}  // namespace
+
 std::string format_compare(const CompareResult& r) {
   std::ostringstream out;
   char line[512];
@@ -221,18 +242,16 @@ std::string format_compare(const CompareResult& r) {
 void write_compare_csv(const CompareResult& r, const std::filesystem::path& file) {
   std::ofstream out(file);
   if (!out) throw OutputError("cannot write " + file.string());
-  out << "family,setting,ok,wall_seconds,potential_evaluations,steps,rejected_steps,"
-         "final_position_error,final_attitude_error,max_abs_energy_error,"
-         "max_rel_angular_momentum_error,max_orthogonality_error,error\n";
+  out << "family,setting,ok";
+  for (const auto& c : kColumns) out << ',' << c.name;
+  out << ",error\n";
   out.precision(6);
   for (const auto& row : r.rows) {
     std::string err = row.error;
     std::replace(err.begin(), err.end(), '"', '\'');
-    out << row.family << ',' << row.label << ',' << (row.ok ? 1 : 0) << ',' << row.wall_seconds
-        << ',' << row.potential_evaluations << ',' << row.steps << ',' << row.rejected_steps << ','
-        << row.final_position_error << ',' << row.final_attitude_error << ','
-        << row.max_abs_energy_error << ',' << row.max_rel_angular_momentum_error << ','
-        << row.max_orthogonality_error << ",\"" << err << "\"\n";
+    out << row.family << ',' << row.label << ',' << (row.ok ? 1 : 0);
+    for (const auto& c : kColumns) out << ',' << c.value(row);
+    out << ",\"" << err << "\"\n";
   }
 }
 
@@ -247,35 +266,22 @@ void write_compare_h5(const CompareResult& r, const Scene& scene, const std::fil
   string_attribute(g, "reference", r.reference);
   numeric_attribute<double>(g, "reference_error", H5T_NATIVE_DOUBLE, {r.reference_error});
   std::vector<std::string> family, label, error;
-  std::vector<double> ok, wall, evals, steps, rejected, pos, att, dE, dL, orth;
+  std::vector<double> ok;
   for (const auto& row : r.rows) {
     family.push_back(row.family);
     label.push_back(row.label);
     error.push_back(row.error);
     ok.push_back(row.ok ? 1 : 0);
-    wall.push_back(row.wall_seconds);
-    evals.push_back(static_cast<double>(row.potential_evaluations));
-    steps.push_back(static_cast<double>(row.steps));
-    rejected.push_back(static_cast<double>(row.rejected_steps));
-    pos.push_back(row.final_position_error);
-    att.push_back(row.final_attitude_error);
-    dE.push_back(row.max_abs_energy_error);
-    dL.push_back(row.max_rel_angular_momentum_error);
-    orth.push_back(row.max_orthogonality_error);
   }
   string_list_dataset(g, "family", family);
   string_list_dataset(g, "setting", label);
   string_list_dataset(g, "error", error);
   double_dataset(g, "ok", ok);
-  double_dataset(g, "wall_seconds", wall);
-  double_dataset(g, "potential_evaluations", evals);
-  double_dataset(g, "steps", steps);
-  double_dataset(g, "rejected_steps", rejected);
-  double_dataset(g, "final_position_error", pos);
-  double_dataset(g, "final_attitude_error", att);
-  double_dataset(g, "max_abs_energy_error", dE);
-  double_dataset(g, "max_rel_angular_momentum_error", dL);
-  double_dataset(g, "max_orthogonality_error", orth);
+  for (const auto& c : kColumns) {
+    std::vector<double> values;
+    for (const auto& row : r.rows) values.push_back(c.value(row));
+    double_dataset(g, c.name, values);
+  }
   H5Gclose(g);
   check(H5Fclose(f), "closing the compare file");
 }

@@ -5,7 +5,6 @@
 #include "h5_helpers.hpp"
 
 #include <algorithm>
-#include <array>
 
 namespace noether {
 
