@@ -3,10 +3,17 @@
 // check_potential.cpp. Each returns the process exit code; noether::Error escapes to main().
 #include <noether/potential_check.hpp>
 
+#include <noether/scene.hpp>
+
+#include <ostream>
 #include <string>
 #include <vector>
 
 namespace noether::app {
+
+// One line per solid body: its shape, mass, density and, for a mesh, where its centre of
+// mass was in the file and by how much it was rotated onto its principal axes.
+void print_shapes(const noether::Scene& scene, std::ostream& out);
 
 int run(const std::string& scene_file, const std::string& output,
         const std::vector<std::string>& overrides, bool progress);

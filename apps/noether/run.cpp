@@ -11,6 +11,25 @@
 
 namespace noether::app {
 
+void print_shapes(const noether::Scene& scene, std::ostream& out) {
+  for (const auto& b : scene.system.bodies()) {
+    if (!b.solid) continue;
+    const auto& s = *b.solid;
+    char line[512];
+    const double angle = noether::log_so3(s.rotation).norm() * 180.0 / M_PI;
+    std::snprintf(line, sizeof line, "shape %-23s %s, mass %.10g, density %.10g\n", b.name.c_str(),
+                  s.describe().c_str(), s.mass, s.density);
+    out << line;
+    if (s.kind == noether::Solid::Kind::Polyhedron) {
+      std::snprintf(line, sizeof line,
+                    "%-29s centre of mass at (%.6g, %.6g, %.6g) in the file, axes rotated by "
+                    "%.4g deg onto the body frame\n",
+                    "", s.offset.x(), s.offset.y(), s.offset.z(), angle);
+      out << line;
+    }
+  }
+}
+
 int run(const std::string& scene_file, const std::string& output,
         const std::vector<std::string>& overrides, bool progress) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
@@ -20,8 +39,9 @@ int run(const std::string& scene_file, const std::string& output,
   options.progress = progress;
   try {
     const auto summary = noether::run_scene(scene, registry, options);
-    std::cout << "scene                         " << scene_file << "\n"
-              << noether::format_summary(summary);
+    std::cout << "scene                         " << scene_file << "\n";
+    print_shapes(scene, std::cout);
+    std::cout << noether::format_summary(summary);
     if (!output.empty()) std::cout << "output                        " << output << "\n";
   } catch (const noether::IntegrationError& e) {
     std::cerr << "noether: integration stopped at t = " << e.t_reached() << ": " << e.what()

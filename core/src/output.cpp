@@ -146,6 +146,29 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   numeric_attribute<double>(parameters, "t_end", H5T_NATIVE_DOUBLE, {scene.run.t_end});
   numeric_attribute<double>(parameters, "output_every", H5T_NATIVE_DOUBLE,
                             {scene.run.output_every});
+  // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
+  // (x_file = offset + rotation · x_body).
+  for (const auto& b : sys.bodies()) {
+    if (!b.solid) continue;
+    const hid_t shapes = H5Lexists(parameters, "shapes", H5P_DEFAULT) > 0
+                             ? H5Gopen2(parameters, "shapes", H5P_DEFAULT)
+                             : make_group(parameters, "shapes");
+    hid_t g = make_group(shapes, b.name.c_str());
+    string_attribute(g, "kind", b.solid->kind == Solid::Kind::Ellipsoid ? "ellipsoid" : "polyhedron");
+    string_attribute(g, "description", b.solid->describe());
+    numeric_attribute<double>(g, "density", H5T_NATIVE_DOUBLE, {b.solid->density});
+    numeric_attribute<double>(g, "volume", H5T_NATIVE_DOUBLE, {b.solid->volume});
+    numeric_attribute<double>(g, "semi_axes", H5T_NATIVE_DOUBLE,
+                              {b.solid->semi_axes.x(), b.solid->semi_axes.y(), b.solid->semi_axes.z()});
+    numeric_attribute<double>(g, "offset", H5T_NATIVE_DOUBLE,
+                              {b.solid->offset.x(), b.solid->offset.y(), b.solid->offset.z()});
+    std::vector<double> rotation;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) rotation.push_back(b.solid->rotation(r, c));
+    numeric_attribute<double>(g, "rotation", H5T_NATIVE_DOUBLE, rotation);  // row-major
+    H5Gclose(g);
+    H5Gclose(shapes);
+  }
   H5Gclose(parameters);
 
   hid_t particles = make_group(m.file, "particles");

@@ -142,6 +142,90 @@ Mat3 attitude(const Params& p, const std::string& body) {
   return R;
 }
 
+// shape: {ellipsoid: {semi_axes: [a, b, c]}} or {polyhedron: {file | vertices + facets,
+// units: m | km, frame: principal | mesh}}, density 1 (scaled by the caller).
+std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string& body,
+                                         const std::filesystem::path& folder) {
+  const std::string who = "body '" + body + "'";
+  if (shape.has("ellipsoid")) {
+    const Params& e = shape.at("ellipsoid");
+    e.check_keys({"semi_axes"}, "the ellipsoid of " + who);
+    const Vec3 axes = vec3(e.at("semi_axes"));
+    if (!axes.allFinite() || axes.minCoeff() <= 0.0)
+      throw SceneError(e.at("semi_axes").here() + who + ": ellipsoid semi-axes must be positive");
+    return make_ellipsoid(axes, 1.0);
+  }
+  const Params& p = shape.at("polyhedron");
+  p.check_keys({"file", "vertices", "facets", "units", "frame"}, "the polyhedron of " + who);
+  if (!p.has("units"))
+    throw SceneError(p.here() + who + ": the polyhedron needs 'units: m' or 'units: km' (a "
+                     "shape file does not say its units)");
+  const std::string units = p.at("units").as_string();
+  if (units != "m" && units != "km")
+    throw SceneError(p.at("units").here() + who + ": unknown units '" + units +
+                     "'; use m or km");
+  const double scale = units == "km" ? 1000.0 : 1.0;
+  const std::string frame = p.get("frame", std::string("principal"));
+  if (frame != "principal" && frame != "mesh")
+    throw SceneError(p.at("frame").here() + who + ": frame must be 'principal' (rotate the "
+                     "mesh onto its principal axes) or 'mesh' (keep its axes), not '" + frame + "'");
+  auto resolve = [&](const Params& f) {
+    const std::filesystem::path path(f.as_string());
+    return path.is_absolute() ? path : folder / path;
+  };
+  Mesh mesh;
+  if (p.has("file") == (p.has("vertices") || p.has("facets")))
+    throw SceneError(p.here() + who + ": give either 'file' (Wavefront OBJ) or 'vertices' and "
+                     "'facets' (CSV pair)");
+  try {
+    mesh = p.has("file") ? read_obj(resolve(p.at("file")), scale)
+                         : read_vertex_facet_csv(resolve(p.at("vertices")), resolve(p.at("facets")), scale);
+    return make_polyhedron(std::move(mesh), 1.0, frame == "principal");
+  } catch (const SceneError& e) {
+    throw SceneError(p.here() + who + ": " + e.what());
+  }
+}
+
+// The solid at the body's density (from `density` or `mass`), checked against `mass` and
+// `inertia` when those are given too.
+std::shared_ptr<const Solid> scale_solid(const Solid& unit, const Params& b, const std::string& body) {
+  const std::string who = "body '" + body + "'";
+  if (!b.has("density") && !b.has("mass"))
+    throw SceneError(b.here() + who + " has a shape: give its 'density' or its 'mass'");
+  double density = b.has("density") ? b.at("density").as_double() : b.at("mass").as_double() / unit.volume;
+  if (!std::isfinite(density) || density <= 0.0)
+    throw SceneError((b.has("density") ? b.at("density") : b.at("mass")).here() + who +
+                     ": density and mass must be positive");
+  auto s = std::make_shared<Solid>(unit);
+  s->density = density;
+  s->mass = density * unit.volume;
+  s->inertia = density * unit.inertia;
+  if (b.has("density") && b.has("mass")) {
+    const double m = b.at("mass").as_double();
+    if (std::abs(m - s->mass) > 1e-6 * s->mass) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << b.at("mass").here() << who << ": mass " << m << " contradicts density " << density
+          << " × shape volume " << unit.volume << " = " << s->mass
+          << "; give one of 'mass' and 'density'";
+      throw SceneError(msg.str());
+    }
+  }
+  if (b.has("inertia")) {
+    const Mat3 J = inertia(b.at("inertia"));
+    if ((J - s->inertia).cwiseAbs().maxCoeff() > 1e-6 * s->inertia.cwiseAbs().maxCoeff()) {
+      std::ostringstream msg;
+      msg.precision(10);
+      msg << b.at("inertia").here() << who << ": 'inertia' " << J.format(Eigen::IOFormat(10, 0, ", ", "; ", "", "", "[", "]"))
+          << " contradicts the shape's inertia "
+          << s->inertia.format(Eigen::IOFormat(10, 0, ", ", "; ", "", "", "[", "]"))
+          << " (body frame, agreement to 1e-6 relative required); omit 'inertia' to use the shape's";
+      throw SceneError(msg.str());
+    }
+  }
+  return s;
+}
+
 PluginConfig plugin_config(const Params& p, const std::string& what) {
   if (!p.is_map() || !p.has("plugin"))
     throw SceneError(p.here() + "'" + p.path() + "' must be a mapping naming a plugin, e.g. " +
@@ -171,17 +255,32 @@ Scene parse_scene(const std::string& text, const std::string& file,
   std::vector<Body> list;
   for (const auto& b : bodies.items()) {
     if (!b.is_map()) throw SceneError(b.here() + "each body must be a mapping");
-    b.check_keys({"name", "mass", "inertia", "position", "velocity", "attitude",
+    b.check_keys({"name", "mass", "density", "inertia", "position", "velocity", "attitude",
                   "angular_velocity", "angular_momentum", "shape"},
                  "body '" + b.get("name", std::string("?")) + "'");
     Body body;
     body.name = b.at("name").as_string();
-    body.mass = b.at("mass").as_double();
+    if (b.has("shape")) {
+      const Params& shape = b.at("shape");
+      if (!shape.is_map() || shape.size() != 1)
+        throw SceneError(shape.here() + "body '" + body.name + "': 'shape' must name one of "
+                         "ellipsoid, polyhedron, dumbbell or spheres");
+      shape.check_keys({"ellipsoid", "polyhedron", "dumbbell", "spheres"}, "the shape of body '" + body.name + "'");
+      if (shape.has("ellipsoid") || shape.has("polyhedron"))
+        body.solid = scale_solid(*parse_solid(shape, body.name, std::filesystem::path(file).parent_path()), b,
+                                 body.name);
+    }
+    if (b.has("density") && !body.solid)
+      throw SceneError(b.at("density").here() + "body '" + body.name + "': 'density' needs a "
+                       "shape (ellipsoid or polyhedron)");
+    body.mass = body.solid ? body.solid->mass : b.at("mass").as_double();
     if (!std::isfinite(body.mass) || body.mass <= 0.0)
       throw SceneError(b.at("mass").here() + "body '" + body.name + "': mass must be positive, not " +
                        b.at("mass").as_string());
-    body.rigid = b.has("inertia");
-    if (body.rigid) {
+    body.rigid = b.has("inertia") || body.solid;
+    if (body.solid) {
+      body.inertia = body.solid->inertia;
+    } else if (body.rigid) {
       body.inertia = inertia(b.at("inertia"));
       validate_inertia(body.inertia, b.at("inertia").here() + "body '" + body.name + "'");
     }

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <memory>
 
-#define NOETHER_PLUGIN_API_VERSION 1u
+#define NOETHER_PLUGIN_API_VERSION 2u
 
 namespace noether {
 

@@ -3,6 +3,9 @@
 // SE(3); bodies without one are point masses and carry no attitude at all.
 #include <noether/lie.hpp>
 #include <noether/params.hpp>
+#include <noether/solid.hpp>
+
+#include <memory>
 
 #include <string>
 #include <vector>
@@ -16,7 +19,10 @@ struct Body {
   Mat3 inertia = Mat3::Zero();              // J, standard inertia, body frame (rigid only)
   Mat3 inertia_inverse = Mat3::Zero();      // J⁻¹
   Mat3 inertia_nonstandard = Mat3::Zero();  // Jd = ½ tr(J) I − J
-  Params shape;                             // model-specific shape (e.g. {dumbbell: {length}})
+  Params shape;                             // the scene's `shape` mapping, as given
+  // The homogeneous solid (ellipsoid or polyhedron) when the shape is one; its mass and
+  // inertia are the body's. Null for point masses and point clusters.
+  std::shared_ptr<const Solid> solid;
 };
 
 class System {

@@ -41,6 +41,10 @@ Cluster cluster_of(const noether::Body& body) {
     throw SceneError(who + " is rigid but has no 'shape'; give shape: {dumbbell: {length: L}} "
                            "or shape: {spheres: [{mass: m, position: [x, y, z]}, ...]}, or "
                            "use the point-mass potential");
+  if (body.solid)
+    throw SceneError(shape.here() + who + " is a " + body.solid->describe() +
+                     "; sphere-cluster models point clusters only: use the mutual-series or "
+                     "mutual-exact potential for solid shapes");
   shape.check_keys({"dumbbell", "spheres"}, "the shape of body '" + body.name + "'");
   if (shape.size() != 1)
     throw SceneError(shape.here() + who + ": give exactly one of 'dumbbell' or 'spheres'");

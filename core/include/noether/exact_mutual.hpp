@@ -1,0 +1,45 @@
+#pragma once
+// The exact mutual potential of two homogeneous bodies (docs/equations.md §13): one body's
+// exact exterior field integrated over the other's surface, refined until two successive
+// quadrature levels agree to a tolerance. Same frames and outputs as MutualSeries.
+#include <noether/export.hpp>
+#include <noether/gravity_field.hpp>
+#include <noether/mutual_series.hpp>
+#include <noether/solid.hpp>
+
+#include <memory>
+
+namespace noether {
+
+struct ExactMutualOptions {
+  double tolerance = 1e-12;  // relative change of U, ∂U/∂R and torques between two levels
+  int max_level = 7;         // polyhedra: 2, 3, 4, 6, 8, 12, 16, 24 points a side
+  enum class Surface { Automatic, A, B } surface = Surface::Automatic;  // whose surface
+};
+
+class NOETHER_API ExactMutual {
+ public:
+  // A null solid is a point mass of the given mass.
+  ExactMutual(double G, std::shared_ptr<const Solid> A, double mass_A,
+              std::shared_ptr<const Solid> B, double mass_B, ExactMutualOptions options = {});
+  ~ExactMutual();
+  ExactMutual(ExactMutual&&) noexcept;
+
+  // R: B's centre of mass minus A's, in A's frame; C: B's frame → A's frame. Throws Error if
+  // the bodies overlap or the quadrature does not reach the tolerance.
+  MutualTerms evaluate(const Vec3& R, const Mat3& C);
+  double last_error_estimate() const { return last_error_; }
+  int last_level() const { return level_; }
+  bool surface_is_A() const { return surface_is_A_; }
+
+ private:
+  struct Side;
+  MutualTerms evaluate_level(int level, const Vec3& R_s, const Mat3& C_s);
+  std::unique_ptr<Side> surface_, field_;
+  bool surface_is_A_ = true;
+  ExactMutualOptions options_;
+  int level_ = 0;
+  double last_error_ = 0.0;
+};
+
+}  // namespace noether

@@ -1,0 +1,66 @@
+#pragma once
+// Exact exterior gravity fields of homogeneous bodies, per unit mass: the potential Φ (< 0)
+// and the acceleration g = −∇Φ (docs/equations.md §13), and quadrature rules over their
+// surfaces. The fields are the oracle of the mutual potential (mutual-exact plugin, tests).
+#include <noether/export.hpp>
+#include <noether/lie.hpp>
+#include <noether/mesh.hpp>
+
+#include <vector>
+
+namespace noether {
+
+struct FieldValue {
+  double phi = 0.0;      // Φ, potential per unit mass
+  Vec3 g = Vec3::Zero(); // −∇Φ
+  bool inside = false;   // the point lies inside the body (Φ is then not harmonic there)
+};
+
+// Werner & Scheeres 1997 Eq. 8, 15: sums over edges and faces of a closed polyhedron.
+class NOETHER_API PolyhedronField {
+ public:
+  PolyhedronField(const Mesh& mesh, double G_density);
+  FieldValue operator()(const Vec3& r) const;
+
+ private:
+  double Grho_;
+  Eigen::Matrix3Xd vertices_;
+  struct Face {
+    std::array<int, 3> v;
+    Mat3 F;  // n nᵀ
+  };
+  struct Edge {
+    int i, j;
+    double length;
+    Mat3 E;  // n_A n_Aeᵀ + n_B n_Beᵀ
+  };
+  std::vector<Face> faces_;
+  std::vector<Edge> edges_;
+};
+
+// MacMillan 1930: Φ = −πGρabc [I₀(λ) − Σ x_i² I_i(λ)], with Carlson's R_F and R_D.
+class NOETHER_API EllipsoidField {
+ public:
+  EllipsoidField(const Vec3& semi_axes, double G_density);
+  FieldValue operator()(const Vec3& r) const;
+
+ private:
+  Vec3 a2_;
+  double k_;  // πGρabc
+};
+
+// Points x_k and vector areas w_k = n dS_k whose sums approximate ∮ f(x) n dS.
+struct SurfaceRule {
+  std::vector<Vec3> points;
+  std::vector<Vec3> areas;
+};
+
+// Collapsed (Duffy) Gauss–Legendre with n × n points on every face.
+NOETHER_API SurfaceRule polyhedron_surface_rule(const Mesh& mesh, int n);
+// Gauss–Legendre in cos θ (n_theta points) × trapezoid in φ (n_phi points): spectral.
+NOETHER_API SurfaceRule ellipsoid_surface_rule(const Vec3& semi_axes, int n_theta, int n_phi);
+
+// Gauss–Legendre nodes and weights on [0, 1].
+NOETHER_API void gauss_legendre01(int n, std::vector<double>& nodes, std::vector<double>& weights);
+
+}  // namespace noether

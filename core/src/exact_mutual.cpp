@@ -1,0 +1,161 @@
+#include <noether/error.hpp>
+#include <noether/exact_mutual.hpp>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace noether {
+
+// One body in one of the two roles: its field, or its surface at each quadrature level.
+struct ExactMutual::Side {
+  std::shared_ptr<const Solid> solid;  // null: a point mass
+  double mass = 0.0;
+  double G = 0.0;
+  std::unique_ptr<PolyhedronField> polyhedron;
+  std::unique_ptr<EllipsoidField> ellipsoid;
+  std::map<int, SurfaceRule> rules;
+
+  FieldValue field(const Vec3& y) const {
+    if (polyhedron) return (*polyhedron)(y);
+    if (ellipsoid) return (*ellipsoid)(y);
+    FieldValue v;  // a point mass
+    const double r = y.norm();
+    v.phi = -G * mass / r;
+    v.g = (-G * mass / (r * r * r)) * y;
+    v.inside = !(r > 0.0);
+    return v;
+  }
+  const SurfaceRule& rule(int level) {
+    auto it = rules.find(level);
+    if (it != rules.end()) return it->second;
+    SurfaceRule r;
+    if (solid->kind == Solid::Kind::Polyhedron) {
+      static const int points[] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
+      r = polyhedron_surface_rule(solid->mesh, points[std::min(level, 9)]);
+    } else {
+      const int n = 12 * (level + 1);
+      r = ellipsoid_surface_rule(solid->semi_axes, n, 2 * n);
+    }
+    return rules.emplace(level, std::move(r)).first->second;
+  }
+};
+
+ExactMutual::~ExactMutual() = default;
+ExactMutual::ExactMutual(ExactMutual&&) noexcept = default;
+
+ExactMutual::ExactMutual(double G, std::shared_ptr<const Solid> A, double mass_A,
+                         std::shared_ptr<const Solid> B, double mass_B, ExactMutualOptions options)
+    : options_(options) {
+  // The field is the cheaper one to evaluate: an ellipsoid's (a few elliptic integrals) or a
+  // point mass's over a polyhedron's (a sum over all its edges and faces); between two
+  // polyhedra, the surface of the one with fewer faces. A point mass is always the surface
+  // (a single point) unless both are.
+  auto cost = [](const std::shared_ptr<const Solid>& s) {
+    if (!s) return 0.0;
+    if (s->kind == Solid::Kind::Ellipsoid) return 1.0;
+    return 2.0 + static_cast<double>(s->mesh.faces.size());
+  };
+  switch (options.surface) {
+    case ExactMutualOptions::Surface::A: surface_is_A_ = true; break;
+    case ExactMutualOptions::Surface::B: surface_is_A_ = false; break;
+    default:
+      if (!A) surface_is_A_ = true;
+      else if (!B) surface_is_A_ = false;
+      else if (cost(A) == 1.0 || cost(B) == 1.0) surface_is_A_ = cost(B) == 1.0;  // ellipsoid field
+      else surface_is_A_ = cost(A) <= cost(B);
+  }
+  auto make_side = [&](std::shared_ptr<const Solid> s, double m, bool as_field) {
+    auto side = std::make_unique<Side>();
+    side->solid = s;
+    side->mass = m;
+    side->G = G;
+    if (as_field && s) {
+      if (s->kind == Solid::Kind::Polyhedron) side->polyhedron = std::make_unique<PolyhedronField>(s->mesh, G * s->density);
+      else side->ellipsoid = std::make_unique<EllipsoidField>(s->semi_axes, G * s->density);
+    }
+    return side;
+  };
+  surface_ = make_side(surface_is_A_ ? A : B, surface_is_A_ ? mass_A : mass_B, false);
+  field_ = make_side(surface_is_A_ ? B : A, surface_is_A_ ? mass_B : mass_A, true);
+}
+
+// In the surface body's frame: R_s the field body's centre, C_s its frame → surface frame.
+MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& C_s) {
+  MutualTerms t;
+  if (!surface_->solid) {  // a point mass: U = m Φ_F(y₀), y₀ = C_sᵀ(−R_s)
+    const FieldValue v = field_->field(C_s.transpose() * (-R_s));
+    if (v.inside) throw Error("the point mass lies inside the other body");
+    t.U = surface_->mass * v.phi;
+    t.dU_dR = surface_->mass * (C_s * v.g);
+    t.torque_B = R_s.cross(t.dU_dR);
+    return t;
+  }
+  const SurfaceRule& rule = surface_->rule(level);
+  const double rho = surface_->solid->density;
+  double U = 0.0;
+  Vec3 flux = Vec3::Zero(), moment = Vec3::Zero();
+  const Mat3 Ct = C_s.transpose();
+  for (std::size_t k = 0; k < rule.points.size(); ++k) {
+    const Vec3& x = rule.points[k];
+    const Vec3& w = rule.areas[k];
+    const FieldValue v = field_->field(Ct * (x - R_s));
+    if (v.inside) throw Error("the bodies overlap: a point of one surface lies inside the other body");
+    const Vec3 g = C_s * v.g;
+    // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (13.1))
+    U += (x * v.phi + 0.5 * x.squaredNorm() * g).dot(w);
+    flux += v.phi * w;
+    moment += v.phi * x.cross(w);
+  }
+  t.U = rho / 3.0 * U;
+  t.dU_dR = -rho * flux;            // (13.2)
+  t.torque_A = -rho * moment;       // (13.3), on the surface body
+  t.torque_B = R_s.cross(t.dU_dR) - t.torque_A;
+  return t;
+}
+
+MutualTerms ExactMutual::evaluate(const Vec3& R, const Mat3& C) {
+  // Into the surface body's frame.
+  const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
+  const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
+  auto back = [&](const MutualTerms& s) {
+    if (surface_is_A_) return s;
+    MutualTerms t;  // swap roles and rotate into A's frame; R_s = −Cᵀ R ⇒ ∂U/∂R = −C ∂U/∂R_s
+    t.U = s.U;
+    t.dU_dR = -(C * s.dU_dR);
+    t.torque_A = C * s.torque_B;
+    t.torque_B = C * s.torque_A;
+    return t;
+  };
+  if (!surface_->solid) {
+    last_error_ = 0.0;
+    return back(evaluate_level(0, R_s, C_s));
+  }
+  auto difference = [&](const MutualTerms& a, const MutualTerms& b) {
+    const double F = std::max(b.dU_dR.norm(), 1e-300);
+    const double T = F * R.norm();
+    return std::max({std::abs(a.U - b.U) / std::abs(b.U), (a.dU_dR - b.dU_dR).norm() / F,
+                     (a.torque_A - b.torque_A).norm() / T, (a.torque_B - b.torque_B).norm() / T});
+  };
+  int level = std::max(0, level_ - 1);
+  MutualTerms coarse = evaluate_level(level, R_s, C_s);
+  for (;;) {
+    if (level + 1 > options_.max_level) {
+      std::ostringstream msg;
+      msg << "mutual-exact: the surface quadrature did not reach the tolerance "
+          << options_.tolerance << " (reached " << last_error_ << " at level " << level
+          << "); the bodies are too close for the quadrature: raise max_level or the tolerance";
+      throw Error(msg.str());
+    }
+    MutualTerms fine = evaluate_level(level + 1, R_s, C_s);
+    last_error_ = difference(coarse, fine);
+    if (last_error_ <= options_.tolerance) {
+      level_ = level + 1;
+      return back(fine);
+    }
+    coarse = fine;
+    ++level;
+  }
+}
+
+}  // namespace noether
