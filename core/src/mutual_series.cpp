@@ -10,34 +10,6 @@ using multi_index::count;
 using multi_index::exponents;
 using multi_index::index;
 
-void inverse_distance_derivatives(const Vec3& e, int L, std::vector<double>& D,
-                                  std::vector<double>& scratch) {
-  // R^{(j)}_{tuv} = ∂x^t ∂y^u ∂z^v g_j with g_j(s) = d^j/ds^j (2s)^{-1/2}, s = r²/2, at r = 1:
-  //   R^{(j)}_{000} = (−1)^j (2j−1)!!,  R^{(j)}_{t+1,u,v} = t R^{(j+1)}_{t−1,u,v} + x R^{(j+1)}_{t,u,v}
-  const int n = count(L);
-  scratch.resize(static_cast<std::size_t>((L + 1) * n));
-  auto at = [&](int j, int i) -> double& { return scratch[static_cast<std::size_t>(j * n + i)]; };
-  double dfact = 1.0;
-  for (int j = 0; j <= L; ++j) {
-    at(j, 0) = (j % 2 ? -1.0 : 1.0) * dfact;
-    dfact *= 2 * j + 1;
-  }
-  for (int d = 1; d <= L; ++d)
-    for (int j = 0; j <= L - d; ++j)
-      for (int i = multi_index::first_of_degree(d); i < multi_index::first_of_degree(d + 1); ++i) {
-        const auto [t, u, v] = exponents(i);
-        double r;
-        if (t > 0)
-          r = (t > 1 ? (t - 1) * at(j + 1, index(t - 2, u, v)) : 0.0) + e.x() * at(j + 1, index(t - 1, u, v));
-        else if (u > 0)
-          r = (u > 1 ? (u - 1) * at(j + 1, index(t, u - 2, v)) : 0.0) + e.y() * at(j + 1, index(t, u - 1, v));
-        else
-          r = (v > 1 ? (v - 1) * at(j + 1, index(t, u, v - 2)) : 0.0) + e.z() * at(j + 1, index(t, u, v - 1));
-        at(j, i) = r;
-      }
-  D.assign(scratch.begin(), scratch.begin() + n);
-}
-
 MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 : order) {
   if (order < 0 || order > multi_index::kMaxDegree - 1)
     throw SceneError("mutual series: order " + std::to_string(order) + " is outside 0.." +
@@ -55,12 +27,41 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
   }
   for (int a = 0; a < n; ++a) {
     const auto [l, m, k] = exponents(a);
-    sign_over_factorial_.push_back(((l + m + k) % 2 ? -1.0 : 1.0) /
-                                   (multi_index::factorial(l) * multi_index::factorial(m) * multi_index::factorial(k)));
+    const double f = multi_index::factorial(l) * multi_index::factorial(m) * multi_index::factorial(k);
+    sign_over_factorial_.push_back(((l + m + k) % 2 ? -1.0 : 1.0) / f);
+    inverse_factorial_.push_back(1.0 / f);
+    degree_.push_back(l + m + k);
+    if (a > 0) {  // ∂T'^β/∂θ under δx = θ × x, within the degree (12.6)
+      TorqueTerm t{a, {}};
+      auto at = [&](double c, int ll, int mm, int kk) {
+        return (c == 0.0 || ll < 0 || mm < 0 || kk < 0) ? std::pair<double, int>{0.0, 0}
+                                                        : std::pair<double, int>{c, index(ll, mm, kk)};
+      };
+      t.terms[0] = {at(k, l, m + 1, k - 1), at(-m, l, m - 1, k + 1)};
+      t.terms[1] = {at(l, l - 1, m, k + 1), at(-k, l + 1, m, k - 1)};
+      t.terms[2] = {at(m, l + 1, m - 1, k), at(-l, l - 1, m + 1, k)};
+      torque_.push_back(t);
+    }
+  }
+  for (int d = 0; d <= order + 2; ++d) first_of_degree_.push_back(multi_index::first_of_degree(d));
+  for (int i = 1; i < count(order + 1); ++i) {
+    const auto [t, u, v] = exponents(i);
+    const int c = t > 0 ? 0 : (u > 0 ? 1 : 2);
+    std::array<int, 3> e{t, u, v};
+    const int g = e[static_cast<std::size_t>(c)];
+    e[static_cast<std::size_t>(c)] -= 1;
+    const int m1 = index(e[0], e[1], e[2]);
+    int m2 = 0;
+    if (g > 1) {
+      e[static_cast<std::size_t>(c)] -= 1;
+      m2 = index(e[0], e[1], e[2]);
+    }
+    recurrence_.push_back({i, c, m1, m2, static_cast<double>(g - 1)});
   }
   A_.resize(static_cast<std::size_t>(n));
   B_.resize(static_cast<std::size_t>(n));
   L_.resize(static_cast<std::size_t>(n));
+  Rj_.resize(static_cast<std::size_t>((order + 2) * count(order + 1)));
 }
 
 MutualTerms MutualSeries::evaluate(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
@@ -85,60 +86,68 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   if (!(R > 0.0)) throw Error("mutual series: the two centres of mass coincide");
   const Vec3 e = Rv / R;
   // Everything in units of R (docs/equations.md (12.3)): T^α / R^{|α|}.
-  std::fill(A_.begin(), A_.end(), 0.0);
-  std::fill(B_.begin(), B_.end(), 0.0);
   double scale = 1.0;
-  int deg = 0;
-  for (int a = 0; a < na; ++a) {
-    if (multi_index::degree(a) != deg) deg = multi_index::degree(a), scale /= R;
-    A_[static_cast<std::size_t>(a)] = sign_over_factorial_[static_cast<std::size_t>(a)] * TA.T[static_cast<std::size_t>(a)] * scale;
+  for (int d = 0, a = 0; d <= N; ++d, scale /= R)
+    for (; a < first_of_degree_[static_cast<std::size_t>(d + 1)]; ++a) {
+      A_[static_cast<std::size_t>(a)] = a < na ? sign_over_factorial_[static_cast<std::size_t>(a)] * TA.T[static_cast<std::size_t>(a)] * scale : 0.0;
+      B_[static_cast<std::size_t>(a)] = a < nb ? TB.T[static_cast<std::size_t>(a)] * scale : 0.0;  // T'^β/R^{|β|}
+    }
+
+  // D^γ(1/r) at the unit vector e, |γ| ≤ N + 1, by the recurrence (12.4):
+  //   R^{(j)}_{000} = (−1)^j (2j−1)!!,  R^{(j)}_γ = (γ_c − 1) R^{(j+1)}_{γ−2e_c} + e_c R^{(j+1)}_{γ−e_c}
+  const int L = N + 1, stride = count(L);
+  double* Rj = Rj_.data();
+  double dfact = 1.0;
+  for (int j = 0; j <= L; ++j) {
+    Rj[j * stride] = (j % 2 ? -1.0 : 1.0) * dfact;
+    dfact *= 2 * j + 1;
   }
-  scale = 1.0, deg = 0;
-  for (int b = 0; b < nb; ++b) {
-    if (multi_index::degree(b) != deg) deg = multi_index::degree(b), scale /= R;
-    B_[static_cast<std::size_t>(b)] = TB.T[static_cast<std::size_t>(b)] * scale;  // T'^β/R^{|β|}, no 1/β! yet
+  const double ec[3] = {e.x(), e.y(), e.z()};
+  for (int d = 1; d <= L; ++d) {
+    const Recurrence* first = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d)] - 1;
+    const Recurrence* last = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d + 1)] - 1;
+    for (int j = 0; j <= L - d; ++j) {
+      double* out = Rj + j * stride;
+      const double* in = Rj + (j + 1) * stride;
+      for (const Recurrence* r = first; r != last; ++r)
+        out[r->gamma] = r->factor * in[r->minus2] + ec[r->component] * in[r->minus1];
+    }
   }
-  inverse_distance_derivatives(e, N + 1, D_, Rj_);
+  const double* D = Rj;
 
   // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (12.2), (12.5))
-  double U = 0.0;
-  Vec3 grad = Vec3::Zero();
+  double U = 0.0, gx = 0.0, gy = 0.0, gz = 0.0;
   for (int b = 0; b < nb; ++b) {
-    double L = 0.0, gx = 0.0, gy = 0.0, gz = 0.0;
+    double Lb = 0.0, lx = 0.0, ly = 0.0, lz = 0.0;
     for (const Pair& p : pairs_[static_cast<std::size_t>(b)]) {
       if (p.alpha >= na) break;  // pairs are ordered by α
       const double a = A_[static_cast<std::size_t>(p.alpha)];
-      if (a == 0.0) continue;
-      L += a * D_[static_cast<std::size_t>(p.gamma)];
-      gx += a * D_[static_cast<std::size_t>(p.gamma_e[0])];
-      gy += a * D_[static_cast<std::size_t>(p.gamma_e[1])];
-      gz += a * D_[static_cast<std::size_t>(p.gamma_e[2])];
+      Lb += a * D[p.gamma];
+      lx += a * D[p.gamma_e[0]];
+      ly += a * D[p.gamma_e[1]];
+      lz += a * D[p.gamma_e[2]];
     }
-    const auto [l, m, k] = exponents(b);
-    const double w = 1.0 / (multi_index::factorial(l) * multi_index::factorial(m) * multi_index::factorial(k));
-    L_[static_cast<std::size_t>(b)] = L * w;  // ∝ ∂U/∂T'^β
-    U += B_[static_cast<std::size_t>(b)] * L * w;
-    grad += (B_[static_cast<std::size_t>(b)] * w) * Vec3(gx, gy, gz);
+    const double w = inverse_factorial_[static_cast<std::size_t>(b)];
+    L_[static_cast<std::size_t>(b)] = Lb * w;  // ∝ ∂U/∂T'^β
+    const double Bw = B_[static_cast<std::size_t>(b)] * w;
+    U += Bw * Lb;
+    gx += Bw * lx, gy += Bw * ly, gz += Bw * lz;
   }
   MutualTerms out;
   out.U = -G * U / R;
-  out.dU_dR = (-G / (R * R)) * grad;
+  out.dU_dR = (-G / (R * R)) * Vec3(gx, gy, gz);
   // Torque on B by the in-degree derivative of T' under a small rotation δx = θ × x
-  // (docs/equations.md (12.6)): τ_B = −Σ_β ∂U/∂T'^β ∂T'^β/∂θ, with ∂U/∂T'^β = −G L_β /R^{|β|+1}.
-  Vec3 tau = Vec3::Zero();
-  auto Bv = [&](int l, int m, int k) {
-    return (l < 0 || m < 0 || k < 0) ? 0.0 : B_[static_cast<std::size_t>(index(l, m, k))];
-  };
-  for (int b = 1; b < nb; ++b) {
-    const double Lb = L_[static_cast<std::size_t>(b)];
-    if (Lb == 0.0) continue;
-    const auto [l, m, k] = exponents(b);
-    tau.x() += Lb * (k * Bv(l, m + 1, k - 1) - m * Bv(l, m - 1, k + 1));
-    tau.y() += Lb * (l * Bv(l - 1, m, k + 1) - k * Bv(l + 1, m, k - 1));
-    tau.z() += Lb * (m * Bv(l + 1, m - 1, k) - l * Bv(l - 1, m + 1, k));
+  // (docs/equations.md (12.6)): τ_B = −Σ_β ∂U/∂T'^β ∂T'^β/∂θ, with ∂U/∂T'^β = −G L_β /R^{|β|+1}
+  // and ∂T'^β/∂θ = R^{|β|} (…B…) ⇒ τ_B = +G/R Σ_β L_β (…B…).
+  double tau[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k + 1 < nb; ++k) {
+    const TorqueTerm& t = torque_[static_cast<std::size_t>(k)];
+    const double Lb = L_[static_cast<std::size_t>(t.beta)];
+    for (int c = 0; c < 3; ++c)
+      tau[c] += Lb * (t.terms[static_cast<std::size_t>(c)][0].first * B_[static_cast<std::size_t>(t.terms[static_cast<std::size_t>(c)][0].second)] +
+                      t.terms[static_cast<std::size_t>(c)][1].first * B_[static_cast<std::size_t>(t.terms[static_cast<std::size_t>(c)][1].second)]);
   }
-  // ∂U/∂T'^β ∂T'^β/∂θ = (−G L_β/R^{|β|+1}) R^{|β|} (…B…) ⇒ τ_B = +G/R Σ L_β (…B…)
-  out.torque_B = (G / R) * tau;
+  out.torque_B = (G / R) * Vec3(tau[0], tau[1], tau[2]);
   out.torque_A = Rv.cross(out.dU_dR) - out.torque_B;  // Hou et al. 2017 Eq. 2
   return out;
 }

@@ -40,18 +40,27 @@ class NOETHER_API MutualSeries {
     int alpha, gamma;            // α and γ = α + β
     std::array<int, 3> gamma_e;  // γ + e_x, γ + e_y, γ + e_z
   };
+  // One step of the recurrence (12.4) for D^γ: γ − e_c and γ − 2e_c, and the factor γ_c − 1.
+  struct Recurrence {
+    int gamma, component, minus1, minus2;
+    double factor;
+  };
+  // ∂T'^β/∂θ (12.6) as Σ coefficient × T'^{β'} over at most two β' per axis.
+  struct TorqueTerm {
+    int beta;
+    std::array<std::array<std::pair<double, int>, 2>, 3> terms;
+  };
   int order_;
   std::vector<std::vector<Pair>> pairs_;  // per β (|β| ≤ N): every α with |α| ≤ N − |β|
   std::vector<double> sign_over_factorial_;  // (−1)^{|α|}/α!
+  std::vector<double> inverse_factorial_;    // 1/β!
+  std::vector<int> degree_;                  // |α|
+  std::vector<int> first_of_degree_;         // index of the first multi-index of each degree
+  std::vector<Recurrence> recurrence_;       // for |γ| ≤ N + 1, by degree
+  std::vector<TorqueTerm> torque_;
   IntegralRotation rotation_;
   InertiaIntegrals rotated_;
-  std::vector<double> D_, Rj_, A_, B_, L_;
+  std::vector<double> Rj_, A_, B_, L_;
 };
-
-// D^γ(1/r) at the unit vector e for |γ| ≤ L, by the Hermite (McMurchie–Davidson) recurrence
-// (docs/equations.md (12.4)); D^γ(1/R) at R = |R| e is R^{−(|γ|+1)} times this.
-// `scratch` holds the auxiliary orders; `D` is resized to count(L).
-NOETHER_API void inverse_distance_derivatives(const Vec3& e, int L, std::vector<double>& D,
-                                              std::vector<double>& scratch);
 
 }  // namespace noether

@@ -1,0 +1,71 @@
+// Micro-benchmarks of the mutual potential of real shapes on 1999 KW4 (Hou et al. 2017
+// initial conditions): one evaluation of the mutual-series plugin (integrals of Beta rotated
+// into Alpha's frame, U, force, both torques, written into Forces) at each order, the set-up
+// of the inertia integrals of the 9168-face primary per order, and the exact reference.
+// Run: build/release/bin/noether_benchmarks --benchmark_filter=Mutual
+// (results in docs/real-shapes.md)
+#include "test_support.hpp"
+
+#include <noether/exact_mutual.hpp>
+#include <noether/simulation.hpp>
+
+#include <benchmark/benchmark.h>
+
+using namespace noether;
+
+namespace {
+
+void BM_MutualSeriesKw4(benchmark::State& st) {
+  const int N = static_cast<int>(st.range(0));
+  const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"),
+                                 {"potential.order=" + std::to_string(N)});
+  auto registry = test::bundled_plugins();
+  auto potential = make_scene_potential(scene, registry);
+  Forces f;
+  f.resize(scene.system);
+  State s = scene.initial;
+  for (auto _ : st) {
+    potential->evaluate(s, f);
+    benchmark::DoNotOptimize(f.U);
+    s.x(0, 1) += 1e-9;  // a new configuration each time (nothing is cached)
+  }
+}
+BENCHMARK(BM_MutualSeriesKw4)->DenseRange(2, 12, 1)->Unit(benchmark::kMicrosecond);
+
+void BM_MutualIntegralsKw4Primary(benchmark::State& st) {
+  const int N = static_cast<int>(st.range(0));
+  const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"));
+  const Solid& alpha = *scene.system.body(0).solid;
+  for (auto _ : st) benchmark::DoNotOptimize(alpha.integrals(N).T.data());
+}
+BENCHMARK(BM_MutualIntegralsKw4Primary)->Arg(2)->Arg(4)->Arg(6)->Arg(8)->Arg(10)->Arg(12)->Unit(benchmark::kMillisecond);
+
+void BM_MutualExactOctahedra(benchmark::State& st) {
+  const Scene scene = load_scene(test::source_path("examples/octahedra-hou.yaml"),
+                                 {"potential={plugin: mutual-exact}"});
+  auto registry = test::bundled_plugins();
+  auto potential = make_scene_potential(scene, registry);
+  Forces f;
+  f.resize(scene.system);
+  for (auto _ : st) {
+    potential->evaluate(scene.initial, f);
+    benchmark::DoNotOptimize(f.U);
+  }
+}
+BENCHMARK(BM_MutualExactOctahedra)->Unit(benchmark::kMillisecond);
+
+void BM_MutualExactKw4Ellipsoids(benchmark::State& st) {
+  const Scene scene = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
+                                 {"potential={plugin: mutual-exact}"});
+  auto registry = test::bundled_plugins();
+  auto potential = make_scene_potential(scene, registry);
+  Forces f;
+  f.resize(scene.system);
+  for (auto _ : st) {
+    potential->evaluate(scene.initial, f);
+    benchmark::DoNotOptimize(f.U);
+  }
+}
+BENCHMARK(BM_MutualExactKw4Ellipsoids)->Unit(benchmark::kMillisecond);
+
+}  // namespace
