@@ -7,3 +7,4 @@ find_package(CLI11 REQUIRED)
 find_package(HDF5 REQUIRED COMPONENTS C)     # FindHDF5 (hdf5-helpers), no config file
 find_package(Threads REQUIRED)
 find_package(NLopt REQUIRED)                 # L-BFGS for the least-action orbit finder
+find_package(OpenMP REQUIRED COMPONENTS CXX)  # the exact mutual potential sums its surface in parallel (libgomp, part of g++)

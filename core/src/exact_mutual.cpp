@@ -93,19 +93,40 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
   }
   const SurfaceRule& rule = surface_->rule(level);
   const double rho = surface_->solid->density;
+  const Mat3 Ct = C_s.transpose();
+  // Partial sums over fixed chunks of points, added in chunk order afterwards: the result
+  // does not depend on the number of threads (OpenMP, when the build has it).
+  constexpr std::size_t kChunk = 256;
+  const std::size_t chunks = (rule.points.size() + kChunk - 1) / kChunk;
+  struct Partial {
+    double U = 0.0;
+    Vec3 flux = Vec3::Zero(), moment = Vec3::Zero();
+    bool overlap = false;
+  };
+  std::vector<Partial> partial(chunks);
+  const Side& field = *field_;
+#pragma omp parallel for schedule(dynamic)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    Partial& p = partial[c];
+    for (std::size_t k = c * kChunk; k < std::min(rule.points.size(), (c + 1) * kChunk); ++k) {
+      const Vec3& x = rule.points[k];
+      const Vec3& w = rule.areas[k];
+      const FieldValue v = field.field(Ct * (x - R_s));
+      p.overlap = p.overlap || v.inside;
+      const Vec3 g = C_s * v.g;
+      // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (13.1))
+      p.U += (x * v.phi + 0.5 * x.squaredNorm() * g).dot(w);
+      p.flux += v.phi * w;
+      p.moment += v.phi * x.cross(w);
+    }
+  }
   double U = 0.0;
   Vec3 flux = Vec3::Zero(), moment = Vec3::Zero();
-  const Mat3 Ct = C_s.transpose();
-  for (std::size_t k = 0; k < rule.points.size(); ++k) {
-    const Vec3& x = rule.points[k];
-    const Vec3& w = rule.areas[k];
-    const FieldValue v = field_->field(Ct * (x - R_s));
-    if (v.inside) throw Error("the bodies overlap: a point of one surface lies inside the other body");
-    const Vec3 g = C_s * v.g;
-    // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (13.1))
-    U += (x * v.phi + 0.5 * x.squaredNorm() * g).dot(w);
-    flux += v.phi * w;
-    moment += v.phi * x.cross(w);
+  for (const Partial& p : partial) {
+    if (p.overlap) throw Error("the bodies overlap: a point of one surface lies inside the other body");
+    U += p.U;
+    flux += p.flux;
+    moment += p.moment;
   }
   t.U = rho / 3.0 * U;
   t.dU_dR = -rho * flux;            // (13.2)
