@@ -20,7 +20,7 @@ std::string plugin_error(PluginRegistry& r, const std::string& name) {
 
 TEST(Plugins, BundledPluginsLoadByName) {
   auto r = test::bundled_plugins();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"central-field", "cvode", "jm-hybrid", "lgvi", "point-mass", "rk", "sphere-cluster"}));
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"central-field", "cvode", "jm-hybrid", "lgvi", "mutual-exact", "mutual-series", "point-mass", "rk", "sphere-cluster"}));
   EXPECT_EQ(r.info("lgvi").kind, PluginKind::Integrator);
   EXPECT_EQ(r.info("sphere-cluster").kind, PluginKind::Potential);
   EXPECT_FALSE(r.info("lgvi").params.empty());
@@ -30,7 +30,7 @@ TEST(Plugins, UnknownNameListsTheNamesFound) {
   auto r = test::bundled_plugins();
   const std::string e = plugin_error(r, "lgiv");
   EXPECT_NE(e.find("unknown plugin 'lgiv' (did you mean 'lgvi'?); plugins found: central-field cvode "
-                   "jm-hybrid lgvi point-mass rk sphere-cluster"),
+                   "jm-hybrid lgvi mutual-exact mutual-series point-mass rk sphere-cluster"),
             std::string::npos)
       << e;
 }
@@ -56,7 +56,7 @@ TEST(Plugins, LoadAllReportsBrokenPluginsWithoutThrowing) {
   PluginRegistry r({NOETHER_FIXTURE_PLUGIN_DIR, NOETHER_TEST_PLUGIN_DIR});
   std::vector<std::string> failures;
   const auto found = r.load_all(failures);
-  EXPECT_EQ(found.size(), 10u);  // 7 bundled + 3 fixtures that load but misbehave later
+  EXPECT_EQ(found.size(), 12u);  // 9 bundled + 3 fixtures that load but misbehave later
   EXPECT_EQ(failures.size(), 2u);
 }
 

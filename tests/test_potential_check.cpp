@@ -21,8 +21,28 @@ integrator: {plugin: lgvi, step: 0.01}
 run: {t_end: 1, output_every: 0.1}
 )";
 
+// Solid shapes for the mutual-series and mutual-exact models: an ellipsoid, an octahedron
+// off its principal axes, and a point mass.
+std::string shapes_scene() {
+  return R"(G: 0.7
+bodies:
+  - {name: alpha, density: 1, shape: {ellipsoid: {semi_axes: [0.5, 0.35, 0.25]}},
+     position: [0.67, 0, 0.2], attitude: {quaternion: [0.8, 0.36, 0.48, 0.0]}}
+  - {name: beta, density: 0.1, position: [-2.5, 0.5, -0.4], angular_velocity: [1, 2, 3],
+     shape: {polyhedron: {file: )" + test::source_path("examples/shapes/hou2017_B.obj") + R"(, units: m, frame: mesh}}}
+  - {name: probe, mass: 0.01, position: [-0.8, -1.9, 1.5]}
+potential: {plugin: mutual-series, order: 6}
+integrator: {plugin: lgvi, step: 0.01}
+run: {t_end: 1, output_every: 0.1}
+)";
+}
+
 PotentialCheckReport check(const std::string& plugin) {
   PluginRegistry registry({NOETHER_TEST_PLUGIN_DIR, NOETHER_FIXTURE_PLUGIN_DIR});
+  if (plugin.rfind("mutual-", 0) == 0) {
+    const Scene scene = parse_scene(shapes_scene(), "check", {"potential={plugin: " + plugin + (plugin == "mutual-series" ? ", order: 6}" : "}")});
+    return check_potential(scene.system, *make_scene_potential(scene, registry), scene.initial);
+  }
   // An external field needs its parameters and does not conserve momentum.
   const bool external = plugin == "central-field";
   const Scene scene = parse_scene(kScene, "check",
