@@ -1,4 +1,4 @@
-// The commutative cube of seed 000 (Fig. 1 and 7): eight forms of the full-body equations —
+// The commutative cube of Lee, Leok & McClamroch 2007 (Fig. 1 and 7): eight forms of the full-body equations —
 // continuous or discrete, inertial or relative frame, Lagrangian or Hamiltonian — agree where
 // the cube says they must.
 #include "test_support.hpp"

@@ -9,7 +9,7 @@
 using namespace noether;
 
 namespace {
-const Mat3 J1 = Vec3(0.0004, 0.0238, 0.0238).asDiagonal();  // dumbbell alpha, MATH.md §6
+const Mat3 J1 = Vec3(0.0004, 0.0238, 0.0238).asDiagonal();  // dumbbell alpha, docs/equations.md §6
 const Mat3 Jfull = [] {
   Mat3 J;
   J << 2.0, 0.3, -0.1,  //

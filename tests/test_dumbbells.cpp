@@ -1,4 +1,4 @@
-// The reference scene of seed 000 §5 (MATH.md §6) run end to end through the plugins.
+// The reference scene of Lee, Leok & McClamroch 2007 §5 (docs/equations.md §6) run end to end through the plugins.
 #include "test_support.hpp"
 
 #include <noether/error.hpp>

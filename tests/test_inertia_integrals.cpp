@@ -1,4 +1,4 @@
-// Inertia integrals T^{lmn} (docs/equations.md §11): closed forms of the box, the ellipsoid
+// Inertia integrals T^{lmn} (docs/equations.md §12): closed forms of the box, the ellipsoid
 // and the tetrahedron, convergence of tessellated ellipsoids, rotation against rotated
 // meshes, and the mass properties of the shipped shapes.
 #include "shapes.hpp"

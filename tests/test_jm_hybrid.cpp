@@ -1,4 +1,4 @@
-// jm-hybrid (seed 001, MATH.md §7) on the seed's eccentric Kepler orbit and the Pythagorean
+// jm-hybrid (Nair, Ober-Blöbaum & Marsden 2009, docs/equations.md §7) on the seed's eccentric Kepler orbit and the Pythagorean
 // three-body problem, against the analytic Kepler solution and plain Störmer–Verlet.
 #include "test_support.hpp"
 

@@ -11,7 +11,7 @@ TEST(Lie, HatIsTheCrossProductAndVeeInvertsIt) {
   const Vec3 a(0.3, -1.2, 2.5), b(-0.7, 0.4, 1.1);
   EXPECT_LT((hat(a) * b - a.cross(b)).norm(), 1e-15);
   EXPECT_LT((vee(hat(a)) - a).norm(), 1e-15);
-  // S(Ra) = R S(a) Rᵀ (MATH.md §1).
+  // S(Ra) = R S(a) Rᵀ (docs/equations.md §1).
   const Mat3 R = exp_so3(Vec3(0.2, 0.9, -0.4));
   EXPECT_LT((hat(R * a) - R * hat(a) * R.transpose()).norm(), 1e-14);
 }

@@ -1,4 +1,4 @@
-// The mutual potential of real shapes (docs/equations.md §12–13): exact fields against
+// The mutual potential of real shapes (docs/equations.md §13–13): exact fields against
 // independent formulas, the exact reference against a second exact formula, and the
 // inertia-integral series converging to the exact reference with its order.
 #include "mutual_configurations.hpp"

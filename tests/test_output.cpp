@@ -1,4 +1,4 @@
-// HDF5 output: the layout of ARCHITECTURE.md, and a run killed with SIGKILL half way leaves a
+// HDF5 output: the layout of docs/user-guide.md, and a run killed with SIGKILL half way leaves a
 // file h5dump reads, with every frame up to its last flushed block.
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-// Periodic orbits (MATH.md §8–9, seed 004): the least-action finder, closure, monodromy,
+// Periodic orbits (docs/equations.md §8–9, Vanderbei 2002): the least-action finder, closure, monodromy,
 // stability with the first integrals projected out, and shooting refinement.
 #include "test_support.hpp"
 
@@ -18,7 +18,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Chenciner–Montgomery figure-eight (MATH.md §9), G = m = 1.
+// Chenciner–Montgomery figure-eight (docs/equations.md §9), G = m = 1.
 VectorXd figure_eight(PlanarSystem& sys) {
   sys.G = 1;
   sys.masses = {1, 1, 1};

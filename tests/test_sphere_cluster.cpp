@@ -1,5 +1,5 @@
 // sphere-cluster and point-mass: forces and moments against finite differences of U
-// (MATH.md §2), and Newton's third law for forces and torques.
+// (docs/equations.md §2), and Newton's third law for forces and torques.
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
@@ -87,7 +87,7 @@ Checked check_against_finite_differences(const std::string& plugin, const Scene&
 }  // namespace
 
 TEST(SphereCluster, DumbbellPotentialMatchesTheSeed) {
-  // U at t = 0 of MATH.md §6: −¼ Σ_{p,q} 1/‖X + ρ2p... ‖ with X = (1, 0, 0.3).
+  // U at t = 0 of docs/equations.md §6: −¼ Σ_{p,q} 1/‖X + ρ2p... ‖ with X = (1, 0, 0.3).
   const Scene scene = test::dumbbell_scene();
   auto registry = test::bundled_plugins();
   auto potential = registry.make_potential("sphere-cluster", scene.system, Params());

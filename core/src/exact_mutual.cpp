@@ -114,7 +114,7 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
       const FieldValue v = field.field(Ct * (x - R_s));
       p.overlap = p.overlap || v.inside;
       const Vec3 g = C_s * v.g;
-      // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (13.1))
+      // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (14.1))
       p.U += (x * v.phi + 0.5 * x.squaredNorm() * g).dot(w);
       p.flux += v.phi * w;
       p.moment += v.phi * x.cross(w);
@@ -129,8 +129,8 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
     moment += p.moment;
   }
   t.U = rho / 3.0 * U;
-  t.dU_dR = -rho * flux;            // (13.2)
-  t.torque_A = -rho * moment;       // (13.3), on the surface body
+  t.dU_dR = -rho * flux;            // (14.2)
+  t.torque_A = -rho * moment;       // (14.3), on the surface body
   t.torque_B = R_s.cross(t.dU_dR) - t.torque_A;
   return t;
 }

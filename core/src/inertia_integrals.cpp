@@ -88,7 +88,7 @@ InertiaIntegrals ellipsoid_integrals(double mass, const Vec3& semi_axes, int ord
   for (int i = 0; i < count(order); ++i) {
     const auto [l, m, n] = exponents(i);
     if (l % 2 || m % 2 || n % 2) continue;
-    // Hou et al. 2017 Eq. 26, docs/equations.md (11.3).
+    // Hou et al. 2017 Eq. 26, docs/equations.md (12.3).
     t.T[static_cast<std::size_t>(i)] = 3.0 * mass * double_factorial(l - 1) * double_factorial(m - 1) *
                                        double_factorial(n - 1) * pa[static_cast<std::size_t>(l)] *
                                        pb[static_cast<std::size_t>(m)] * pc[static_cast<std::size_t>(n)] /
@@ -142,7 +142,7 @@ InertiaIntegrals polyhedron_integrals(const Mesh& mesh, double density, int orde
     for (const auto& p : pairs) S[static_cast<std::size_t>(p.sum)] += S1[static_cast<std::size_t>(p.b)] * P[2][static_cast<std::size_t>(p.c)];
     for (int i = 0; i < n; ++i) sum[static_cast<std::size_t>(i)] += det * S[static_cast<std::size_t>(i)];
   }
-  // ∫_tet x^α = 3! V α!/(|α|+3)! Σ_{β1+β2+β3=α} Π_v |β_v|!/β_v! v^β_v  (docs/equations.md (11.4))
+  // ∫_tet x^α = 3! V α!/(|α|+3)! Σ_{β1+β2+β3=α} Π_v |β_v|!/β_v! v^β_v  (docs/equations.md (12.4))
   for (int i = 0; i < n; ++i) {
     const auto [l, m, k] = exponents(i);
     t.T[static_cast<std::size_t>(i)] = density * sum[static_cast<std::size_t>(i)] * factorial(l) * factorial(m) *
@@ -237,7 +237,7 @@ void IntegralRotation::apply(const Mat3& C, const InertiaIntegrals& T, InertiaIn
     const auto& Kp = K_[static_cast<std::size_t>(d - 1)];
     const auto& plus = plus_[static_cast<std::size_t>(d - 1)];
     std::fill(K.begin(), K.end(), 0.0);
-    // y^α = y_k y^{α−e_k}, y_k = Σ_j C_kj x_j  (docs/equations.md (11.6))
+    // y^α = y_k y^{α−e_k}, y_k = Σ_j C_kj x_j  (docs/equations.md (12.6))
     for (int a = 0; a < nd; ++a) {
       const auto [ap, k] = lower_[static_cast<std::size_t>(d)][static_cast<std::size_t>(a)];
       const double c0 = C(k, 0), c1 = C(k, 1), c2 = C(k, 2);

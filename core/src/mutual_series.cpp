@@ -31,7 +31,7 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
     sign_over_factorial_.push_back(((l + m + k) % 2 ? -1.0 : 1.0) / f);
     inverse_factorial_.push_back(1.0 / f);
     degree_.push_back(l + m + k);
-    if (a > 0) {  // ∂T'^β/∂θ under δx = θ × x, within the degree (12.6)
+    if (a > 0) {  // ∂T'^β/∂θ under δx = θ × x, within the degree (13.6)
       TorqueTerm t{a, {}};
       auto at = [&](double c, int ll, int mm, int kk) {
         return (c == 0.0 || ll < 0 || mm < 0 || kk < 0) ? std::pair<double, int>{0.0, 0}
@@ -85,7 +85,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   const double R = Rv.norm();
   if (!(R > 0.0)) throw Error("mutual series: the two centres of mass coincide");
   const Vec3 e = Rv / R;
-  // Everything in units of R (docs/equations.md (12.3)): T^α / R^{|α|}.
+  // Everything in units of R (docs/equations.md (13.3)): T^α / R^{|α|}.
   double scale = 1.0;
   for (int d = 0, a = 0; d <= N; ++d, scale /= R)
     for (; a < first_of_degree_[static_cast<std::size_t>(d + 1)]; ++a) {
@@ -93,7 +93,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
       B_[static_cast<std::size_t>(a)] = a < nb ? TB.T[static_cast<std::size_t>(a)] * scale : 0.0;  // T'^β/R^{|β|}
     }
 
-  // D^γ(1/r) at the unit vector e, |γ| ≤ N + 1, by the recurrence (12.4):
+  // D^γ(1/r) at the unit vector e, |γ| ≤ N + 1, by the recurrence (13.4):
   //   R^{(j)}_{000} = (−1)^j (2j−1)!!,  R^{(j)}_γ = (γ_c − 1) R^{(j+1)}_{γ−2e_c} + e_c R^{(j+1)}_{γ−e_c}
   const int L = N + 1, stride = count(L);
   double* Rj = Rj_.data();
@@ -115,7 +115,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   }
   const double* D = Rj;
 
-  // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (12.2), (12.5))
+  // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (13.2), (13.5))
   double U = 0.0, gx = 0.0, gy = 0.0, gz = 0.0;
   for (int b = 0; b < nb; ++b) {
     double Lb = 0.0, lx = 0.0, ly = 0.0, lz = 0.0;
@@ -137,7 +137,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   out.U = -G * U / R;
   out.dU_dR = (-G / (R * R)) * Vec3(gx, gy, gz);
   // Torque on B by the in-degree derivative of T' under a small rotation δx = θ × x
-  // (docs/equations.md (12.6)): τ_B = −Σ_β ∂U/∂T'^β ∂T'^β/∂θ, with ∂U/∂T'^β = −G L_β /R^{|β|+1}
+  // (docs/equations.md (13.6)): τ_B = −Σ_β ∂U/∂T'^β ∂T'^β/∂θ, with ∂U/∂T'^β = −G L_β /R^{|β|+1}
   // and ∂T'^β/∂θ = R^{|β|} (…B…) ⇒ τ_B = +G/R Σ_β L_β (…B…).
   double tau[3] = {0.0, 0.0, 0.0};
   for (int k = 0; k + 1 < nb; ++k) {

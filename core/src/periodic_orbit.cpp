@@ -123,7 +123,7 @@ MatrixXd invariant_directions(const PlanarSystem& sys, const VectorXd& xi) {
     P(N + 2 * j + 1, 3) = 1;    // moving frame in y
     P.block<2, 1>(2 * j, 4) = Eigen::Vector2d(-x.y(), x.x());       // rotation: (J x, J v)
     P.block<2, 1>(N + 2 * j, 4) = Eigen::Vector2d(-v.y(), v.x());
-    P.block<2, 1>(2 * j, 5) = x - 1.5 * v;                          // dilation (MATH.md §9)
+    P.block<2, 1>(2 * j, 5) = x - 1.5 * v;                          // dilation (docs/equations.md §9)
     P.block<2, 1>(N + 2 * j, 5) = -0.5 * v - 1.5 * acc;
     P.block<2, 1>(2 * j, 6) = v;                                    // the flow (time shift)
     P.block<2, 1>(N + 2 * j, 6) = acc;

@@ -5,7 +5,7 @@
 //   U = −Σ_{i<j} G m_i m_j / r_ij  +  Σ_j (C_j/2) (3 (k·r)² / r⁵ − 1 / r³),
 // with C_j = G M_P m_j J2 Re², since the primary's exterior potential per unit mass is
 //   V = −(G M_P / r) [1 − J2 (Re/r)² P2(k·r/r)],  P2(s) = (3s² − 1)/2.
-// Derivatives (MATH.md §2):
+// Derivatives (docs/equations.md §2):
 //   ∂U_J2/∂r = (C/2) [6 (k·r) k / r⁵ − 15 (k·r)² r / r⁷ + 3 r / r⁵]
 //   ∂U_J2/∂k = 3 C (k·r) r / r⁵,  and the primary's body-frame moment is
 //   M_P = (R_Pᵀ ∂U/∂k) × e3   (η·M = −dU/dε along R exp(εS(η)), with dk = R (η × e3)).

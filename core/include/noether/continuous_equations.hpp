@@ -1,6 +1,6 @@
 #pragma once
 // The continuous equations of motion as first-order systems y' = F(t, y) for general-purpose
-// ODE solvers (MATH.md §3; seed 000 §2–3, the left face of the cube of Fig. 7). Four forms:
+// ODE solvers (docs/equations.md §3; Lee, Leok & McClamroch 2007 §2–3, the left face of the cube of Fig. 7). Four forms:
 //
 //   inertial, Hamiltonian (29)–(32):  ẋ = γ/m, γ̇ = −∂U/∂x, Ṙ = R S(Ω), Π̇ = Π × Ω + M, Ω = J⁻¹Π
 //   inertial, Lagrangian (25)–(28):   ẋ = v, m v̇ = −∂U/∂x, Ṙ = R S(Ω), J Ω̇ + Ω × J Ω = M

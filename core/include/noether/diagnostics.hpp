@@ -1,5 +1,5 @@
 #pragma once
-// Diagnostics: the quantities the continuous flow conserves (MATH.md §3) and the distance of
+// Diagnostics: the quantities the continuous flow conserves (docs/equations.md §3) and the distance of
 // every attitude from SO(3).
 #include <noether/state.hpp>
 #include <noether/system.hpp>

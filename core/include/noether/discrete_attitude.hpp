@@ -1,5 +1,5 @@
 #pragma once
-// The implicit attitude update of the Lie group variational integrator (MATH.md §4, seed 000
+// The implicit attitude update of the Lie group variational integrator (docs/equations.md §4, Lee, Leok & McClamroch 2007
 // eqs. (128)–(130)): given g = h (Π_k + (h/2) M_k), find F_k ∈ SO(3) with
 //     S(g) = F_k Jd − Jd F_kᵀ,
 // by writing F = exp(S(f)) and solving G(f) = g with Newton's method.

@@ -1,5 +1,5 @@
 #pragma once
-// The exact mutual potential of two homogeneous bodies (docs/equations.md §13): one body's
+// The exact mutual potential of two homogeneous bodies (docs/equations.md §14): one body's
 // exact exterior field integrated over the other's surface, refined until two successive
 // quadrature levels agree to a tolerance. Same frames and outputs as MutualSeries.
 #include <noether/export.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// Forces: what a Potential computes at a State (MATH.md §2).
+// Forces: what a Potential computes at a State (docs/equations.md §2).
 #include <noether/system.hpp>
 
 namespace noether {

@@ -1,6 +1,6 @@
 #pragma once
 // Exact exterior gravity fields of homogeneous bodies, per unit mass: the potential Φ (< 0)
-// and the acceleration g = −∇Φ (docs/equations.md §13), and quadrature rules over their
+// and the acceleration g = −∇Φ (docs/equations.md §14), and quadrature rules over their
 // surfaces. The fields are the oracle of the mutual potential (mutual-exact plugin, tests).
 #include <noether/export.hpp>
 #include <noether/lie.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // Inertia integrals T^{lmn} = ∫ x^l y^m z^n dm of a body about its centre of mass, in its
-// body frame, for l + m + n ≤ N (docs/equations.md §11; Hou, Scheeres & Xin 2017 Eq. 16, 20).
+// body frame, for l + m + n ≤ N (docs/equations.md §12; Hou, Scheeres & Xin 2017 Eq. 16, 20).
 // Not mass-normalised: T^{000} = M, and the second moments give the inertia tensor.
 #include <noether/export.hpp>
 #include <noether/lie.hpp>
@@ -46,7 +46,7 @@ NOETHER_API InertiaIntegrals ellipsoid_integrals(double mass, const Vec3& semi_a
 
 // Homogeneous polyhedron of density ρ, exactly, as a sum over the signed tetrahedra
 // (origin, v1, v2, v3) of its faces: correct for non-star-shaped bodies. About the origin
-// of the mesh's coordinates (docs/equations.md §11.2).
+// of the mesh's coordinates (docs/equations.md (12.4)).
 NOETHER_API InertiaIntegrals polyhedron_integrals(const Mesh& mesh, double density, int order);
 
 // Point masses m_p at ρ_p: T^α = Σ m_p ρ_p^α.

@@ -1,5 +1,5 @@
 #pragma once
-// Periodic orbits by least action (MATH.md §8; seed 004, Vanderbei): planar bodies with G = 1
+// Periodic orbits by least action (docs/equations.md §8; Vanderbei 2002, Vanderbei): planar bodies with G = 1
 // and period 2π; every coordinate a truncated Fourier series
 //     z(t) = c0 + Σ_{k=1}^{F} a_k cos kt + b_k sin kt,
 // the action A = ∫₀^{2π} Σ_j ½ m_j ‖ż_j‖² + Σ_{j<l} m_j m_l / ‖z_j − z_l‖ dt — the kinetic part

@@ -1,5 +1,5 @@
 #pragma once
-// SO(3) essentials (MATH.md §1, §4): the hat map S(·), the exponential map by Rodrigues'
+// SO(3) essentials (docs/equations.md §1, §4): the hat map S(·), the exponential map by Rodrigues'
 // formula with small-angle series, and the orthogonality error ‖I − RᵀR‖.
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -1,6 +1,6 @@
 #pragma once
 // Mesh: a closed triangulated surface read from a shape file, and its validation
-// (docs/equations.md §10). Faces are vertex triples, counter-clockwise seen from outside.
+// (docs/equations.md §11). Faces are vertex triples, counter-clockwise seen from outside.
 #include <noether/export.hpp>
 #include <noether/lie.hpp>
 

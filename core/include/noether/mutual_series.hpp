@@ -1,7 +1,7 @@
 #pragma once
 // The mutual potential of two extended bodies to total degree N in their inertia integrals
-// (docs/equations.md §12; Hou, Scheeres & Xin 2017 Eq. 17–18, evaluated in the equivalent
-// Cartesian-Taylor form (12.2)), with ∂U/∂R and both torques.
+// (docs/equations.md §13; Hou, Scheeres & Xin 2017 Eq. 17–18, evaluated in the equivalent
+// Cartesian-Taylor form (13.2)), with ∂U/∂R and both torques.
 //
 // Frames: everything is in body A's frame. R is B's centre of mass minus A's, C rotates
 // B's frame into A's (x_A = C x_B). U is the potential energy (negative).
@@ -40,12 +40,12 @@ class NOETHER_API MutualSeries {
     int alpha, gamma;            // α and γ = α + β
     std::array<int, 3> gamma_e;  // γ + e_x, γ + e_y, γ + e_z
   };
-  // One step of the recurrence (12.4) for D^γ: γ − e_c and γ − 2e_c, and the factor γ_c − 1.
+  // One step of the recurrence (13.4) for D^γ: γ − e_c and γ − 2e_c, and the factor γ_c − 1.
   struct Recurrence {
     int gamma, component, minus1, minus2;
     double factor;
   };
-  // ∂T'^β/∂θ (12.6) as Σ coefficient × T'^{β'} over at most two β' per axis.
+  // ∂T'^β/∂θ (13.6) as Σ coefficient × T'^{β'} over at most two β' per axis.
   struct TorqueTerm {
     int beta;
     std::array<std::array<std::pair<double, int>, 2>, 3> terms;

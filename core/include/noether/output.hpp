@@ -1,5 +1,5 @@
 #pragma once
-// Output: the HDF5 writer (layout after H5MD, ARCHITECTURE.md "Output"). Frames are buffered
+// Output: the HDF5 writer (layout after H5MD, docs/user-guide.md "Output"). Frames are buffered
 // and written in blocks; the file is flushed after every block, so a run killed at any moment
 // leaves a readable file with every frame up to its last block.
 #include <noether/diagnostics.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// Periodic orbits of planar point masses (G = 1 or the scene's G; MATH.md §8–9, seed 004):
+// Periodic orbits of planar point masses (G = 1 or the scene's G; docs/equations.md §8–9, Vanderbei 2002):
 // closure of one period, the monodromy matrix of the variational equations integrated with a
 // high-order method, its multipliers with the directions of the first integrals projected
 // out, and Newton (shooting) refinement of an orbit's initial state and period.
@@ -42,7 +42,7 @@ struct FlowResult {
 FlowResult integrate_flow(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double T,
                           bool variational, const FlowOptions& options = {});
 
-// The directions of the first integrals at ξ (MATH.md §9): translations ×2, moving frame ×2,
+// The directions of the first integrals at ξ (docs/equations.md §9): translations ×2, moving frame ×2,
 // rotation, and dilation (x − 3v/2, −v/2 − 3a/2) per body; columns of a 4n × 6 matrix.
 Eigen::MatrixXd invariant_directions(const PlanarSystem& sys, const Eigen::VectorXd& xi);
 

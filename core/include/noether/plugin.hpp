@@ -1,5 +1,5 @@
 #pragma once
-// The ABI between core and plugins (ARCHITECTURE.md, "Plugins"). A plugin is a MODULE shared
+// The ABI between core and plugins (docs/writing-a-plugin.md). A plugin is a MODULE shared
 // library, named noether-<name>.so, that exports one C symbol, `noether_plugin_descriptor`,
 // of type PluginDescriptor.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Potential: a gravitational model U(x_1..x_n, R_1..R_n) and its derivatives (MATH.md §2).
+// Potential: a gravitational model U(x_1..x_n, R_1..R_n) and its derivatives (docs/equations.md §2).
 #include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/state.hpp>

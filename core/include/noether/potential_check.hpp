@@ -1,6 +1,6 @@
 #pragma once
 // Potential checker: compares a potential's forces and moments with central finite
-// differences of its energy (MATH.md §2: f_i = −∂U/∂x_i, and η · M_i = −dU/dε along
+// differences of its energy (docs/equations.md §2: f_i = −∂U/∂x_i, and η · M_i = −dU/dε along
 // R_i exp(ε S(η))), at a scene's state and at randomly perturbed states, and verifies that
 // total force and total torque vanish (Newton's third law for mutual potentials).
 #include <noether/potential.hpp>

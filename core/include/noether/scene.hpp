@@ -1,5 +1,5 @@
 #pragma once
-// Scene: reads a YAML scene (ARCHITECTURE.md, "Scenes"), applies --set overrides, validates
+// Scene: reads a YAML scene (docs/user-guide.md), applies --set overrides, validates
 // it, and builds the System and the initial State. Every error names file, line and field.
 #include <noether/params.hpp>
 #include <noether/state.hpp>

@@ -1,7 +1,7 @@
 #pragma once
 // Solid: a homogeneous body of a given shape — a triaxial ellipsoid or a closed polyhedron —
 // in its body frame: origin at its centre of mass and, unless asked otherwise, axes along
-// its principal axes (docs/equations.md §10).
+// its principal axes (docs/equations.md §11).
 #include <noether/export.hpp>
 #include <noether/inertia_integrals.hpp>
 #include <noether/lie.hpp>

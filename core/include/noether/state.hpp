@@ -1,5 +1,5 @@
 #pragma once
-// State: what changes during a run (MATH.md §1), stored as contiguous arrays. Positions and
+// State: what changes during a run (docs/equations.md §1), stored as contiguous arrays. Positions and
 // linear momenta for every body; attitudes R and body angular momenta Π for rigid bodies only,
 // indexed by System::rigid_index().
 #include <noether/lie.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// System: the constants of a scene (MATH.md §1). Bodies with an inertia are rigid bodies on
+// System: the constants of a scene (docs/equations.md §1). Bodies with an inertia are rigid bodies on
 // SE(3); bodies without one are point masses and carry no attitude at all.
 #include <noether/lie.hpp>
 #include <noether/params.hpp>

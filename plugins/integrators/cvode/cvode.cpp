@@ -1,4 +1,4 @@
-// cvode: SUNDIALS 6.4 CVODE on the continuous equations (MATH.md §3): variable-order,
+// cvode: SUNDIALS 6.4 CVODE on the continuous equations (docs/equations.md §3): variable-order,
 // variable-step Adams–Moulton (with the fixed-point nonlinear solver) or BDF (Newton with a
 // dense linear solver and a difference-quotient Jacobian). Output at the requested times by
 // CVODE's own interpolation. Optional root finding stops the run when two body centres come

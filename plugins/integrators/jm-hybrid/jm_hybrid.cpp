@@ -1,4 +1,4 @@
-// jm-hybrid: the hybrid variational integrator of seed 001 (MATH.md §7) for natural systems of
+// jm-hybrid: the hybrid variational integrator of Nair, Ober-Blöbaum & Marsden 2009 (docs/equations.md §7) for natural systems of
 // point masses, L = ½ q̇ᵀ M q̇ − V(q), q ∈ R^{3N}, M the mass matrix.
 //
 //  * K < Kc: the variational integrator of the trapezoidal discrete Lagrangian (Störmer–Verlet)
@@ -8,7 +8,7 @@
 //    advances by ±θ per step; the discrete action
 //        A_d(q_k, q_{k+1}) = W(q̄) ‖q_{k+1} − q_k‖_M,  W = √(2(E − V)),  q̄ = (q_k + q_{k+1})/2,
 //    and the discrete Euler–Lagrange equations D2 A_d(q_{k−1}, q_k) + D1 A_d(q_k, q_{k+1}) = 0
-//    in the other n − 1 coordinates (seed 001 eq. (10)) give q_{k+1} by Newton's method, with
+//    in the other n − 1 coordinates (Nair, Ober-Blöbaum & Marsden 2009 eq. (10)) give q_{k+1} by Newton's method, with
 //        D1 A_d = ½ ∇W(q̄) L − W M Δ / L,  D2 A_d = ½ ∇W(q̄) L + W M Δ / L,
 //        Δ = q_{k+1} − q_k, L = ‖Δ‖_M, ∇W = −∇V / W.
 //    Time per step (seed eq. (11)): Δt_k = L / W(q̄); the momentum at q_{k+1} is D2 A_d.
@@ -123,7 +123,7 @@ class JmHybrid final : public noether::Integrator {
           Eigen::Index j;
           D.cwiseAbs().maxCoeff(&j);
           if (std::abs(D[j]) > ratio_ * std::abs(D[c])) choose(D, c, sign);
-          if (E - V_ < Kc_) {  // leave JM: re-solve h from the discrete energy (seed 001)
+          if (E - V_ < Kc_) {  // leave JM: re-solve h from the discrete energy (Nair, Ober-Blöbaum & Marsden 2009)
             h = leave_jm(qm1, E);
             phase = kVI;
           }
@@ -177,7 +177,7 @@ class JmHybrid final : public noether::Integrator {
     return forces_.U;
   }
 
-  // Störmer–Verlet (trapezoidal discrete Lagrangian, seed 001 eq. (8)) with step h.
+  // Störmer–Verlet (trapezoidal discrete Lagrangian, Nair, Ober-Blöbaum & Marsden 2009 eq. (8)) with step h.
   void vi_step(double h) {
     const Vec p_half = p_ - 0.5 * h * grad_;
     q_ += h * minv_.cwiseProduct(p_half);
@@ -224,7 +224,7 @@ class JmHybrid final : public noether::Integrator {
   }
 
   // One JM step from (q_{k−1}, q_k) = (qm1, q_): q_{k+1}^c = q_k^c ± θ; the other coordinates
-  // from D2 A_d(q_{k−1}, q_k) + D1 A_d(q_k, q_{k+1}) = 0 (seed 001 eq. (10)).
+  // from D2 A_d(q_{k−1}, q_k) + D1 A_d(q_k, q_{k+1}) = 0 (Nair, Ober-Blöbaum & Marsden 2009 eq. (10)).
   // On a Newton failure, tries once more with the next-largest coordinate of the last step as
   // the parameter (a documented fallback); the parameter actually used is returned in c, sign.
   void jm_step(const Vec& qm1, double E, int& c, double& sign, Vec& q_next) {
@@ -292,7 +292,7 @@ class JmHybrid final : public noether::Integrator {
     return false;
   }
 
-  // Time (seed 001 eq. (11)) and momentum D2 A_d(q_k, q_{k+1}) of a converged JM step.
+  // Time (Nair, Ober-Blöbaum & Marsden 2009 eq. (11)) and momentum D2 A_d(q_k, q_{k+1}) of a converged JM step.
   void finish_jm_step(const Vec& q_next, double E) {
     Vec gradW;
     const double W = midpoint_W(q_, q_next, E, gradW);

@@ -1,5 +1,5 @@
 #pragma once
-// The four discrete forms of the LGVI (seed 000, Fig. 7, right face of the cube) behind one
+// The four discrete forms of the LGVI (Lee, Leok & McClamroch 2007, Fig. 7, right face of the cube) behind one
 // interface, so that the plugin drives any of them, and composes the one-step (Hamiltonian)
 // forms for order 4.
 #include <noether/discrete_attitude.hpp>

@@ -1,4 +1,4 @@
-// LGVI, inertial frame, Hamiltonian form: seed 000 eqs. (93)–(97) (MATH.md §4).
+// LGVI, inertial frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (93)–(97) (docs/equations.md §4).
 #include "discrete_flow.hpp"
 
 #include <noether/error.hpp>

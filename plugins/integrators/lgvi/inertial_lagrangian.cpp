@@ -1,4 +1,4 @@
-// LGVI, inertial frame, Lagrangian form: seed 000 eqs. (78)–(80),
+// LGVI, inertial frame, Lagrangian form: Lee, Leok & McClamroch 2007 eqs. (78)–(80),
 //   (m/h)(x_{k+1} − 2x_k + x_{k−1}) = −h ∂U_k/∂x_k                                    (78)
 //   (1/h)(F_k Jd − Jd F_kᵀ − Jd F_{k−1} + F_{k−1}ᵀ Jd) = h S(M_k)                      (79)
 //   R_{k+1} = R_k F_k                                                                  (80)

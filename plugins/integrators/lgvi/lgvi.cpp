@@ -1,4 +1,4 @@
-// lgvi: the Lie group variational integrator of the full body problem (seed 000; MATH.md §4–5).
+// lgvi: the Lie group variational integrator of the full body problem (Lee, Leok & McClamroch 2007; docs/equations.md §4–5).
 // Four discrete forms — inertial or relative frame, Hamiltonian or Lagrangian — chosen by the
 // scene (`frame`, `form`); order 4 by Yoshida's symmetric composition of the one-step
 // (Hamiltonian) forms. Every form is symmetric and symplectic, conserves total linear and
@@ -74,7 +74,7 @@ class Lgvi final : public noether::Integrator {
 
  private:
   // One step of size h: the base map, or Yoshida's composition λ1 h, λ2 h, λ1 h with
-  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (MATH.md §4), which is of order 4.
+  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (docs/equations.md §4), which is of order 4.
   void step() {
     if (order_ == 2) {
       flow_->advance(h_);

@@ -9,7 +9,7 @@ RelativeFrame::RelativeFrame(const System& system, std::shared_ptr<const noether
   if (system.size() != 2 || system.rigid_count() != 2)
     throw noether::SceneError(
         "lgvi: frame: relative needs exactly two rigid bodies (the full two-body problem of "
-        "seed 000 §4.2); this scene has " + std::to_string(system.size()) + " bodies, " +
+        "Lee, Leok & McClamroch 2007 §4.2); this scene has " + std::to_string(system.size()) + " bodies, " +
         std::to_string(system.rigid_count()) + " rigid. Use frame: inertial");
   const auto& b1 = system.body(0);
   const auto& b2 = system.body(1);

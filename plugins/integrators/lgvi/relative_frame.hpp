@@ -1,6 +1,6 @@
 #pragma once
-// The relative (reduced) variables of the full two-body problem (seed 000 §3.2, §4.2;
-// MATH.md §5), all in the frame of body 2:
+// The relative (reduced) variables of the full two-body problem (Lee, Leok & McClamroch 2007 §3.2, §4.2;
+// docs/equations.md §5), all in the frame of body 2:
 //   X = R2ᵀ(x1 − x2),  Γ = m R2ᵀ(v1 − v2) with m = m1 m2/(m1 + m2),  R = R2ᵀ R1,
 //   Π = R Π1 (body 1's angular momentum seen from body 2),  Π2,
 // plus body 2's inertial (x2, γ2, R2) for reconstruction.

@@ -1,5 +1,5 @@
-// LGVI, relative frame, Hamiltonian form: seed 000 eqs. (118)–(124), with the reconstruction
-// of body 2's inertial motion (125)–(127) (MATH.md §5). Derived here by reducing (93)–(97) by
+// LGVI, relative frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (118)–(124), with the reconstruction
+// of body 2's inertial motion (125)–(127) (docs/equations.md §5). Derived here by reducing (93)–(97) by
 // the symmetry U(x1, x2, R1, R2) = U(X, R), so that it reproduces the inertial trajectory for
 // the same h up to round-off; our M is the negative of the seed's relative M (see
 // relative_frame.hpp):

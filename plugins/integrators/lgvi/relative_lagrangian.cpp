@@ -1,4 +1,4 @@
-// LGVI, relative frame, Lagrangian form: seed 000 eqs. (112)–(117), our sign of M
+// LGVI, relative frame, Lagrangian form: Lee, Leok & McClamroch 2007 eqs. (112)–(117), our sign of M
 // (relative_frame.hpp):
 //   F2_k X_{k+1} − 2X_k + F2_{k−1}ᵀ X_{k−1} = −(h²/m) ∂U_k/∂X_k                      (112)
 //   F_k JdR_k − JdR_k F_kᵀ = F2_{k−1}ᵀ (F_{k−1} JdR_{k−1} − JdR_{k−1} F_{k−1}ᵀ) F2_{k−1}

@@ -1,4 +1,4 @@
-// rk: classical explicit Runge–Kutta baselines on the continuous equations (MATH.md §3), from
+// rk: classical explicit Runge–Kutta baselines on the continuous equations (docs/equations.md §3), from
 // Boost.Odeint: RK4 with a fixed step, Dormand–Prince 5(4) and Fehlberg 7(8) with error
 // control. Like the seed's Runge–Kutta they integrate R as nine numbers and drift off SO(3);
 // `renormalize: true` projects every R back onto SO(3) after each accepted step (opt-in,

@@ -1,7 +1,7 @@
 // mutual-exact: the exact mutual potential, force and torques of every pair of bodies: one
 // body's exact exterior field (Werner–Scheeres polyhedron, MacMillan ellipsoid, or a point
 // mass) integrated over the other's surface, refined until two quadrature levels agree to
-// `tolerance` (docs/equations.md §13). Slow; the oracle of the series, and a model for close
+// `tolerance` (docs/equations.md §14). Slow; the oracle of the series, and a model for close
 // encounters of coarse shapes. Bodies must not overlap.
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>

@@ -1,11 +1,11 @@
 // mutual-series: the mutual potential of every pair of bodies expanded in their inertia
-// integrals to total degree N (Hou, Scheeres & Xin 2017; docs/equations.md §12), with the
+// integrals to total degree N (Hou, Scheeres & Xin 2017; docs/equations.md §13), with the
 // analytic force and both torques. Order 0 is the point-mass potential; a point mass paired
 // with an extended body gives that body's exterior field to degree N.
 //
 // Each body's integrals T^{lmn} are computed once from its shape (ellipsoid in closed form,
 // polyhedron exactly); in each pair the second body's integrals are rotated into the first's
-// frame at every evaluation (docs/equations.md (11.6)).
+// frame at every evaluation (docs/equations.md (12.6)).
 #include <noether/error.hpp>
 #include <noether/mutual_series.hpp>
 #include <noether/plugin.hpp>

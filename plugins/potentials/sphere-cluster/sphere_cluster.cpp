@@ -1,8 +1,8 @@
-// sphere-cluster: every rigid body is a set of point masses ρ fixed in its body frame (MATH.md
+// sphere-cluster: every rigid body is a set of point masses ρ fixed in its body frame (docs/equations.md
 // §2); point masses are a single point at their centre. For two dumbbells this is the
-// potential of seed 000 §5.1:  U = −Σ_{p,q} G (m1/2)(m2/2) / ‖x1 + R1ρ1p − x2 − R2ρ2q‖.
+// potential of Lee, Leok & McClamroch 2007 §5.1:  U = −Σ_{p,q} G (m1/2)(m2/2) / ‖x1 + R1ρ1p − x2 − R2ρ2q‖.
 //
-// Forces f_i = Σ_ρ F_ρ, moments M_i = Σ_ρ ρ × (R_iᵀ F_ρ) (MATH.md §2, from (24)).
+// Forces f_i = Σ_ρ F_ρ, moments M_i = Σ_ρ ρ × (R_iᵀ F_ρ) (docs/equations.md §2, from (24)).
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
 
@@ -53,7 +53,7 @@ Cluster cluster_of(const noether::Body& body) {
     d.check_keys({"length"}, "dumbbell of body '" + body.name + "'");
     const double l = d.at("length").as_double();
     if (l <= 0.0) throw SceneError(d.at("length").here() + who + ": dumbbell length must be positive");
-    // Two equal spheres of mass m/2 at ±(l/2) e1 (seed 000 §5.1).
+    // Two equal spheres of mass m/2 at ±(l/2) e1 (Lee, Leok & McClamroch 2007 §5.1).
     c.mass = {0.5 * body.mass, 0.5 * body.mass};
     c.rho = {Vec3(0.5 * l, 0, 0), Vec3(-0.5 * l, 0, 0)};
     return c;
@@ -136,7 +136,7 @@ class SphereCluster final : public noether::Potential {
         }
         out.f.col(static_cast<Eigen::Index>(i)) += fi;
         out.f.col(static_cast<Eigen::Index>(j)) -= fi;
-        // ρ × (Rᵀ F) = Rᵀ ((Rρ) × F): the body-frame moment (MATH.md §2).
+        // ρ × (Rᵀ F) = Rᵀ ((Rρ) × F): the body-frame moment (docs/equations.md §2).
         if (rigid_[i] >= 0)
           out.M.col(rigid_[i]) += s.R[static_cast<std::size_t>(rigid_[i])].transpose() * ti;
         if (rigid_[j] >= 0)
