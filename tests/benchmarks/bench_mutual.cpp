@@ -40,9 +40,9 @@ void BM_MutualIntegralsKw4Primary(benchmark::State& st) {
 }
 BENCHMARK(BM_MutualIntegralsKw4Primary)->Arg(2)->Arg(4)->Arg(6)->Arg(8)->Arg(10)->Arg(12)->Unit(benchmark::kMillisecond);
 
-void BM_MutualExactOctahedra(benchmark::State& st) {
-  const Scene scene = load_scene(test::source_path("examples/octahedra-hou.yaml"),
-                                 {"potential={plugin: mutual-exact}"});
+// One evaluation of mutual-exact at a scene's initial state.
+void BM_MutualExact(benchmark::State& st, const char* scene_file) {
+  const Scene scene = load_scene(test::source_path(scene_file), {"potential={plugin: mutual-exact}"});
   auto registry = test::bundled_plugins();
   auto potential = make_scene_potential(scene, registry);
   Forces f;
@@ -52,20 +52,7 @@ void BM_MutualExactOctahedra(benchmark::State& st) {
     benchmark::DoNotOptimize(f.U);
   }
 }
-BENCHMARK(BM_MutualExactOctahedra)->Unit(benchmark::kMillisecond);
-
-void BM_MutualExactKw4Ellipsoids(benchmark::State& st) {
-  const Scene scene = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
-                                 {"potential={plugin: mutual-exact}"});
-  auto registry = test::bundled_plugins();
-  auto potential = make_scene_potential(scene, registry);
-  Forces f;
-  f.resize(scene.system);
-  for (auto _ : st) {
-    potential->evaluate(scene.initial, f);
-    benchmark::DoNotOptimize(f.U);
-  }
-}
-BENCHMARK(BM_MutualExactKw4Ellipsoids)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MutualExact, Octahedra, "examples/octahedra-hou.yaml")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_MutualExact, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -5,6 +5,7 @@
 // encounters of coarse shapes. Bodies must not overlap.
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
+#include <noether/mutual_pair.hpp>
 #include <noether/plugin.hpp>
 
 #include <sstream>
@@ -12,16 +13,12 @@
 namespace {
 
 using noether::Forces;
-using noether::Mat3;
 using noether::Params;
 using noether::SceneError;
 using noether::State;
 using noether::System;
-using noether::Vec3;
 
-struct Pair {
-  std::size_t a, b;
-  int rigid_a, rigid_b;
+struct Pair : noether::MutualPair {
   std::unique_ptr<noether::ExactMutual> exact;
 };
 
@@ -45,34 +42,27 @@ class MutualExactPotential final : public noether::Potential {
       names_.push_back(body.name);
     }
     for (std::size_t i = 0; i < system.size(); ++i)
-      for (std::size_t j = i + 1; j < system.size(); ++j)
-        pairs_.push_back({i, j, system.rigid_index(i), system.rigid_index(j),
-                          std::make_unique<noether::ExactMutual>(system.G(), system.body(i).solid,
-                                                                 system.body(i).mass, system.body(j).solid,
-                                                                 system.body(j).mass, options)});
+      for (std::size_t j = i + 1; j < system.size(); ++j) {
+        Pair p;
+        p.a = i, p.b = j, p.rigid_a = system.rigid_index(i), p.rigid_b = system.rigid_index(j);
+        p.exact = std::make_unique<noether::ExactMutual>(system.G(), system.body(i).solid, system.body(i).mass,
+                                                         system.body(j).solid, system.body(j).mass, options);
+        pairs_.push_back(std::move(p));
+      }
   }
 
   void evaluate(const State& s, Forces& out) const override {
     out.set_zero();
     for (const Pair& p : pairs_) {
-      const Mat3 RA = p.rigid_a >= 0 ? s.R[static_cast<std::size_t>(p.rigid_a)] : Mat3::Identity();
-      const Mat3 RB = p.rigid_b >= 0 ? s.R[static_cast<std::size_t>(p.rigid_b)] : Mat3::Identity();
-      const Vec3 R = RA.transpose() * (s.x.col(static_cast<Eigen::Index>(p.b)) - s.x.col(static_cast<Eigen::Index>(p.a)));
-      noether::MutualTerms t;
+      const noether::PairFrame frame = noether::pair_frame(s, p);
       try {
-        t = p.exact->evaluate(R, RA.transpose() * RB);
+        noether::add_mutual_terms(p, frame, p.exact->evaluate(frame.R, frame.C), out);
       } catch (const noether::Error& e) {
         std::ostringstream msg;
         msg << "mutual-exact: bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at t = " << s.t
-            << ", separation " << R.norm() << ": " << e.what();
+            << ", separation " << frame.R.norm() << ": " << e.what();
         throw noether::IntegrationError(msg.str(), s.t);
       }
-      out.U += t.U;
-      const Vec3 f = RA * t.dU_dR;
-      out.f.col(static_cast<Eigen::Index>(p.a)) += f;
-      out.f.col(static_cast<Eigen::Index>(p.b)) -= f;
-      if (p.rigid_a >= 0) out.M.col(p.rigid_a) += t.torque_A;
-      if (p.rigid_b >= 0) out.M.col(p.rigid_b) += RB.transpose() * (RA * t.torque_B);
     }
   }
 

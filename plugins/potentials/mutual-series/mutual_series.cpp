@@ -7,6 +7,7 @@
 // polyhedron exactly); in each pair the second body's integrals are rotated into the first's
 // frame at every evaluation (docs/equations.md (12.6)).
 #include <noether/error.hpp>
+#include <noether/mutual_pair.hpp>
 #include <noether/mutual_series.hpp>
 #include <noether/plugin.hpp>
 
@@ -18,7 +19,6 @@ namespace {
 
 using noether::Forces;
 using noether::InertiaIntegrals;
-using noether::Mat3;
 using noether::Params;
 using noether::SceneError;
 using noether::State;
@@ -27,10 +27,8 @@ using noether::Vec3;
 
 constexpr int kMaxOrder = 24;
 
-struct Pair {
-  std::size_t a, b;  // body indices; a is the frame of the expansion (extended if either is)
-  int rigid_a, rigid_b;
-  double reach;      // radius_a + radius_b: beyond it the series converges for sure
+struct Pair : noether::MutualPair {  // a is the frame of the expansion (extended if either is)
+  double reach = 0.0;  // radius_a + radius_b: beyond it the series converges for sure
   mutable bool warned = false;
 };
 
@@ -68,37 +66,31 @@ class MutualSeriesPotential final : public noether::Potential {
         // needs no rotation of its (single) integral.
         const bool swap = integrals_[i].order == 0 && integrals_[j].order > 0;
         const std::size_t a = swap ? j : i, b = swap ? i : j;
-        pairs_.push_back({a, b, system.rigid_index(a), system.rigid_index(b), radius_[a] + radius_[b]});
+        Pair p;
+        p.a = a, p.b = b, p.rigid_a = system.rigid_index(a), p.rigid_b = system.rigid_index(b);
+        p.reach = radius_[a] + radius_[b];
+        pairs_.push_back(p);
       }
   }
 
   void evaluate(const State& s, Forces& out) const override {
     out.set_zero();
     for (const Pair& p : pairs_) {
-      const Mat3 RA = p.rigid_a >= 0 ? s.R[static_cast<std::size_t>(p.rigid_a)] : Mat3::Identity();
-      const Mat3 RB = p.rigid_b >= 0 ? s.R[static_cast<std::size_t>(p.rigid_b)] : Mat3::Identity();
-      const Vec3 d = s.x.col(static_cast<Eigen::Index>(p.b)) - s.x.col(static_cast<Eigen::Index>(p.a));
-      const Vec3 R = RA.transpose() * d;
-      if (!(R.norm() > 0.0)) {
+      const noether::PairFrame frame = noether::pair_frame(s, p);
+      const double R = frame.R.norm();
+      if (!(R > 0.0)) {
         std::ostringstream msg;
         msg << "mutual-series: bodies '" << names_[p.a] << "' and '" << names_[p.b]
             << "' are at the same position at t = " << s.t << " (a collision)";
         throw noether::IntegrationError(msg.str(), s.t);
       }
-      if (!p.warned && R.norm() < p.reach) {
+      if (!p.warned && R < p.reach) {
         p.warned = true;
         spdlog::warn("mutual-series: bodies '{}' and '{}' are {:.6g} apart at t = {:.6g}, closer than "
                      "the sum of their radii {:.6g}: the series may converge slowly or not at all",
-                     names_[p.a], names_[p.b], R.norm(), s.t, p.reach);
+                     names_[p.a], names_[p.b], R, s.t, p.reach);
       }
-      const noether::MutualTerms t =
-          series_.evaluate(G_, integrals_[p.a], integrals_[p.b], R, RA.transpose() * RB);
-      out.U += t.U;
-      const Vec3 f = RA * t.dU_dR;  // the force on a; b gets −f
-      out.f.col(static_cast<Eigen::Index>(p.a)) += f;
-      out.f.col(static_cast<Eigen::Index>(p.b)) -= f;
-      if (p.rigid_a >= 0) out.M.col(p.rigid_a) += t.torque_A;
-      if (p.rigid_b >= 0) out.M.col(p.rigid_b) += RB.transpose() * (RA * t.torque_B);
+      noether::add_mutual_terms(p, frame, series_.evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
     }
   }
 
