@@ -282,6 +282,34 @@ void H5Writer::flush() {
   m.last_flush = Clock::now();
 }
 
+void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
+  if (models.empty()) return;
+  Impl& m = *impl_;
+  hid_t parameters = H5Gopen2(m.file, "parameters", H5P_DEFAULT);
+  if (H5Lexists(parameters, "pair_models", H5P_DEFAULT) > 0) H5Ldelete(parameters, "pair_models", H5P_DEFAULT);
+  hid_t group = make_group(parameters, "pair_models");
+  for (const auto& p : models) {
+    hid_t g = make_group(group, (p.body_a + "–" + p.body_b).c_str());
+    string_attribute(g, "body_a", p.body_a);
+    string_attribute(g, "body_b", p.body_b);
+    string_attribute(g, "model", p.model);
+    numeric_attribute<int>(g, "order", H5T_NATIVE_INT, {p.order});
+    numeric_attribute<double>(g, "tolerance", H5T_NATIVE_DOUBLE, {p.tolerance});
+    numeric_attribute<double>(g, "estimated_error", H5T_NATIVE_DOUBLE, {p.estimated_error});
+    numeric_attribute<double>(g, "separation", H5T_NATIVE_DOUBLE, {p.separation});
+    numeric_attribute<int>(g, "exceeded", H5T_NATIVE_INT, {p.exceeded ? 1 : 0});
+    if (p.exceeded) {
+      numeric_attribute<double>(g, "exceeded_time", H5T_NATIVE_DOUBLE, {p.exceeded_time});
+      numeric_attribute<double>(g, "exceeded_separation", H5T_NATIVE_DOUBLE, {p.exceeded_separation});
+      numeric_attribute<double>(g, "exceeded_error", H5T_NATIVE_DOUBLE, {p.exceeded_error});
+    }
+    H5Gclose(g);
+  }
+  H5Gclose(group);
+  H5Gclose(parameters);
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+}
+
 void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
                       const std::vector<StepSeries>& steps) {
   Impl& m = *impl_;

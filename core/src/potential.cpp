@@ -22,6 +22,17 @@ void SumPotential::evaluate(const State& state, Forces& forces) const {
   }
 }
 
+std::vector<PairModel> Potential::pair_models() const { return {}; }
+
+std::vector<PairModel> SumPotential::pair_models() const {
+  std::vector<PairModel> all;
+  for (const auto& t : terms_) {
+    auto some = t->pair_models();
+    all.insert(all.end(), some.begin(), some.end());
+  }
+  return all;
+}
+
 bool SumPotential::needs_attitudes() const {
   return std::any_of(terms_.begin(), terms_.end(),
                      [](const auto& t) { return t->needs_attitudes(); });

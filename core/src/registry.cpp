@@ -198,6 +198,7 @@ class FiniteChecked final : public Potential {
     throw IntegrationError(msg.str(), state.t);
   }
   bool needs_attitudes() const override { return inner_->needs_attitudes(); }
+  std::vector<PairModel> pair_models() const override { return inner_->pair_models(); }
 
  private:
   std::shared_ptr<const Potential> inner_;

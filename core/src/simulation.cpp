@@ -116,8 +116,10 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
                                              scene.integrator.params);
   summary.integrator = scene.integrator.plugin;
 
+  summary.pair_models = potential->pair_models();
   std::unique_ptr<H5Writer> writer;
   if (options.output) writer = std::make_unique<H5Writer>(*options.output, scene);
+  if (writer) writer->write_pair_models(summary.pair_models);
   State state = scene.initial;
   const Integrator* current = integrator.get();
   Progress progress(options.progress, state.t, scene.run.t_end);
@@ -129,20 +131,42 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   } catch (const Error& e) {
     summary.work = integrator->work();
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (writer)
+    if (writer) {
+      writer->write_pair_models(potential->pair_models());
       writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what(),
                      integrator->step_series());
+    }
     throw;
   }
   summary.work = integrator->work();
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.stop_reason = integrator->stop_reason();
   summary.final_state = std::move(state);
+  summary.pair_models = potential->pair_models();  // now with what the run saw
+  if (writer) writer->write_pair_models(summary.pair_models);
   if (writer)
     writer->finish(summary.work, summary.wall_seconds,
                    summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason,
                    integrator->step_series());
   return summary;
+}
+
+std::string format_pair_models(const std::vector<PairModel>& models) {
+  std::string out;
+  char line[512];
+  for (const auto& m : models) {
+    const std::string pair = "pair " + m.body_a + "–" + m.body_b;
+    std::snprintf(line, sizeof line, "%-31s %s, estimated error %.1e at separation %.6g (tolerance %.0e)\n",
+                  pair.c_str(), m.model.c_str(), m.estimated_error, m.separation, m.tolerance);
+    out += line;
+    if (m.exceeded) {
+      std::snprintf(line, sizeof line,
+                    "%-31s EXCEEDED at t = %.6g: separation %.6g, estimated error %.1e > tolerance %.0e\n", "",
+                    m.exceeded_time, m.exceeded_separation, m.exceeded_error, m.tolerance);
+      out += line;
+    }
+  }
+  return out;
 }
 
 std::string format_summary(const RunSummary& s) {
@@ -173,6 +197,7 @@ std::string format_summary(const RunSummary& s) {
       s.wall_seconds);
   std::string out = buf;
   if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
+  out += format_pair_models(s.pair_models);
   return out;
 }
 

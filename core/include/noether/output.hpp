@@ -4,6 +4,7 @@
 // leaves a readable file with every frame up to its last block.
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
+#include <noether/potential.hpp>
 #include <noether/scene.hpp>
 
 #include <chrono>
@@ -31,6 +32,9 @@ class H5Writer {
   // Writes buffered frames and flushes the file.
   void flush();
   // Writes /work and the run's outcome ("completed" or the error message), then closes.
+  // /parameters/pair_models/<a>–<b>: the model chosen for each pair (rewritten when called
+  // again, e.g. at the end of the run with what the run saw).
+  void write_pair_models(const std::vector<PairModel>& models);
   void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
               const std::vector<StepSeries>& steps = {});
   std::size_t frames_written() const { return frames_written_; }

@@ -10,6 +10,21 @@
 
 namespace noether {
 
+// What a model chose for one pair of bodies, and whether the run stayed where the choice
+// holds (tolerance-driven models; docs/equations.md §15).
+struct PairModel {
+  std::string body_a, body_b;
+  std::string model;             // e.g. "point masses", "series order 6"
+  int order = 0;
+  double tolerance = 0.0;        // the error bound asked for (15.1)
+  double estimated_error = 0.0;  // the estimate (15.2) at `separation`
+  double separation = 0.0;       // the closest separation the choice was made for
+  // Set when the bodies came closer than `separation` and the estimate there exceeded the
+  // tolerance (the first time).
+  bool exceeded = false;
+  double exceeded_time = 0.0, exceeded_separation = 0.0, exceeded_error = 0.0;
+};
+
 class NOETHER_API Potential {
  public:
   virtual ~Potential() = default;
@@ -18,6 +33,8 @@ class NOETHER_API Potential {
   virtual void evaluate(const State& state, Forces& forces) const = 0;
   // Whether U depends on the attitudes (a point-mass model does not).
   virtual bool needs_attitudes() const = 0;
+  // The model chosen for each pair, for models that choose (none by default).
+  virtual std::vector<PairModel> pair_models() const;
 };
 
 // The sum of several models: U = Σ U_m, forces and moments add.
@@ -26,6 +43,7 @@ class NOETHER_API SumPotential final : public Potential {
   explicit SumPotential(std::vector<std::shared_ptr<const Potential>> terms);
   void evaluate(const State& state, Forces& forces) const override;
   bool needs_attitudes() const override;
+  std::vector<PairModel> pair_models() const override;
 
  private:
   std::vector<std::shared_ptr<const Potential>> terms_;

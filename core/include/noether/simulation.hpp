@@ -31,6 +31,7 @@ struct RunSummary {
   std::size_t frames = 0;
   std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it
   State final_state;        // the state at the end of the run
+  std::vector<PairModel> pair_models;  // what a tolerance-driven potential chose, per pair
   WorkCounters work;
   double wall_seconds = 0.0;
 };
@@ -41,6 +42,9 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene, Plugin
 // Runs the scene. On an IntegrationError the output written so far is finalized (readable,
 // with the error recorded) and the error is rethrown.
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options);
+
+// One line per pair model (and one more where the run left the range it was chosen for).
+std::string format_pair_models(const std::vector<PairModel>& models);
 
 // The summary as printed by `noether run`.
 std::string format_summary(const RunSummary& summary);

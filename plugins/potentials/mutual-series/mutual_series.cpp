@@ -1,18 +1,25 @@
 // mutual-series: the mutual potential of every pair of bodies expanded in their inertia
-// integrals to total degree N (Hou, Scheeres & Xin 2017; docs/equations.md §13), with the
+// integrals to total degree N (Hou, Scheeres & Xin 2017; docs/equations.md §12–13), with the
 // analytic force and both torques. Order 0 is the point-mass potential; a point mass paired
 // with an extended body gives that body's exterior field to degree N.
+//
+// The order is given (`order`), or chosen per pair from a `tolerance` on the relative error
+// of force and torques (docs/equations.md §15): the lowest order whose next-terms estimate
+// meets it at the closest separation the pair is expected to reach, fixed for the whole run
+// and watched: when the pair comes closer, the estimate is taken again there and a tolerance
+// exceeded is reported (or stops the run, `on_exceed: stop`).
 //
 // Each body's integrals T^{lmn} are computed once from its shape (ellipsoid in closed form,
 // polyhedron exactly); in each pair the second body's integrals are rotated into the first's
 // frame at every evaluation (docs/equations.md (12.6)).
 #include <noether/error.hpp>
 #include <noether/mutual_pair.hpp>
-#include <noether/mutual_series.hpp>
+#include <noether/order_selection.hpp>
 #include <noether/plugin.hpp>
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <sstream>
 
 namespace {
@@ -29,29 +36,35 @@ constexpr int kMaxOrder = 24;
 
 struct Pair : noether::MutualPair {  // a is the frame of the expansion (extended if either is)
   double reach = 0.0;  // radius_a + radius_b: beyond it the series converges for sure
-  mutable bool warned = false;
+  int order = 0;
+  // Tolerance mode: what the order was chosen for, and the watch on it.
+  noether::OrderChoice choice;
+  double check_below = 0.0;  // estimate again when the separation drops below this
+  noether::PairModel report;
+  bool warned_reach = false;
 };
 
 class MutualSeriesPotential final : public noether::Potential {
  public:
-  MutualSeriesPotential(const System& system, const Params& params)
-      : G_(system.G()), series_(order_of(params)) {
-    const int N = series_.order();
+  MutualSeriesPotential(const System& system, const Params& params) : G_(system.G()) {
+    read_params(params);
+    const int T_order = tolerance_ > 0.0 ? max_order_ + 2 : fixed_order_;
     for (std::size_t i = 0; i < system.size(); ++i) {
       const noether::Body& body = system.body(i);
       if (body.solid) {
-        integrals_.push_back(body.solid->integrals(N));
+        integrals_.push_back(body.solid->integrals(T_order));
         radius_.push_back(body.solid->radius);
       } else if (body.rigid) {
-        if (N > 2 && !body.shape.is_null())
+        const std::string what = tolerance_ > 0.0 ? "a tolerance needs its higher integrals"
+                                                  : "order " + std::to_string(fixed_order_) + " cannot be evaluated";
+        if (!body.shape.is_null() && (T_order > 2))
           throw SceneError(body.shape.here() + "mutual-series: body '" + body.name +
                            "' is a point cluster; its shape is not a solid: use sphere-cluster, "
                            "or give it an ellipsoid or polyhedron shape");
-        if (N > 2)
+        if (T_order > 2)
           throw SceneError("mutual-series: body '" + body.name + "' has an inertia but no shape, "
-                           "so its integrals beyond degree 2 are unknown and order " +
-                           std::to_string(N) + " cannot be evaluated; give it a shape "
-                           "(ellipsoid or polyhedron), or use order ≤ 2");
+                           "so its integrals beyond degree 2 are unknown and " + what +
+                           "; give it a shape (ellipsoid or polyhedron), or use order ≤ 2");
         integrals_.push_back(noether::integrals_from_inertia(body.mass, body.inertia));
         radius_.push_back(0.0);
       } else {
@@ -59,23 +72,26 @@ class MutualSeriesPotential final : public noether::Potential {
         radius_.push_back(0.0);
       }
       names_.push_back(body.name);
+      mass_.push_back(body.mass);
     }
     for (std::size_t i = 0; i < system.size(); ++i)
       for (std::size_t j = i + 1; j < system.size(); ++j) {
         // The expansion frame is an extended body's when there is one: then a point mass
         // needs no rotation of its (single) integral.
-        const bool swap = integrals_[i].order == 0 && integrals_[j].order > 0;
-        const std::size_t a = swap ? j : i, b = swap ? i : j;
+        const bool swap = radius_[i] == 0.0 && radius_[j] > 0.0;
         Pair p;
-        p.a = a, p.b = b, p.rigid_a = system.rigid_index(a), p.rigid_b = system.rigid_index(b);
-        p.reach = radius_[a] + radius_[b];
+        p.a = swap ? j : i, p.b = swap ? i : j;
+        p.rigid_a = system.rigid_index(p.a), p.rigid_b = system.rigid_index(p.b);
+        p.reach = radius_[p.a] + radius_[p.b];
+        p.order = fixed_order_;
         pairs_.push_back(p);
       }
   }
 
   void evaluate(const State& s, Forces& out) const override {
+    if (tolerance_ > 0.0 && !chosen_) choose(s);
     out.set_zero();
-    for (const Pair& p : pairs_) {
+    for (Pair& p : pairs_) {
       const noether::PairFrame frame = noether::pair_frame(s, p);
       const double R = frame.R.norm();
       if (!(R > 0.0)) {
@@ -84,46 +100,163 @@ class MutualSeriesPotential final : public noether::Potential {
             << "' are at the same position at t = " << s.t << " (a collision)";
         throw noether::IntegrationError(msg.str(), s.t);
       }
-      if (!p.warned && R < p.reach) {
-        p.warned = true;
+      if (!p.warned_reach && R < p.reach) {
+        p.warned_reach = true;
         spdlog::warn("mutual-series: bodies '{}' and '{}' are {:.6g} apart at t = {:.6g}, closer than "
                      "the sum of their radii {:.6g}: the series may converge slowly or not at all",
                      names_[p.a], names_[p.b], R, s.t, p.reach);
       }
-      noether::add_mutual_terms(p, frame, series_.evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
+      if (tolerance_ > 0.0 && R < p.check_below) watch(p, frame, s.t);
+      if (p.order == 0) {  // point masses: one term
+        const double U = -G_ * mass_[p.a] * mass_[p.b] / R;
+        noether::MutualTerms t;
+        t.U = U;
+        t.dU_dR = (-U / (R * R)) * frame.R;
+        noether::add_mutual_terms(p, frame, t, out);
+      } else {
+        noether::add_mutual_terms(
+            p, frame, bank_.at(p.order).evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
+      }
     }
   }
 
   bool needs_attitudes() const override { return true; }
 
+  std::vector<noether::PairModel> pair_models() const override {
+    std::vector<noether::PairModel> out;
+    if (chosen_)
+      for (const Pair& p : pairs_) out.push_back(p.report);
+    return out;
+  }
+
  private:
-  static int order_of(const Params& params) {
-    if (!params.has("order"))
-      throw SceneError(params.here() + "mutual-series needs 'order': the total degree N of the "
-                       "expansion (0 = point masses, 2 = quadrupoles, 4 is common)");
-    const long N = params.at("order").as_int();
-    if (N < 0 || N > kMaxOrder)
-      throw SceneError(params.at("order").here() + "mutual-series: order " + std::to_string(N) +
-                       " is outside 0.." + std::to_string(kMaxOrder));
-    return static_cast<int>(N);
+  void read_params(const Params& params) {
+    if (params.has("order") == params.has("tolerance"))
+      throw SceneError(params.here() + "mutual-series needs either 'order' (the total degree N of the "
+                       "expansion: 0 = point masses, 2 = quadrupoles, 4 is common) or 'tolerance' (the "
+                       "relative error of force and torques per pair; noether picks each pair's order)");
+    if (params.has("order")) {
+      const long N = params.at("order").as_int();
+      if (N < 0 || N > kMaxOrder)
+        throw SceneError(params.at("order").here() + "mutual-series: order " + std::to_string(N) +
+                         " is outside 0.." + std::to_string(kMaxOrder));
+      for (const char* key : {"min_separation", "max_order", "on_exceed"})
+        if (params.has(key))
+          throw SceneError(params.at(key).here() + "mutual-series: '" + key + "' goes with 'tolerance', not with a fixed 'order'");
+      fixed_order_ = static_cast<int>(N);
+      return;
+    }
+    tolerance_ = params.at("tolerance").as_double();
+    if (!(tolerance_ > 0.0 && tolerance_ < 1.0))
+      throw SceneError(params.at("tolerance").here() + "mutual-series: tolerance must be between 0 and 1 "
+                       "(a relative error), not " + params.at("tolerance").as_string());
+    const long M = params.get("max_order", 12L);
+    if (M < 0 || M > kMaxOrder - 2)
+      throw SceneError(params.at("max_order").here() + "mutual-series: max_order must be 0.." +
+                       std::to_string(kMaxOrder - 2));
+    max_order_ = static_cast<int>(M);
+    if (params.has("min_separation")) {
+      min_separation_ = params.at("min_separation").as_double();
+      if (!(min_separation_ > 0.0))
+        throw SceneError(params.at("min_separation").here() + "mutual-series: min_separation must be positive");
+    }
+    const std::string on_exceed = params.get("on_exceed", std::string("warn"));
+    if (on_exceed != "warn" && on_exceed != "stop")
+      throw SceneError(params.at("on_exceed").here() + "mutual-series: on_exceed must be 'warn' or 'stop', not '" +
+                       on_exceed + "'");
+    stop_on_exceed_ = on_exceed == "stop";
+  }
+
+  // The closest separation a pair is expected to reach (docs/equations.md (15.4)): the
+  // scene's min_separation, or 0.9 × the periapsis of the pair's osculating two-body orbit.
+  double expected_separation(const Pair& p, const State& s) const {
+    if (min_separation_ > 0.0) return min_separation_;
+    const Vec3 r = s.x.col(static_cast<Eigen::Index>(p.b)) - s.x.col(static_cast<Eigen::Index>(p.a));
+    const Vec3 v = s.p.col(static_cast<Eigen::Index>(p.b)) / mass_[p.b] - s.p.col(static_cast<Eigen::Index>(p.a)) / mass_[p.a];
+    const double mu = G_ * (mass_[p.a] + mass_[p.b]);
+    const Vec3 h = r.cross(v);
+    const double e = (v.cross(h) / mu - r.normalized()).norm();
+    return 0.9 * h.squaredNorm() / (mu * (1.0 + e));
+  }
+
+  void choose(const State& s) const {
+    noether::OrderSelection options;
+    options.tolerance = tolerance_;
+    options.max_order = max_order_;
+    for (Pair& p : pairs_) {
+      const noether::PairFrame frame = noether::pair_frame(s, p);
+      const double separation = expected_separation(p, s);
+      p.choice = noether::choose_series_order(bank_, G_, integrals_[p.a], integrals_[p.b], radius_[p.a],
+                                              radius_[p.b], separation, frame.R, frame.C, options);
+      if (!p.choice.met) {
+        std::ostringstream msg;
+        msg << "mutual-series: no order up to max_order " << max_order_ << " meets the tolerance " << tolerance_
+            << " for bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at separation " << separation
+            << " (the sum of their radii is " << p.reach << "; the best, order " << p.choice.order
+            << ", is estimated at " << p.choice.estimated_error << "). Raise max_order, loosen the tolerance, "
+            << "give a larger min_separation if the bodies never come that close, or use mutual-exact";
+        throw SceneError(msg.str());
+      }
+      p.order = p.choice.order;
+      p.check_below = separation;
+      p.report.body_a = names_[std::min(p.a, p.b)];
+      p.report.body_b = names_[std::max(p.a, p.b)];
+      p.report.order = p.order;
+      p.report.model = p.order == 0 ? "point masses" : "series order " + std::to_string(p.order);
+      p.report.tolerance = tolerance_;
+      p.report.estimated_error = p.choice.estimated_error;
+      p.report.separation = separation;
+    }
+    chosen_ = true;
+  }
+
+  // The pair is closer than its order was chosen for: estimate the error here (15.2).
+  void watch(Pair& p, const noether::PairFrame& frame, double t) const {
+    const double R = frame.R.norm();
+    p.check_below = 0.99 * R;  // again only once they are 1 % closer
+    if (p.report.exceeded) return;
+    const double estimate = noether::series_error_estimate(bank_, p.order, G_, integrals_[p.a], integrals_[p.b],
+                                                           radius_[p.a], radius_[p.b], frame.R, frame.C);
+    if (estimate <= tolerance_) return;
+    p.report.exceeded = true;
+    p.report.exceeded_time = t, p.report.exceeded_separation = R, p.report.exceeded_error = estimate;
+    std::ostringstream msg;
+    msg << "mutual-series: at t = " << t << " bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' are "
+        << R << " apart, closer than the " << p.report.separation << " their order " << p.order
+        << " was chosen for, and its estimated error " << estimate << " exceeds the tolerance " << tolerance_;
+    if (stop_on_exceed_) throw noether::IntegrationError(msg.str() + " (on_exceed: stop)", t);
+    spdlog::warn("{}; the run goes on with order {} (on_exceed: stop would stop it; a smaller min_separation "
+                 "would choose a higher order)", msg.str(), p.order);
   }
 
   double G_;
-  mutable noether::MutualSeries series_;  // scratch: one evaluation at a time
+  int fixed_order_ = 0, max_order_ = 12;
+  double tolerance_ = 0.0, min_separation_ = 0.0;
+  bool stop_on_exceed_ = false;
+  mutable bool chosen_ = false;
+  mutable noether::SeriesBank bank_;  // scratch: one evaluation at a time
   std::vector<InertiaIntegrals> integrals_;
-  std::vector<double> radius_;
+  std::vector<double> radius_, mass_;
   std::vector<std::string> names_;
-  std::vector<Pair> pairs_;
+  mutable std::vector<Pair> pairs_;
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params& params) {
-  params.check_keys({"plugin", "order"}, "the mutual-series potential");
+  params.check_keys({"plugin", "order", "tolerance", "min_separation", "max_order", "on_exceed"},
+                    "the mutual-series potential");
   return std::make_unique<MutualSeriesPotential>(system, params);
 }
 
 const noether::ParamDoc kParams[] = {
-    {"order", "integer", nullptr,
-     "total degree N of the inertia-integral expansion, 0..24 (0 = point masses)"}};
+    {"order", "integer", "none",
+     "total degree N of the inertia-integral expansion, 0..24 (0 = point masses); or give 'tolerance'"},
+    {"tolerance", "number", "none",
+     "relative error of force and torques per pair; noether picks each pair's lowest sufficient order"},
+    {"min_separation", "number", "0.9 x osculating periapsis",
+     "with tolerance: the closest separation the orders must hold for"},
+    {"max_order", "integer", "12", "with tolerance: the highest order to consider"},
+    {"on_exceed", "string", "warn",
+     "with tolerance: warn, or stop (exit 3), when a pair comes closer and the estimate exceeds the tolerance"}};
 
 }  // namespace
 
@@ -131,8 +264,9 @@ NOETHER_PLUGIN_DESCRIPTOR = {
     NOETHER_PLUGIN_API_VERSION,
     noether::PluginKind::Potential,
     "mutual-series",
-    "mutual potential of ellipsoids and polyhedra to order N in their inertia integrals (Hou et al. 2017)",
+    "mutual potential of ellipsoids and polyhedra to order N in their inertia integrals (Hou et al. 2017), "
+    "or to a tolerance",
     kParams,
-    1,
+    5,
     &make,
     nullptr};
