@@ -59,6 +59,8 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
     recurrence_.push_back({i, c, m1, m2, static_cast<double>(g - 1)});
   }
   A_.resize(static_cast<std::size_t>(n));
+  S_.resize(static_cast<std::size_t>(n));
+  M_.resize(static_cast<std::size_t>(n));
   B_.resize(static_cast<std::size_t>(n));
   L_.resize(static_cast<std::size_t>(n));
   Rj_.resize(static_cast<std::size_t>((order + 2) * count(order + 1)));
@@ -89,8 +91,10 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   double scale = 1.0;
   for (int d = 0, a = 0; d <= N; ++d, scale /= R)
     for (; a < first_of_degree_[static_cast<std::size_t>(d + 1)]; ++a) {
-      A_[static_cast<std::size_t>(a)] = a < na ? sign_over_factorial_[static_cast<std::size_t>(a)] * TA.T[static_cast<std::size_t>(a)] * scale : 0.0;
+      S_[static_cast<std::size_t>(a)] = a < na ? TA.T[static_cast<std::size_t>(a)] * scale : 0.0;  // T_A^α/R^{|α|}
+      A_[static_cast<std::size_t>(a)] = sign_over_factorial_[static_cast<std::size_t>(a)] * S_[static_cast<std::size_t>(a)];
       B_[static_cast<std::size_t>(a)] = a < nb ? TB.T[static_cast<std::size_t>(a)] * scale : 0.0;  // T'^β/R^{|β|}
+      M_[static_cast<std::size_t>(a)] = 0.0;
     }
 
   // D^γ(1/r) at the unit vector e, |γ| ≤ N + 1, by the recurrence (13.4):
@@ -115,21 +119,25 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
   }
   const double* D = Rj;
 
-  // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (13.2), (13.5))
+  // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (13.2), (13.5)),
+  // and for A's torque M_α = Σ_β (T'^β/β!) D^{α+β} (∝ ∂U/∂T_A^α)
   double U = 0.0, gx = 0.0, gy = 0.0, gz = 0.0;
+  const bool torque_A = na > 1;
   for (int b = 0; b < nb; ++b) {
     double Lb = 0.0, lx = 0.0, ly = 0.0, lz = 0.0;
+    const double w = inverse_factorial_[static_cast<std::size_t>(b)];
+    const double Bw = B_[static_cast<std::size_t>(b)] * w;
     for (const Pair& p : pairs_[static_cast<std::size_t>(b)]) {
       if (p.alpha >= na) break;  // pairs are ordered by α
       const double a = A_[static_cast<std::size_t>(p.alpha)];
-      Lb += a * D[p.gamma];
+      const double d = D[p.gamma];
+      Lb += a * d;
       lx += a * D[p.gamma_e[0]];
       ly += a * D[p.gamma_e[1]];
       lz += a * D[p.gamma_e[2]];
+      if (torque_A) M_[static_cast<std::size_t>(p.alpha)] += Bw * d;
     }
-    const double w = inverse_factorial_[static_cast<std::size_t>(b)];
     L_[static_cast<std::size_t>(b)] = Lb * w;  // ∝ ∂U/∂T'^β
-    const double Bw = B_[static_cast<std::size_t>(b)] * w;
     U += Bw * Lb;
     gx += Bw * lx, gy += Bw * ly, gz += Bw * lz;
   }
@@ -148,7 +156,18 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
                       t.terms[static_cast<std::size_t>(c)][1].first * B_[static_cast<std::size_t>(t.terms[static_cast<std::size_t>(c)][1].second)]);
   }
   out.torque_B = (G / R) * Vec3(tau[0], tau[1], tau[2]);
-  out.torque_A = Rv.cross(out.dU_dR) - out.torque_B;  // Hou et al. 2017 Eq. 2
+  // Torque on A the same way from A's own integrals (13.7): a rotation of A changes T_A^α
+  // within its degree, ∂U/∂T_A^α = −G (−1)^{|α|}/α! M_α / R^{|α|+1}. Equal to R × ∂U/∂R − τ_B
+  // (Hou et al. 2017 Eq. 2) but without its cancellation, which loses a far pair's torque.
+  double tau_a[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k + 1 < na; ++k) {
+    const TorqueTerm& t = torque_[static_cast<std::size_t>(k)];
+    const double Ma = sign_over_factorial_[static_cast<std::size_t>(t.beta)] * M_[static_cast<std::size_t>(t.beta)];
+    for (int c = 0; c < 3; ++c)
+      tau_a[c] += Ma * (t.terms[static_cast<std::size_t>(c)][0].first * S_[static_cast<std::size_t>(t.terms[static_cast<std::size_t>(c)][0].second)] +
+                        t.terms[static_cast<std::size_t>(c)][1].first * S_[static_cast<std::size_t>(t.terms[static_cast<std::size_t>(c)][1].second)]);
+  }
+  out.torque_A = (G / R) * Vec3(tau_a[0], tau_a[1], tau_a[2]);
   return out;
 }
 

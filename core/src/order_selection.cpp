@@ -1,19 +1,19 @@
 #include <noether/error.hpp>
 #include <noether/order_selection.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 
 namespace noether {
 
-double mutual_error(const MutualTerms& approx, const MutualTerms& exact, double radius_A, double radius_B) {
+double mutual_error(const MutualTerms& approx, const MutualTerms& exact, double separation) {
   const double F = exact.dU_dR.norm();
   if (!(F > 0.0)) return 0.0;
-  double e = (approx.dU_dR - exact.dU_dR).norm() / F;
-  if (radius_A > 0.0) e = std::max(e, (approx.torque_A - exact.torque_A).norm() / (radius_A * F));
-  if (radius_B > 0.0) e = std::max(e, (approx.torque_B - exact.torque_B).norm() / (radius_B * F));
-  return e;
+  const double torque = separation * F;
+  return std::max({(approx.dU_dR - exact.dU_dR).norm() / F, (approx.torque_A - exact.torque_A).norm() / torque,
+                   (approx.torque_B - exact.torque_B).norm() / torque});
 }
 
 MutualSeries& SeriesBank::at(int order) {
@@ -28,8 +28,8 @@ double series_error_estimate(SeriesBank& bank, int order, double G, const Inerti
   const MutualTerms low = bank.at(order).evaluate(G, TA, TB, R, C);
   const MutualTerms high = bank.at(order + 2).evaluate(G, TA, TB, R, C);
   const double ratio = (radius_A + radius_B) / R.norm();
-  const double safety = ratio > 0.8 ? 5.0 : 3.0;  // the estimate under-reads near contact
-  return safety * mutual_error(low, high, radius_A, radius_B);
+  const double safety = ratio > 0.8 ? 3.0 : 2.0;  // the estimate under-reads near contact
+  return safety * mutual_error(low, high, R.norm());
 }
 
 OrderChoice choose_series_order(SeriesBank& bank, double G, const InertiaIntegrals& TA,

@@ -51,3 +51,20 @@ TEST(Kw4Exact, SeriesConvergesToTheExactReferenceAndBothSurfacesAgree) {
   EXPECT_LT(last[0], 1e-9);
   EXPECT_LT(last[1], 1e-8);
 }
+
+#include "order_selection_check.hpp"
+
+TEST(Kw4Exact, ToleranceDrivenOrdersMeetTheirTolerance) {
+  // KW4 radar meshes along one mutual orbit (50 exact evaluations, ≈ 8 min on two cores).
+  const auto rows = check_tolerances("examples/kw4-polyhedra.yaml", 62400,
+                                     {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10}, 16);
+  int chosen = 0, minimal = 0;
+  for (const auto& r : rows) {
+    if (r.order < 0) continue;
+    ++chosen;
+    EXPECT_GE(r.within, 0.95) << r.tolerance;
+    minimal += r.minimal;
+  }
+  EXPECT_GE(chosen, 6);
+  std::printf("KW4 polyhedra: %d tolerances chosen, %d minimal\n", chosen, minimal);
+}

@@ -60,7 +60,7 @@ class NOETHER_API MutualSeries {
   std::vector<TorqueTerm> torque_;
   IntegralRotation rotation_;
   InertiaIntegrals rotated_;
-  std::vector<double> Rj_, A_, B_, L_;
+  std::vector<double> Rj_, A_, S_, B_, L_, M_;
 };
 
 }  // namespace noether

@@ -11,11 +11,10 @@
 
 namespace noether {
 
-// The error of `approx` against `exact` that a tolerance bounds (15.1): the larger of the
-// relative force error |ΔF|/|F| and, for each extended body k (radius ρ_k > 0), the torque
-// error against the largest torque that force could exert on it, |Δτ_k| / (ρ_k |F|).
-NOETHER_API double mutual_error(const MutualTerms& approx, const MutualTerms& exact, double radius_A,
-                                double radius_B);
+// The error of `approx` against `exact` that a tolerance bounds (15.1): the largest of the
+// relative force error |ΔF|/|F| and the torque errors |Δτ_A|, |Δτ_B| against the pair's
+// torque scale R|F| (the moment of its force at its separation R).
+NOETHER_API double mutual_error(const MutualTerms& approx, const MutualTerms& exact, double separation);
 
 // Series evaluators of every order, made on demand (each keeps its scratch).
 class NOETHER_API SeriesBank {
