@@ -62,3 +62,25 @@ TEST(Compare, DumbbellOrderingsHold) {
     EXPECT_GT(rows.front()->max_rel_angular_momentum_error, 10 * lgvi_L) << family;
   }
 }
+
+TEST(Compare, ModelSweepAgainstTheExactReference) {
+  // `noether compare --model`: Hou's octahedra over 10 h under the scene's LGVI, each model
+  // against the exact model with the same integrator: the trajectory error falls with the
+  // tolerance and with the order, and each tolerance run says which order it chose.
+  const Scene scene = load_scene(test::source_path("examples/octahedra-hou.yaml"),
+                                 {"run.t_end=36000", "run.output_every=3600"});
+  CompareSpec spec;
+  spec.repeats = 1;
+  spec.reference_potential = parse_params("{plugin: mutual-exact}", "test");
+  for (const char* m : {"{plugin: mutual-series, tolerance: [1.0e-3, 1.0e-4, 1.0e-5]}", "{plugin: mutual-series, order: [2, 8]}"})
+    for (auto& r : expand_model_runs(parse_params(m, "test"))) spec.runs.push_back(std::move(r));
+  auto registry = test::bundled_plugins();
+  const CompareResult result = compare(scene, registry, spec);
+  ASSERT_EQ(result.rows.size(), 5u);
+  for (const auto& row : result.rows) ASSERT_TRUE(row.ok) << row.error;
+  EXPECT_EQ(result.rows[0].family, "model mutual-series tolerance");
+  EXPECT_NE(result.rows[0].label.find("(order "), std::string::npos) << result.rows[0].label;
+  EXPECT_GT(result.rows[0].final_position_error, result.rows[1].final_position_error);
+  EXPECT_GT(result.rows[1].final_position_error, result.rows[2].final_position_error);
+  EXPECT_GT(result.rows[3].final_position_error, 100 * result.rows[4].final_position_error);  // order 2 vs 8
+}

@@ -26,7 +26,8 @@ std::string script_dir();
 std::string python();
 
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
-            const std::vector<std::string>& runs, const std::string& spec_file, int repeats,
+            const std::vector<std::string>& runs, const std::vector<std::string>& models,
+            const std::string& reference_model, const std::string& spec_file, int repeats,
             std::string csv, std::string h5, std::string png, bool plot);
 
 struct OrbitOptions {

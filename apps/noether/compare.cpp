@@ -25,17 +25,29 @@ std::string script_dir() {
 std::string python() { return access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
 
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
-            const std::vector<std::string>& runs, const std::string& spec_file, int repeats,
+            const std::vector<std::string>& runs, const std::vector<std::string>& models,
+            const std::string& reference_model, const std::string& spec_file, int repeats,
             std::string csv, std::string h5, std::string png, bool plot) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   noether::CompareSpec spec = spec_file.empty() ? noether::default_compare_spec(scene)
                                                 : noether::load_compare_spec(spec_file, scene);
-  if (!runs.empty()) {
+  if (!runs.empty() || !models.empty()) {
     spec.runs.clear();
     for (std::size_t k = 0; k < runs.size(); ++k)
       for (auto& r : noether::expand_runs(noether::parse_params(runs[k], "--run " + std::to_string(k + 1))))
         spec.runs.push_back(std::move(r));
+    for (std::size_t k = 0; k < models.size(); ++k)
+      for (auto& r : noether::expand_model_runs(noether::parse_params(models[k], "--model " + std::to_string(k + 1))))
+        spec.runs.push_back(std::move(r));
+  }
+  if (!models.empty() || !reference_model.empty()) {
+    // Models are measured against a reference model under the scene's own integrator, so that
+    // the integration error cancels and the difference is the models'.
+    spec.reference = noether::Params();
+    spec.reference_check = noether::Params();
+    spec.reference_potential =
+        noether::parse_params(reference_model.empty() ? "{plugin: mutual-exact}" : reference_model, "--reference-model");
   }
   if (repeats > 0) spec.repeats = repeats;
   const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";

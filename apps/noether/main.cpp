@@ -41,6 +41,13 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--run", runs,
                           "an integrator setting as YAML, lists expand: "
                           "'{plugin: lgvi, step: [1e-3, 5e-4]}' (repeatable; default: a standard sweep)");
+  std::vector<std::string> models;
+  std::string reference_model;
+  compare_cmd->add_option("--model", models,
+                          "a potential as YAML, lists expand: '{plugin: mutual-series, tolerance: [1e-3, 1e-6]}' "
+                          "(repeatable; runs the scene's integrator with each model)");
+  compare_cmd->add_option("--reference-model", reference_model,
+                          "the potential of the reference run for --model (default {plugin: mutual-exact})");
   compare_cmd->add_option("--spec", spec_file, "compare file: {repeats, reference, runs: [...]}");
   compare_cmd->add_option("--repeats", repeats, "repeats per run for the median wall time (default 3)");
   compare_cmd->add_option("-o,--csv", csv, "CSV table (default SCENE-compare.csv)");
@@ -105,7 +112,7 @@ int main(int argc, char** argv) {
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);
     if (*orbit_scene_cmds[1]) return noether::app::orbit_stability(orbit);
     if (*orbit_scene_cmds[2]) return noether::app::orbit_refine(orbit);
-    if (*compare_cmd) return noether::app::compare(scene, overrides, runs, spec_file, repeats, csv, h5, png, !no_plot);
+    if (*compare_cmd) return noether::app::compare(scene, overrides, runs, models, reference_model, spec_file, repeats, csv, h5, png, !no_plot);
     if (*check_cmd) {
       check_options.third_law = !no_third_law;
       return noether::app::check_potential(scene, overrides, check_options);

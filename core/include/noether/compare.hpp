@@ -15,12 +15,14 @@ namespace noether {
 struct CompareRun {
   std::string family;  // e.g. "lgvi", "cvode adams", "rk dopri5": one line in the plot
   std::string label;   // e.g. "step=0.001", "rtol=1e-08"
-  Params integrator;   // the scene's `integrator` mapping for this run
+  Params integrator;   // the scene's `integrator` mapping for this run (null: the scene's)
+  Params potential;    // a `potential` mapping replacing the scene's (null: the scene's)
 };
 
 struct CompareSpec {
   std::vector<CompareRun> runs;
-  Params reference;        // integrator mapping of the reference solution
+  Params reference;        // integrator mapping of the reference solution (null: the scene's)
+  Params reference_potential;  // its potential (null: the scene's), e.g. {plugin: mutual-exact}
   Params reference_check;  // a looser reference, to estimate the reference's own error
   int repeats = 3;         // wall time is the median of this many runs
 };
@@ -28,6 +30,10 @@ struct CompareSpec {
 // Expands `{plugin: cvode, method: adams, rtol: [1e-6, 1e-8]}`: every key whose value is a
 // list gives one run per item (several list keys are zipped, and must have equal lengths).
 std::vector<CompareRun> expand_runs(const Params& mapping);
+
+// Model runs: `{plugin: mutual-series, tolerance: [1e-3, 1e-6]}` expands like an integrator
+// run into runs that replace the scene's potential and keep its integrator.
+std::vector<CompareRun> expand_model_runs(const Params& mapping);
 
 // The default sweep: lgvi and rk4 at output_every/{10, 20, 50}; cvode adams and bdf, rk dopri5
 // and rkf78 at rtol 1e-6, 1e-8, 1e-10 (atol = rtol/100); reference rk rkf78 rtol 1e-13.
