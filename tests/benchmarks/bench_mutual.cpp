@@ -6,6 +6,7 @@
 // (results in docs/real-shapes.md)
 #include "test_support.hpp"
 
+#include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
 #include <noether/simulation.hpp>
 
@@ -54,5 +55,38 @@ void BM_MutualExact(benchmark::State& st, const char* scene_file) {
 }
 BENCHMARK_CAPTURE(BM_MutualExact, Octahedra, "examples/octahedra-hou.yaml")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_MutualExact, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+namespace {
+
+// One evaluation of mutual-series with `tolerance: 1e-k` (k = the argument) after its choice,
+// and the order it chose (docs/choosing-a-model.md).
+void BM_MutualTolerance(benchmark::State& st, const char* scene_file) {
+  const std::string tol = "1e-" + std::to_string(st.range(0));
+  const Scene scene = load_scene(test::source_path(scene_file),
+                                 {"potential={plugin: mutual-series, tolerance: " + tol + ", max_order: 16}"});
+  auto registry = test::bundled_plugins();
+  auto potential = make_scene_potential(scene, registry);
+  Forces f;
+  f.resize(scene.system);
+  try {
+    potential->evaluate(scene.initial, f);  // the choice
+  } catch (const Error&) {
+    st.SkipWithError("no order up to 16 meets the tolerance");
+    return;
+  }
+  State s = scene.initial;
+  for (auto _ : st) {
+    potential->evaluate(s, f);
+    benchmark::DoNotOptimize(f.U);
+    s.x(0, 1) += 1e-9;
+  }
+  st.counters["order"] = potential->pair_models().at(0).order;
+}
+BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Polyhedra, "examples/kw4-polyhedra.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MutualTolerance, Didymos, "examples/didymos.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_MutualTolerance, OctahedraHou, "examples/octahedra-hou.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
