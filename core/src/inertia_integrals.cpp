@@ -212,26 +212,27 @@ IntegralRotation::IntegralRotation(int order) : order_(order) {
   K_[0][0] = 1.0;
 }
 
-void IntegralRotation::apply(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out) {
-  if (T.order > order_)
-    throw Error("IntegralRotation: integrals of order " + std::to_string(T.order) +
+void IntegralRotation::apply(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out, int max_degree) {
+  const int order = max_degree < 0 ? T.order : std::min(T.order, max_degree);
+  if (order > order_)
+    throw Error("IntegralRotation: integrals of order " + std::to_string(order) +
                 " exceed the rotation's order " + std::to_string(order_));
-  out.order = T.order;
-  out.T.resize(T.T.size());
+  out.order = order;
+  out.T.resize(static_cast<std::size_t>(count(order)));
   out.T[0] = T.T[0];
-  if (T.order <= 2) {  // degree 1: C t; degree 2: C S Cᵀ (no monomial tables needed)
-    if (T.order >= 1) {
+  if (order <= 2) {  // degree 1: C t; degree 2: C S Cᵀ (no monomial tables needed)
+    if (order >= 1) {
       const Vec3 t1 = C * Vec3(T.T[1], T.T[2], T.T[3]);
       out.T[1] = t1.x(), out.T[2] = t1.y(), out.T[3] = t1.z();
     }
-    if (T.order == 2) {
+    if (order == 2) {
       const Mat3 S = C * T.second_moment() * C.transpose();
       const double s[6] = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};  // index order
       for (int i = 0; i < 6; ++i) out.T[static_cast<std::size_t>(4 + i)] = s[i];
     }
     return;
   }
-  for (int d = 1; d <= T.order; ++d) {
+  for (int d = 1; d <= order; ++d) {
     const int nd = multi_index::count_of_degree(d), np = multi_index::count_of_degree(d - 1);
     auto& K = K_[static_cast<std::size_t>(d)];
     const auto& Kp = K_[static_cast<std::size_t>(d - 1)];

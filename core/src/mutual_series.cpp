@@ -69,14 +69,7 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
 MutualTerms MutualSeries::evaluate(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
                                    const Vec3& R, const Mat3& C) {
   if (TB.order == 0) return evaluate_rotated(G, TA, TB, R);
-  InertiaIntegrals cut;
-  const InertiaIntegrals* tb = &TB;
-  if (TB.order > order_) {  // only degrees ≤ N enter
-    cut.order = order_;
-    cut.T.assign(TB.T.begin(), TB.T.begin() + count(order_));
-    tb = &cut;
-  }
-  rotation_.apply(C, *tb, rotated_);
+  rotation_.apply(C, TB, rotated_, order_);  // only degrees ≤ N enter
   return evaluate_rotated(G, TA, rotated_, R);
 }
 

@@ -63,8 +63,8 @@ NOETHER_API InertiaIntegrals integrals_from_inertia(double mass, const Mat3& J);
 class NOETHER_API IntegralRotation {
  public:
   explicit IntegralRotation(int order);
-  // `out` is resized to T.order.
-  void apply(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out);
+  // `out` is resized to min(T.order, max_degree) (all of T when max_degree < 0).
+  void apply(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out, int max_degree = -1);
 
  private:
   int order_;
