@@ -248,9 +248,9 @@ std::unique_ptr<noether::Potential> make(const System& system, const Params& par
 }
 
 const noether::ParamDoc kParams[] = {
-    {"order", "integer", "none",
+    {"order", "integer", "give order or tolerance",
      "total degree N of the inertia-integral expansion, 0..24 (0 = point masses); or give 'tolerance'"},
-    {"tolerance", "number", "none",
+    {"tolerance", "number", "give order or tolerance",
      "relative error of force and torques per pair; noether picks each pair's lowest sufficient order"},
     {"min_separation", "number", "0.9 x osculating periapsis",
      "with tolerance: the closest separation the orders must hold for"},
