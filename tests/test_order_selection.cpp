@@ -18,7 +18,7 @@ const std::vector<double> kTolerances = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-
 // Every chosen order meets its tolerance at ≥ 95 % of the configurations; where
 // `mostly_minimal`, two orders lower fails it for most tolerances. Measured (docs/choosing-a-
 // model.md): 100 % within everywhere; minimal at 7 of 8 tolerances on the KW4 ellipsoids, 5 of
-// 7 on Didymos, 0 of 4 on Hou's octahedra (ratio 0.82 at the assumed closest separation, where
+// 7 on Didymos, 0 of 5 on Hou's octahedra (ratio 0.82 at the assumed closest separation, where
 // the estimate is 2–5 orders conservative).
 void expect_acceptance(const std::vector<ToleranceRow>& rows, int expect_chosen, bool mostly_minimal) {
   int chosen = 0, minimal = 0;
@@ -43,7 +43,7 @@ TEST(OrderSelection, DidymosMeetsTheTolerance) {
 }
 
 TEST(OrderSelection, HouOctahedraMeetTheTolerance) {
-  expect_acceptance(check_tolerances("examples/octahedra-hou.yaml", 78900, kTolerances, 16), 4, false);
+  expect_acceptance(check_tolerances("examples/octahedra-hou.yaml", 78900, kTolerances, 20), 5, false);
 }
 
 TEST(OrderSelection, FarPairsArePointMasses) {
