@@ -118,7 +118,6 @@ void gauss_legendre01(int n, std::vector<double>& nodes, std::vector<double>& we
         const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
         p0 = p1, p1 = p2;
       }
-      if (n == 1) p1 = x, p0 = 1.0;
       dp = n * (x * p1 - p0) / (x * x - 1.0);
       const double dx = p1 / dp;
       x -= dx;
