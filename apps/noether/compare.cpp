@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include <noether/compare.hpp>
+#include <noether/error.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 
@@ -41,7 +42,10 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
       for (auto& r : noether::expand_model_runs(noether::parse_params(models[k], "--model " + std::to_string(k + 1))))
         spec.runs.push_back(std::move(r));
   }
-  if (!models.empty() || !reference_model.empty()) {
+  if (models.empty() && !reference_model.empty())
+    throw noether::SceneError("--reference-model goes with --model: it is the potential the models are "
+                              "measured against (integrator runs are measured against the scene's potential)");
+  if (!models.empty()) {
     // Models are measured against a reference model under the scene's own integrator, so that
     // the integration error cancels and the difference is the models'.
     spec.reference = noether::Params();

@@ -41,8 +41,6 @@ OrderChoice choose_series_order(SeriesBank& bank, double G, const InertiaIntegra
   if (!enough(TA, radius_A) || !enough(TB, radius_B))
     throw Error("choose_series_order: integrals of order max_order + 2 are needed");
   OrderChoice choice;
-  choice.separation = separation;
-  choice.ratio = (radius_A + radius_B) / separation;
   if (radius_A == 0.0 && radius_B == 0.0) {  // two point masses: order 0 is exact
     choice.met = true;
     return choice;

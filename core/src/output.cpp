@@ -148,11 +148,10 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
                             {scene.run.output_every});
   // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
   // (x_file = offset + rotation · x_body).
+  hid_t shapes = -1;
   for (const auto& b : sys.bodies()) {
     if (!b.solid) continue;
-    const hid_t shapes = H5Lexists(parameters, "shapes", H5P_DEFAULT) > 0
-                             ? H5Gopen2(parameters, "shapes", H5P_DEFAULT)
-                             : make_group(parameters, "shapes");
+    if (shapes < 0) shapes = make_group(parameters, "shapes");
     hid_t g = make_group(shapes, b.name.c_str());
     string_attribute(g, "kind", b.solid->kind == Solid::Kind::Ellipsoid ? "ellipsoid" : "polyhedron");
     string_attribute(g, "description", b.solid->describe());
@@ -167,8 +166,8 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
       for (int c = 0; c < 3; ++c) rotation.push_back(b.solid->rotation(r, c));
     numeric_attribute<double>(g, "rotation", H5T_NATIVE_DOUBLE, rotation);  // row-major
     H5Gclose(g);
-    H5Gclose(shapes);
   }
+  if (shapes >= 0) H5Gclose(shapes);
   H5Gclose(parameters);
 
   hid_t particles = make_group(m.file, "particles");

@@ -35,13 +35,11 @@ struct OrderSelection {
 struct OrderChoice {
   int order = 0;                 // the lowest N whose estimate meets the tolerance (0: point masses)
   double estimated_error = 0.0;  // its estimate (15.2), worst over the samples
-  double separation = 0.0;       // the separation it was chosen for
-  double ratio = 0.0;            // (ρ_A + ρ_B) / separation
   bool met = false;              // false: no order up to max_order met the tolerance
 };
 
 // The next-terms estimate of the error of order N at one configuration (15.2):
-// s · mutual_error(U_N, U_{N+2}) with the safety factor s = 3, or 5 when the ratio > 0.8.
+// s · mutual_error(U_N, U_{N+2}) with the safety factor s = 2, or 3 when (ρ_A + ρ_B)/R > 0.8.
 // The integrals must reach order N + 2.
 NOETHER_API double series_error_estimate(SeriesBank& bank, int order, double G, const InertiaIntegrals& TA,
                                          const InertiaIntegrals& TB, double radius_A, double radius_B,

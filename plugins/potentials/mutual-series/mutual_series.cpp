@@ -37,8 +37,7 @@ constexpr int kMaxOrder = 24;
 struct Pair : noether::MutualPair {  // a is the frame of the expansion (extended if either is)
   double reach = 0.0;  // radius_a + radius_b: beyond it the series converges for sure
   int order = 0;
-  // Tolerance mode: what the order was chosen for, and the watch on it.
-  noether::OrderChoice choice;
+  // Tolerance mode: the watch on the choice, and what is reported.
   double check_below = 0.0;  // estimate again when the separation drops below this
   noether::PairModel report;
   bool warned_reach = false;
@@ -186,25 +185,25 @@ class MutualSeriesPotential final : public noether::Potential {
     for (Pair& p : pairs_) {
       const noether::PairFrame frame = noether::pair_frame(s, p);
       const double separation = expected_separation(p, s);
-      p.choice = noether::choose_series_order(bank_, G_, integrals_[p.a], integrals_[p.b], radius_[p.a],
-                                              radius_[p.b], separation, frame.R, frame.C, options);
-      if (!p.choice.met) {
+      const noether::OrderChoice choice = noether::choose_series_order(
+          bank_, G_, integrals_[p.a], integrals_[p.b], radius_[p.a], radius_[p.b], separation, frame.R, frame.C, options);
+      if (!choice.met) {
         std::ostringstream msg;
         msg << "mutual-series: no order up to max_order " << max_order_ << " meets the tolerance " << tolerance_
             << " for bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at separation " << separation
-            << " (the sum of their radii is " << p.reach << "; the best, order " << p.choice.order
-            << ", is estimated at " << p.choice.estimated_error << "). Raise max_order, loosen the tolerance, "
+            << " (the sum of their radii is " << p.reach << "; the best, order " << choice.order
+            << ", is estimated at " << choice.estimated_error << "). Raise max_order, loosen the tolerance, "
             << "give a larger min_separation if the bodies never come that close, or use mutual-exact";
         throw SceneError(msg.str());
       }
-      p.order = p.choice.order;
+      p.order = choice.order;
       p.check_below = separation;
       p.report.body_a = names_[std::min(p.a, p.b)];
       p.report.body_b = names_[std::max(p.a, p.b)];
       p.report.order = p.order;
       p.report.model = p.order == 0 ? "point masses" : "series order " + std::to_string(p.order);
       p.report.tolerance = tolerance_;
-      p.report.estimated_error = p.choice.estimated_error;
+      p.report.estimated_error = choice.estimated_error;
       p.report.separation = separation;
     }
     chosen_ = true;
