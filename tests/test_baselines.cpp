@@ -91,7 +91,7 @@ TEST(Baselines, RungeKuttaDriftsOffSO3UnlessRenormalized) {
 TEST(Baselines, CvodeStopsAtACloseApproach) {
   auto registry = test::bundled_plugins();
   const RunSummary s = run_scene(
-      test::dumbbell_scene({"integrator={plugin: cvode, close_approach: 0.5, rtol: 1.0e-10, atol: 1.0e-12}"}),
+      test::dumbbell_scene({"integrator={plugin: cvode, rtol: 1.0e-10, atol: 1.0e-12}", "run.close_approach=0.5"}),
       registry, {});
   EXPECT_NE(s.stop_reason.find("close approach: bodies 'alpha' and 'beta' came within 0.5"),
             std::string::npos) << s.stop_reason;

@@ -3,6 +3,8 @@
 // the cube says they must.
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
@@ -29,7 +31,7 @@ Trajectory integrate(const std::string& integrator, const std::vector<std::strin
                                         scene.integrator.params);
   Trajectory tr;
   State s = scene.initial;
-  integ->integrate(s, {scene.run.t_end, scene.run.output_every}, tr);
+  noether::integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, tr);
   return tr;
 }
 

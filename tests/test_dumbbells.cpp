@@ -1,6 +1,8 @@
 // The reference scene of Lee, Leok & McClamroch 2007 §5 (docs/equations.md §6) run end to end through the plugins.
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
@@ -54,7 +56,7 @@ TEST(Dumbbells, StepTooLargeForTheSpinIsAClearError) {
   } count;
   State s = scene.initial;
   try {
-    lgvi->integrate(s, {scene.run.t_end, scene.run.output_every}, count);
+    integrate(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, count);
     FAIL() << "expected an IntegrationError";
   } catch (const IntegrationError& e) {
     const std::string what = e.what();

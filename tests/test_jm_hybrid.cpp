@@ -2,6 +2,8 @@
 // three-body problem, against the analytic Kepler solution and plain Störmer–Verlet.
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
@@ -55,7 +57,7 @@ KeplerRun kepler(const std::string& integrator, const std::vector<std::string>& 
   auto integ = registry.make_integrator(scene.integrator.plugin, scene.system, potential, scene.integrator.params);
   KeplerRun run;
   State s = scene.initial;
-  integ->integrate(s, {scene.run.t_end, scene.run.output_every}, run.orbit);
+  integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, run.orbit);
   run.steps = integ->step_series();
   run.work = integ->work();
   return run;

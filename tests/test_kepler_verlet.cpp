@@ -2,6 +2,8 @@
 // bounded and its phase error falls as h².
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/error.hpp>
 
 #include <gtest/gtest.h>
@@ -53,7 +55,7 @@ Recorder integrate(const Scene& scene) {
   Recorder rec;
   rec.system = &scene.system;
   State s = scene.initial;
-  lgvi->integrate(s, {scene.run.t_end, scene.run.output_every}, rec);
+  noether::integrate(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, rec);
   return rec;
 }
 

@@ -3,6 +3,8 @@
 // LGVI stays on SO(3) while dopri5 leaves it ever further.
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/diagnostics.hpp>
 
 #include <gtest/gtest.h>
@@ -50,7 +52,7 @@ History run(const std::string& integrator, std::int64_t* evaluations) {
   History h;
   h.system = &scene.system;
   State s = scene.initial;
-  integ->integrate(s, {scene.run.t_end, scene.run.output_every}, h);
+  integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, h);
   *evaluations = integ->work().potential_evaluations;
   return h;
 }

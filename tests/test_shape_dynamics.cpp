@@ -3,6 +3,8 @@
 // frames, its second order against rk/cvode, and the Didymos example against GUBAS-RS.
 #include "test_support.hpp"
 
+#include <noether/stepping.hpp>
+
 #include <noether/diagnostics.hpp>
 #include <noether/simulation.hpp>
 
@@ -50,7 +52,7 @@ Track run(const std::string& scene_file, const std::vector<std::string>& overrid
   Track track;
   track.system = &scene.system;
   State s = scene.initial;
-  integrator->integrate(s, {scene.run.t_end, scene.run.output_every}, track);
+  integrate(*integrator, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, track);
   return track;
 }
 

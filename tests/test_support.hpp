@@ -2,6 +2,7 @@
 // Helpers shared by the tests: paths of the source tree and of the built plugins.
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
+#include <noether/stepping.hpp>
 
 #include <string>
 

@@ -22,6 +22,7 @@ void SumPotential::evaluate(const State& state, Forces& forces) const {
   }
 }
 
+Potential::~Potential() = default;
 std::vector<PairModel> Potential::pair_models() const { return {}; }
 
 std::vector<PairModel> SumPotential::pair_models() const {
@@ -31,11 +32,6 @@ std::vector<PairModel> SumPotential::pair_models() const {
     all.insert(all.end(), some.begin(), some.end());
   }
   return all;
-}
-
-bool SumPotential::needs_attitudes() const {
-  return std::any_of(terms_.begin(), terms_.end(),
-                     [](const auto& t) { return t->needs_attitudes(); });
 }
 
 }  // namespace noether

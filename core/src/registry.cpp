@@ -197,7 +197,6 @@ class FiniteChecked final : public Potential {
         << " at t = " << state.t;
     throw IntegrationError(msg.str(), state.t);
   }
-  bool needs_attitudes() const override { return inner_->needs_attitudes(); }
   std::vector<PairModel> pair_models() const override { return inner_->pair_models(); }
 
  private:

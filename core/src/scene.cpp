@@ -256,7 +256,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   for (const auto& b : bodies.items()) {
     if (!b.is_map()) throw SceneError(b.here() + "each body must be a mapping");
     b.check_keys({"name", "mass", "density", "inertia", "position", "velocity", "attitude",
-                  "angular_velocity", "angular_momentum", "shape"},
+                  "angular_velocity", "angular_momentum", "shape", "radius"},
                  "body '" + b.get("name", std::string("?")) + "'");
     Body body;
     body.name = b.at("name").as_string();
@@ -270,6 +270,16 @@ Scene parse_scene(const std::string& text, const std::string& file,
         body.solid = scale_solid(*parse_solid(shape, body.name, std::filesystem::path(file).parent_path()), b,
                                  body.name);
     }
+    if (b.has("radius")) {
+      if (body.solid)
+        throw SceneError(b.at("radius").here() + "body '" + body.name + "': 'radius' comes from "
+                         "the shape (" + std::to_string(body.solid->radius) + "); remove it");
+      body.radius = b.at("radius").as_double();
+      if (!std::isfinite(body.radius) || body.radius < 0.0)
+        throw SceneError(b.at("radius").here() + "body '" + body.name +
+                         "': radius must be non-negative");
+    }
+    if (body.solid) body.radius = body.solid->radius;
     if (b.has("density") && !body.solid)
       throw SceneError(b.at("density").here() + "body '" + body.name + "': 'density' needs a "
                        "shape (ellipsoid or polyhedron)");
@@ -337,7 +347,11 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every"}, "'run'");
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions"}, "'run'");
+  scene.run.close_approach = run.get("close_approach", 0.0);
+  scene.run.collisions = run.get("collisions", true);
+  if (!std::isfinite(scene.run.close_approach) || scene.run.close_approach < 0.0)
+    throw SceneError(run.at("close_approach").here() + "'run.close_approach' must be non-negative");
   scene.run.t_end = run.at("t_end").as_double();
   scene.run.output_every = run.at("output_every").as_double();
   if (scene.run.t_end <= 0.0)

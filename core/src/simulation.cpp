@@ -1,6 +1,7 @@
 #include <noether/error.hpp>
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
+#include <noether/stepping.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -48,9 +49,8 @@ class Progress {
 class RunObserver final : public Observer {
  public:
   RunObserver(const System& system, RunSummary& summary, H5Writer* writer,
-              const Integrator*& integrator, Progress& progress)
-      : system_(system), s_(summary), writer_(writer), integrator_(integrator),
-        progress_(progress) {}
+              const Integrator*& integrator)
+      : system_(system), s_(summary), writer_(writer), integrator_(integrator) {}
 
   void observe(const State& state, const Forces& forces) override {
     const Diagnostics d = diagnose(system_, state, forces.U);
@@ -85,7 +85,6 @@ class RunObserver final : public Observer {
         }
     ++s_.frames;
     if (writer_) writer_->write_frame(integrator_ ? integrator_->work().steps : 0, state, d);
-    progress_.update(state.t);
   }
 
  private:
@@ -93,7 +92,6 @@ class RunObserver final : public Observer {
   RunSummary& s_;
   H5Writer* writer_;
   const Integrator*& integrator_;
-  Progress& progress_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
 };
 
@@ -123,11 +121,19 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   State state = scene.initial;
   const Integrator* current = integrator.get();
   Progress progress(options.progress, state.t, scene.run.t_end);
-  RunObserver observer(scene.system, summary, writer.get(), current, progress);
+  RunObserver observer(scene.system, summary, writer.get(), current);
 
+  Schedule schedule{scene.run.t_end, scene.run.output_every,
+                    Events{scene.run.close_approach, scene.run.collisions},
+                    {}};
+  if (options.progress)  // the clock read every 16 steps only
+    schedule.on_step = [&progress, n = 0u](double t) mutable {
+      if ((++n & 15u) == 0) progress.update(t);
+    };
   const auto start = Clock::now();
+  StopInfo stop;
   try {
-    integrator->integrate(state, {scene.run.t_end, scene.run.output_every}, observer);
+    stop = integrate(*integrator, *potential, scene.system, state, schedule, observer);
   } catch (const Error& e) {
     summary.work = integrator->work();
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -140,7 +146,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   }
   summary.work = integrator->work();
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  summary.stop_reason = integrator->stop_reason();
+  summary.stop_reason = stop.reason;
   summary.final_state = std::move(state);
   summary.pair_models = potential->pair_models();  // now with what the run saw
   if (writer) writer->write_pair_models(summary.pair_models);

@@ -73,7 +73,6 @@ class J2Potential final : public noether::Potential {
     out.M.col(primary_rigid_) += (R.transpose() * dU_dk).cross(Vec3::UnitZ());
   }
 
-  bool needs_attitudes() const override { return true; }
 
  private:
   double G_, J2_, Re_;

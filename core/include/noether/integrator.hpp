@@ -1,14 +1,23 @@
 #pragma once
-// Integrator: advances a State of a System to a time, calling an Observer at the requested
-// output times. Reports its work and fails with an IntegrationError, never with a silently
-// wrong state.
+// Integrator: one step at a time of a State of a System (docs/equations.md §3–7). The host's
+// stepping loop (noether/stepping.hpp) owns everything around the steps — output times, the
+// final time, events, rollback, progress — so an integrator is only its method.
+//
+// Contract, for every integrator plugin:
+//  * start(s) begins (or begins again) at s; s.t is the start time. The loop restarts an
+//    integrator without dense output to land on an event time with one shortened step.
+//  * step(t_max) takes one step. A method that chooses its step length (fixed or adaptive)
+//    never passes t_max: it ends that step at t_max exactly. A method whose step length is an
+//    outcome (jm-hybrid) may pass t_max, and must then provide dense output.
+//  * If step() throws (IntegrationError for a method failure), the integrator stays at the
+//    state before the step: current() returns the last valid state.
+//  * interpolate(t, s): the state at t inside the last step, [t_prev, time()], by the method's
+//    own dense output; false when it has none.
 #include <noether/export.hpp>
 #include <noether/forces.hpp>
-#include <noether/potential.hpp>
 #include <noether/state.hpp>
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,14 +27,7 @@ struct WorkCounters {
   std::int64_t steps = 0;
   std::int64_t potential_evaluations = 0;
   std::int64_t newton_iterations = 0;
-  std::int64_t rejected_steps = 0;
-};
-
-class NOETHER_API Observer {
- public:
-  virtual ~Observer() = default;
-  // Called at t0 and at every output time, with the potential evaluated at that state.
-  virtual void observe(const State& state, const Forces& forces) = 0;
+  std::int64_t rejected_steps = 0;  // −1: not reported by the method
 };
 
 // A per-step record an integrator may keep (e.g. the phase and parameter coordinate of every
@@ -37,35 +39,27 @@ struct StepSeries {
   std::string description;
 };
 
-struct OutputSchedule {
-  double t_end = 0.0;         // integrate from state.t to t_end
-  double output_every = 0.0;  // observer interval; the observer also sees t0 and t_end
-};
-
 class NOETHER_API Integrator {
  public:
-  virtual ~Integrator() = default;
-  // Advances `state` to schedule.t_end, or to an event that ends the run early (then
-  // stop_reason() says which). On IntegrationError, `state` holds the last valid state (at
-  // e.t_reached()).
-  virtual void integrate(State& state, const OutputSchedule& schedule, Observer& observer) = 0;
+  virtual ~Integrator();
+  virtual void start(const State& state) = 0;
+  virtual void step(double t_max) = 0;
+  // The time of the current state.
+  virtual double time() const = 0;
+  // The current state and the forces there (for output; an evaluation made only for this is
+  // not counted as work).
+  virtual void current(State& state, Forces& forces) = 0;
+  // Dense output inside the last step; false (the default) when the method has none.
+  virtual bool interpolate(double t, State& state);
+  // The fixed step h of a fixed-step method (the loop then requires whole numbers of steps
+  // between outputs and reports t0 + k h exactly); 0 for methods that choose their steps.
+  virtual double fixed_step() const;
+  // Per-step records, if the integrator keeps any (none by default).
+  virtual std::vector<StepSeries> step_series() const;
   const WorkCounters& work() const { return work_; }
-  // Empty when the run reached t_end; otherwise the event that stopped it (e.g. a close
-  // approach found by root finding).
-  const std::string& stop_reason() const { return stop_reason_; }
-  // Per-step records, if the integrator keeps any (empty by default).
-  virtual std::vector<StepSeries> step_series() const { return {}; }
 
  protected:
   WorkCounters work_;
-  std::string stop_reason_;
 };
-
-// For fixed-step methods: the number of steps of size h in `interval`. Throws SceneError
-// (naming `plugin` and `what`) when the interval is not a whole number of steps.
-std::int64_t whole_steps(double interval, double h, const char* what, const char* plugin);
-
-// For adaptive methods: the output times from t0, t0 + Δ, t0 + 2Δ, ..., and t_end.
-std::vector<double> output_times(double t0, double t_end, double output_every);
 
 }  // namespace noether

@@ -27,12 +27,10 @@ struct PairModel {
 
 class NOETHER_API Potential {
  public:
-  virtual ~Potential() = default;
+  virtual ~Potential();
   // Fills U, f_i = −∂U/∂x_i and, for rigid bodies, the body-frame moments M_k.
   // `forces` is already sized for the system; implementations overwrite every entry.
   virtual void evaluate(const State& state, Forces& forces) const = 0;
-  // Whether U depends on the attitudes (a point-mass model does not).
-  virtual bool needs_attitudes() const = 0;
   // The model chosen for each pair, for models that choose (none by default).
   virtual std::vector<PairModel> pair_models() const;
 };
@@ -42,7 +40,6 @@ class NOETHER_API SumPotential final : public Potential {
  public:
   explicit SumPotential(std::vector<std::shared_ptr<const Potential>> terms);
   void evaluate(const State& state, Forces& forces) const override;
-  bool needs_attitudes() const override;
   std::vector<PairModel> pair_models() const override;
 
  private:

@@ -19,6 +19,8 @@ struct PluginConfig {
 struct RunSettings {
   double t_end = 0.0;
   double output_every = 0.0;
+  double close_approach = 0.0;  // stop when two centres come closer (0: off)
+  bool collisions = true;       // stop when two bodies' bounding spheres touch
 };
 
 struct Scene {

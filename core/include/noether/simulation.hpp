@@ -3,6 +3,7 @@
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
+#include <noether/stepping.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 

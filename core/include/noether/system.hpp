@@ -23,6 +23,9 @@ struct Body {
   // The homogeneous solid (ellipsoid or polyhedron) when the shape is one; its mass and
   // inertia are the body's. Null for point masses and point clusters.
   std::shared_ptr<const Solid> solid;
+  // The radius of a sphere about the centre of mass that holds the body: the solid's, or the
+  // scene's `radius`; 0 when unknown. Collision events use it (docs/equations.md §16).
+  double radius = 0.0;
 };
 
 class System {

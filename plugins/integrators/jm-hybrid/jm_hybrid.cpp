@@ -25,9 +25,8 @@
 //    `rechoose_ratio` |Δ_c|.
 //  * The Jacobian of the JM equations is by forward differences (n − 1 potential evaluations per
 //    Newton iteration): the Potential interface gives forces, not Hessians.
-//  * Output at the requested times by cubic Hermite interpolation of (q, q̇) between the two
-//    steps around each output time (third order, above the method's second); the forces at an
-//    output frame are evaluated there (not counted as work).
+//  * Dense output (the host's output times and events) by cubic Hermite interpolation of
+//    (q, q̇) over the last step (third order, above the method's second).
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
 
@@ -77,75 +76,73 @@ class JmHybrid final : public noether::Integrator {
     forces_.resize(system);
   }
 
-  void integrate(noether::State& state, const noether::OutputSchedule& schedule,
-                 noether::Observer& observer) override {
-    // Current point (t, q, p) and the previous one, kept for the JM map and for output.
-    t_ = state.t;
-    q_ = flat(state.x);
-    p_ = flat(state.p);
+  void start(const noether::State& state) override {
+    t_ = t_prev_ = state.t;
+    q_ = q_prev_ = flat(state.x);
+    p_ = p_prev_ = flat(state.p);
     V_ = evaluate(q_, grad_);
-    const auto times = noether::output_times(t_, schedule.t_end, schedule.output_every);
-    std::size_t next = 0;
-    emit(observer, t_, q_, p_);
-    ++next;
-    Phase phase = kVI;
-    double h = h_;
-    Vec q_prev = q_, p_prev = p_;
-    double t_prev = t_;
-    Vec qm1;  // the point before the current one (the JM map is two-step)
-    double E = 0;
-    int c = 0;
-    double sign = 1;
+    phase_ = kVI;
+    h_now_ = h_;
+  }
+
+  // One step of the current phase; its length is the method's (a JM step's Δt is an outcome),
+  // so it may pass t_max: outputs and events inside it come from interpolate().
+  void step(double) override {
+    const Vec q0 = q_, p0 = p_, grad0 = grad_;
+    const double t0 = t_, V0 = V_, V0_prev = V_prev_;
     try {
-      while (next < times.size()) {
-        q_prev = q_;
-        p_prev = p_;
-        t_prev = t_;
-        if (phase == kVI) {
-          vi_step(h);
-          record(kVI, -1, h);
-          const double K = kinetic(p_);
-          if (K > Kc_) {  // enter JM at the discrete energy of this VI step
-            const Vec D = (q_ - q_prev) / h;
-            E = 0.5 * D.dot(mass_.cwiseProduct(D)) + 0.5 * (V_prev_ + V_);
-            qm1 = q_prev;
-            choose(q_ - q_prev, c, sign);
-            phase = kJM;
-          }
-        } else {
-          Vec q_next;
-          jm_step(qm1, E, c, sign, q_next);
-          qm1 = q_;
-          q_ = q_next;
-          record(kJM, c, last_dt_);
-          // Re-choose the parameter coordinate when another one dominates.
-          const Vec D = q_ - qm1;
-          Eigen::Index j;
-          D.cwiseAbs().maxCoeff(&j);
-          if (std::abs(D[j]) > ratio_ * std::abs(D[c])) choose(D, c, sign);
-          if (E - V_ < Kc_) {  // leave JM: re-solve h from the discrete energy (Nair, Ober-Blöbaum & Marsden 2009)
-            h = leave_jm(qm1, E);
-            phase = kVI;
-          }
+      if (phase_ == kVI) {
+        vi_step(h_now_);
+        record(kVI, -1, h_now_);
+        if (kinetic(p_) > Kc_) {  // enter JM at the discrete energy of this VI step
+          const Vec D = (q_ - q0) / h_now_;
+          E_ = 0.5 * D.dot(mass_.cwiseProduct(D)) + 0.5 * (V_prev_ + V_);
+          qm1_ = q0;
+          choose(q_ - q0, c_, sign_);
+          phase_ = kJM;
         }
-        // Output frames inside (t_prev, t_]: cubic Hermite interpolation of (q, q̇).
-        while (next < times.size() && times[next] <= t_ + 1e-12 * std::max(1.0, std::abs(t_))) {
-          const double tau = times[next];
-          if (std::abs(tau - t_) <= 1e-12 * std::max(1.0, std::abs(t_))) {
-            emit(observer, tau, q_, p_);
-          } else {
-            Vec q, p;
-            hermite(t_prev, q_prev, p_prev, t_, q_, p_, tau, q, p);
-            emit(observer, tau, q, p);
-          }
-          ++next;
+      } else {
+        Vec q_next;
+        jm_step(qm1_, E_, c_, sign_, q_next);
+        qm1_ = q_;
+        q_ = q_next;
+        record(kJM, c_, last_dt_);
+        // Re-choose the parameter coordinate when another one dominates.
+        const Vec D = q_ - qm1_;
+        Eigen::Index j;
+        D.cwiseAbs().maxCoeff(&j);
+        if (std::abs(D[j]) > ratio_ * std::abs(D[c_])) choose(D, c_, sign_);
+        if (E_ - V_ < Kc_) {  // leave JM: re-solve h from the discrete energy (Nair, Ober-Blöbaum & Marsden 2009)
+          h_now_ = leave_jm(qm1_, E_);
+          phase_ = kVI;
         }
       }
     } catch (const IntegrationError&) {
-      unflatten(q_prev, p_prev, t_prev, state);
+      q_ = q0, p_ = p0, grad_ = grad0, t_ = t0, V_ = V0, V_prev_ = V0_prev;  // the last valid state
       throw;
     }
-    unflatten(q_, p_, times.back(), state);
+    q_prev_ = q0;
+    p_prev_ = p0;
+    t_prev_ = t0;
+  }
+
+  double time() const override { return t_; }
+
+  void current(noether::State& state, noether::Forces& forces) override {
+    state = noether::State::zeros(system_);
+    unflatten(q_, p_, t_, state);
+    forces.resize(system_);
+    potential_->evaluate(state, forces);  // for output; not counted as work
+  }
+
+  // Cubic Hermite interpolation of (q, q̇) between the two ends of the last step: third
+  // order, above the method's second.
+  bool interpolate(double t, noether::State& state) override {
+    Vec q, p;
+    hermite(t_prev_, q_prev_, p_prev_, t_, q_, p_, t, q, p);
+    state = noether::State::zeros(system_);
+    unflatten(q, p, t, state);
+    return true;
   }
 
   std::vector<noether::StepSeries> step_series() const override {
@@ -372,15 +369,6 @@ class JmHybrid final : public noether::Integrator {
     p = mass_.cwiseProduct(v);
   }
 
-  void emit(noether::Observer& observer, double t, const Vec& q, const Vec& p) {
-    noether::State s = noether::State::zeros(system_);
-    unflatten(q, p, t, s);
-    noether::Forces f;
-    f.resize(system_);
-    potential_->evaluate(s, f);  // for the observer's diagnostics; not counted as work
-    observer.observe(s, f);
-  }
-
   void record(Phase phase, int c, double dt) {
     if (!record_ || steps_.size() > 50'000'000) return;
     steps_.push_back(t_);
@@ -401,6 +389,13 @@ class JmHybrid final : public noether::Integrator {
   noether::Forces forces_;
   double t_ = 0, V_ = 0, V_prev_ = 0, last_dt_ = 0;
   Vec q_, p_, grad_;
+  // The state machine between steps: phase, the VI step, the JM energy and parameter
+  // coordinate, the point before the current one (the JM map is two-step), and the start of
+  // the last step (for interpolation).
+  Phase phase_ = kVI;
+  double h_now_ = 0, E_ = 0, sign_ = 1, t_prev_ = 0;
+  int c_ = 0;
+  Vec qm1_, q_prev_, p_prev_;
   std::vector<double> steps_;
 };
 

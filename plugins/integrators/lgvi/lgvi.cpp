@@ -46,44 +46,58 @@ class Lgvi final : public noether::Integrator {
                                     : lgvi::make_relative_lagrangian(system, potential, settings);
   }
 
-  void integrate(noether::State& state, const noether::OutputSchedule& schedule,
-                 noether::Observer& observer) override {
-    const double t0 = state.t;
-    const std::int64_t n = noether::whole_steps(schedule.t_end - t0, h_, "run.t_end − t0", "lgvi");
-    const std::int64_t stride = noether::whole_steps(schedule.output_every, h_, "run.output_every", "lgvi");
-    noether::Forces forces;
+  void start(const noether::State& state) override {
     flow_->start(state);
-    auto emit = [&](double t) {
-      flow_->current(state, forces);
-      state.t = t;  // exactly t0 + k h, not a sum of steps
-      observer.observe(state, forces);
-    };
-    emit(t0);
-    for (std::int64_t k = 0; k < n; ++k) {
-      try {
-        step();
-      } catch (const noether::IntegrationError&) {
-        flow_->current(state, forces);
-        collect();
-        throw;
-      }
-      if ((k + 1) % stride == 0 || k + 1 == n) emit(t0 + static_cast<double>(k + 1) * h_);
+    t0_ = state.t;
+    k_ = 0;
+    t_ = state.t;
+  }
+
+  // One step of size h, or a shorter one that ends at t_max (the loop's landing on an event).
+  void step(double t_max) override {
+    const double remaining = t_max - t_;
+    const bool whole = remaining >= h_ * (1.0 - 1e-9);
+    advance(whole ? h_ : remaining);
+    if (whole) {
+      t_ = t0_ + static_cast<double>(++k_) * h_;  // exactly t0 + k h, not a sum of steps
+    } else {
+      t_ = t_max;
+      t0_ = t_max;
+      k_ = 0;
     }
-    collect();
+  }
+
+  double time() const override { return t_; }
+  double fixed_step() const override { return h_; }
+
+  void current(noether::State& state, noether::Forces& forces) override {
+    flow_->current(state, forces);
+    state.t = t_;
   }
 
  private:
-  // One step of size h: the base map, or Yoshida's composition λ1 h, λ2 h, λ1 h with
-  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (docs/equations.md §4), which is of order 4.
-  void step() {
+  // One step of size dt: the base map, or Yoshida's composition λ1 dt, λ2 dt, λ1 dt with
+  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (docs/equations.md §4), which is of
+  // order 4. A failure inside the composition restarts from the step's start, so the
+  // integrator stays at the last valid state.
+  void advance(double dt) {
     if (order_ == 2) {
-      flow_->advance(h_);
-      return;
+      flow_->advance(dt);
+    } else {
+      const double c = std::cbrt(2.0), l1 = 1.0 / (2.0 - c), l2 = -c / (2.0 - c);
+      noether::Forces unused;
+      flow_->current(before_, unused);
+      try {
+        flow_->advance(l1 * dt);
+        flow_->advance(l2 * dt);
+        flow_->advance(l1 * dt);
+      } catch (const noether::Error&) {
+        flow_->start(before_);
+        collect();
+        throw;
+      }
     }
-    const double c = std::cbrt(2.0), l1 = 1.0 / (2.0 - c), l2 = -c / (2.0 - c);
-    flow_->advance(l1 * h_);
-    flow_->advance(l2 * h_);
-    flow_->advance(l1 * h_);
+    collect();
   }
   void collect() {
     work_ = flow_->work;
@@ -93,6 +107,9 @@ class Lgvi final : public noether::Integrator {
   std::unique_ptr<lgvi::DiscreteFlow> flow_;
   double h_ = 0.0;
   int order_ = 2;
+  double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
+  std::int64_t k_ = 0;
+  noether::State before_;
 };
 
 const noether::ParamDoc params[] = {

@@ -15,6 +15,8 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <sstream>
 
 namespace {
@@ -43,143 +45,161 @@ class Rk final : public noether::Integrator {
     atol_ = p.get("atol", 1e-10);
     renormalize_ = p.get("renormalize", false);
     max_steps_ = p.get("max_steps", 10000000L);
+    dopri5_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>());
+    rkf78_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>());
     if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 1)
       throw SceneError(p.here() + "rk: step, rtol, max_steps must be positive, atol non-negative");
   }
 
-  void integrate(noether::State& state, const noether::OutputSchedule& schedule,
-                 noether::Observer& observer) override {
-    Vector y(equations_->size());
-    equations_->pack(state, y.data());
-    auto rhs = [this](const Vector& x, Vector& dxdt, double t) {
-      equations_->rhs(t, x.data(), dxdt.data());
-    };
-    noether::Forces forces;
-    forces.resize(equations_->system());
-    double t = state.t;
-    auto emit = [&] {  // diagnostics need the forces at the output state (not counted as work)
-      equations_->unpack(y.data(), t, state);
-      equations_->potential().evaluate(state, forces);
-      observer.observe(state, forces);
-    };
-    emit();
+  void start(const noether::State& state) override {
+    y_.resize(equations_->size());
+    equations_->pack(state, y_.data());
+    y_prev_ = y_;
+    t_ = t_prev_ = state.t;
+    k_ = 0;
+    t0_ = state.t;
+    dt_ = step_ > 0 ? step_ : 0.0;  // 0: first_trial() at the first step
+    dense_.reset();
+    dopri5_.reset();  // no derivative cached from another state
+  }
+
+  void step(double t_max) override {
+    y_prev_ = y_;
+    t_prev_ = t_;
     try {
       if (method_ == "rk4")
-        fixed(rhs, y, t, schedule, emit);
+        fixed_step_to(t_max);
       else if (method_ == "dopri5" && !renormalize_)
-        dense(odeint::make_dense_output(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>()), rhs,
-              y, t, schedule, emit);
+        dense_step(t_max);
       else if (method_ == "dopri5")
-        adaptive(odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>()), rhs,
-                 y, t, schedule, emit);
+        controlled_step(dopri5_, t_max);
       else
-        adaptive(odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>()),
-                 rhs, y, t, schedule, emit);
+        controlled_step(rkf78_, t_max);
     } catch (const IntegrationError&) {
-      equations_->unpack(y.data(), t, state);
+      y_ = y_prev_;  // stay at the last valid state
+      t_ = t_prev_;
+      dense_.reset();  // restart the steppers from y_ at the next step
+      dopri5_.reset();
       work_.potential_evaluations = equations_->evaluations();
       throw;
     }
     work_.potential_evaluations = equations_->evaluations();
   }
 
+  double time() const override { return t_; }
+  double fixed_step() const override { return method_ == "rk4" ? step_ : 0.0; }
+
+  void current(noether::State& state, noether::Forces& forces) override {
+    equations_->unpack(y_.data(), t_, state);
+    forces.resize(equations_->system());
+    equations_->potential().evaluate(state, forces);  // for output; not counted as work
+  }
+
+  // Dopri5: its own (4th-order) dense output. Rkf78 and dopri5 with renormalize: one step of
+  // the same method from the step's start, on a copy, so outputs carry the method's own
+  // accuracy (those evaluations count as work). rk4: none (the loop lands by a short step).
+  bool interpolate(double t, noether::State& state) override {
+    if (method_ == "rk4") return false;
+    if (t == t_prev_) {
+      equations_->unpack(y_prev_.data(), t, state);
+      return true;
+    }
+    y_out_ = y_prev_;
+    if (method_ == "dopri5" && !renormalize_) {
+      dense_->calc_state(t, y_out_);
+    } else if (method_ == "dopri5") {
+      odeint::runge_kutta_dopri5<Vector> fresh;  // no derivative cached from another state
+      fresh.do_step(rhs_, y_out_, t_prev_, t - t_prev_);
+    } else {
+      odeint::runge_kutta_fehlberg78<Vector> fresh;
+      fresh.do_step(rhs_, y_out_, t_prev_, t - t_prev_);
+    }
+    work_.potential_evaluations = equations_->evaluations();
+    equations_->unpack(y_out_.data(), t, state);
+    return true;
+  }
+
  private:
-  template <class Rhs, class Emit>
-  void fixed(Rhs& rhs, Vector& y, double& t, const noether::OutputSchedule& s, Emit& emit) {
-    const double t0 = t;
-    const std::int64_t n = noether::whole_steps(s.t_end - t0, step_, "run.t_end − t0", "rk");
-    const std::int64_t stride = noether::whole_steps(s.output_every, step_, "run.output_every", "rk");
-    odeint::runge_kutta4<Vector> rk4;
-    for (std::int64_t k = 0; k < n; ++k) {
-      rk4.do_step(rhs, y, t, step_);
-      t = t0 + static_cast<double>(k + 1) * step_;
-      ++work_.steps;
-      accepted(y, t);
-      if ((k + 1) % stride == 0 || k + 1 == n) emit();
+  using Dense = decltype(odeint::make_dense_output(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>()));
+
+  // rk4: a step of h, or a shorter one that ends at t_max.
+  void fixed_step_to(double t_max) {
+    const double remaining = t_max - t_;
+    const bool whole = remaining >= step_ * (1.0 - 1e-9);
+    rk4_.do_step(rhs_, y_, t_, whole ? step_ : remaining);
+    if (whole) {
+      t_ = t0_ + static_cast<double>(++k_) * step_;
+    } else {
+      t_ = t0_ = t_max;
+      k_ = 0;
     }
+    ++work_.steps;
+    accepted(y_, t_);
   }
 
-  // Dormand–Prince with its own (4th-order) dense output: steps are chosen by the error
-  // control alone, output frames are interpolated. Odeint retries rejected steps internally,
-  // so rejected steps are not counted here (reported as −1, unknown).
-  template <class Dense, class Rhs, class Emit>
-  void dense(Dense stepper, Rhs& rhs, Vector& y, double& t, const noether::OutputSchedule& s,
-             Emit& emit) {
-    const auto times = noether::output_times(t, s.t_end, s.output_every);
-    stepper.initialize(y, t, step_ > 0 ? step_ : s.output_every / 100.0);
+  // Dormand–Prince with dense output: steps chosen by the error control alone, possibly past
+  // t_max (outputs are interpolated). Odeint retries rejected steps internally, so they are
+  // not counted here (reported as −1, unknown).
+  void dense_step(double t_max) {
+    if (!dense_) {
+      dense_.emplace(odeint::make_dense_output(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>()));
+      dense_->initialize(y_, t_, dt_ > 0 ? dt_ : first_trial(t_max));
+    }
     work_.rejected_steps = -1;
-    for (std::size_t k = 1; k < times.size(); ++k) {
-      while (stepper.current_time() < times[k]) {
-        stepper.do_step(rhs);
-        ++work_.steps;
-        const Vector& current = stepper.current_state();
-        for (double v : current)
-          if (!std::isfinite(v)) fail("the solution became non-finite", stepper.current_time());
-        if (stepper.current_time_step() < 1e-14 * std::max(1.0, std::abs(stepper.current_time())))
-          fail("the step size fell below 1e-14 |t| (the error control cannot be met)",
-               stepper.current_time());
-        if (work_.steps > max_steps_)
-          fail("more than max_steps = " + std::to_string(max_steps_) + " steps",
-               stepper.current_time());
-      }
-      t = times[k];
-      stepper.calc_state(t, y);
-      emit();
-    }
+    dense_->do_step(rhs_);
+    ++work_.steps;
+    t_ = dense_->current_time();
+    y_ = dense_->current_state();
+    for (double v : y_)
+      if (!std::isfinite(v)) fail("the solution became non-finite", t_);
+    if (dense_->current_time_step() < 1e-14 * std::max(1.0, std::abs(t_)))
+      fail("the step size fell below 1e-14 |t| (the error control cannot be met)", t_);
+    if (work_.steps > max_steps_) fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
   }
 
-  // Controlled steps chosen by the error control alone (rkf78, and dopri5 with renormalize:
-  // Odeint has no dense output for Fehlberg 7(8)). An output time inside an accepted step is
-  // reached by one extra step of the same method from the step's start, on a copy, so outputs
-  // carry the method's own accuracy; those evaluations count as work.
-  template <class Controlled, class Rhs, class Emit>
-  void adaptive(Controlled stepper, Rhs& rhs, Vector& y, double& t,
-                const noether::OutputSchedule& s, Emit& emit) {
-    const auto times = noether::output_times(t, s.t_end, s.output_every);
-    double dt = step_ > 0 ? step_ : s.output_every / 100.0;
-    using OutputStepper = typename Controlled::stepper_type;
-    Vector y_prev = y, y_out = y;
-    std::size_t next = 1;
-    while (next < times.size()) {
-      const double t_prev = t;
-      y_prev = y;
-      // Never step past t_end.
-      double h = std::min(dt, times.back() - t);
+  // Controlled steps chosen by the error control, never past t_max.
+  template <class Controlled>
+  void controlled_step(Controlled& stepper, double t_max) {
+    if (!(dt_ > 0)) dt_ = first_trial(t_max);
+    for (;;) {
+      double h = std::min(dt_, t_max - t_);
       const double h_tried = h;
-      if (stepper.try_step(rhs, y, t, h) != odeint::success) {
-        ++work_.rejected_steps;
-        dt = h;
-        if (h < 1e-14 * std::max(1.0, std::abs(t)) || h >= h_tried)
-          fail("the step size fell below 1e-14 |t| (the error control cannot be met)", t);
-      } else {
+      if (stepper.try_step(rhs_, y_, t_, h) == odeint::success) {
         ++work_.steps;
-        dt = h;  // the controller's proposal for the next step
-        if (times.back() - t < 1e-12 * std::max(1.0, std::abs(t))) t = times.back();
-        if (accepted(y, t)) {
+        dt_ = h;  // the controller's proposal for the next step
+        if (t_max - t_ < 1e-12 * std::max(1.0, std::abs(t_))) t_ = t_max;
+        if (accepted(y_, t_)) {
           // The state was projected: a first-same-as-last stepper must not reuse its cached
           // derivative of the unprojected state (one more evaluation per step).
           if constexpr (requires { stepper.reset(); }) stepper.reset();
         }
-        const double t_now = t;
-        while (next < times.size() && times[next] <= t_now) {
-          if (times[next] == t_now) {
-            emit();
-          } else {  // an output inside the step: one step of the method from its start
-            y_out = y_prev;
-            OutputStepper fresh;  // no derivative cached from another state
-            fresh.do_step(rhs, y_out, t_prev, times[next] - t_prev);
-            std::swap(y, y_out);
-            t = times[next];
-            emit();
-            std::swap(y, y_out);
-            t = t_now;
-          }
-          ++next;
-        }
+        break;
       }
+      ++work_.rejected_steps;
+      dt_ = h;
+      if (h < 1e-14 * std::max(1.0, std::abs(t_)) || h >= h_tried)
+        fail("the step size fell below 1e-14 |t| (the error control cannot be met)", t_);
       if (work_.steps + work_.rejected_steps > max_steps_)
-        fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t);
+        fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
     }
+    if (work_.steps + work_.rejected_steps > max_steps_)
+      fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
+  }
+
+  // Without a given `step`: the starting step of Hairer, Nørsett & Wanner (1993, §II.4),
+  // h0 = 0.01 ‖y‖/‖y'‖ in the norm weighted by atol + rtol |y| (one evaluation), at most the
+  // time to t_max.
+  double first_trial(double t_max) {
+    Vector f(y_.size());
+    rhs_(y_, f, t_);
+    double d0 = 0, d1 = 0;
+    for (std::size_t i = 0; i < y_.size(); ++i) {
+      const double sc = atol_ + rtol_ * std::abs(y_[i]);
+      d0 += (y_[i] / sc) * (y_[i] / sc);
+      d1 += (f[i] / sc) * (f[i] / sc);
+    }
+    const double h0 = (d0 < 1e-10 || d1 < 1e-10) ? 1e-6 * (t_max - t_) : 0.01 * std::sqrt(d0 / d1);
+    return std::min(h0, t_max - t_);
   }
 
   // Checks an accepted state; projects R onto SO(3) when asked. Returns whether y changed.
@@ -202,6 +222,19 @@ class Rk final : public noether::Integrator {
   }
 
   std::unique_ptr<noether::ContinuousEquations> equations_;
+  std::function<void(const Vector&, Vector&, double)> rhs_ = [this](const Vector& x, Vector& dxdt,
+                                                                       double t) {
+    equations_->rhs(t, x.data(), dxdt.data());
+  };
+  odeint::runge_kutta4<Vector> rk4_;
+  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>())) dopri5_ =
+      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>());
+  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_fehlberg78<Vector>())) rkf78_ =
+      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_fehlberg78<Vector>());
+  std::optional<Dense> dense_;
+  Vector y_, y_prev_, y_out_;
+  double t_ = 0, t_prev_ = 0, t0_ = 0, dt_ = 0;
+  std::int64_t k_ = 0;
   std::string method_;
   double step_ = 0, rtol_ = 0, atol_ = 0;
   bool renormalize_ = false;
@@ -211,8 +244,9 @@ class Rk final : public noether::Integrator {
 const noether::ParamDoc params[] = {
     {"method", "string", "dopri5",
      "rk4 (classic, fixed step), dopri5 (Dormand–Prince 5(4)), rkf78 (Fehlberg 7(8))"},
-    {"step", "number", "output_every/100",
-     "rk4: the fixed step (required); adaptive methods: the first trial step"},
+    {"step", "number", "automatic",
+     "rk4: the fixed step (required); adaptive methods: the first trial step (default: "
+     "Hairer–Nørsett–Wanner's starting step, 0.01 ‖y‖/‖y'‖)"},
     {"rtol", "number", "1e-8", "relative tolerance (adaptive methods)"},
     {"atol", "number", "1e-10", "absolute tolerance (adaptive methods)"},
     {"renormalize", "bool", "false",

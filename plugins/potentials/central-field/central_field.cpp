@@ -40,7 +40,6 @@ class CentralField final : public noether::Potential {
       out.f.col(i) = (-mum / (r * r * r)) * d;
     }
   }
-  bool needs_attitudes() const override { return false; }
 
  private:
   double mu_ = 1;

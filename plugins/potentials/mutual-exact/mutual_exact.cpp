@@ -66,7 +66,6 @@ class MutualExactPotential final : public noether::Potential {
     }
   }
 
-  bool needs_attitudes() const override { return true; }
 
  private:
   std::vector<std::string> names_;

@@ -119,7 +119,6 @@ class MutualSeriesPotential final : public noether::Potential {
     }
   }
 
-  bool needs_attitudes() const override { return true; }
 
   std::vector<noether::PairModel> pair_models() const override {
     std::vector<noether::PairModel> out;

@@ -39,7 +39,6 @@ class PointMass final : public noether::Potential {
     }
   }
 
-  bool needs_attitudes() const override { return false; }
 
  private:
   [[noreturn]] void collision(Eigen::Index i, Eigen::Index j, double t) const {

@@ -145,7 +145,6 @@ class SphereCluster final : public noether::Potential {
     }
   }
 
-  bool needs_attitudes() const override { return true; }
 
  private:
   [[noreturn]] void collision(std::size_t i, std::size_t j, double t) const {

@@ -1,0 +1,63 @@
+#pragma once
+// The stepping loop: the one place that drives an Integrator from t0 to t_end. It calls the
+// Observer at t0, at every output time and at the end; reports the final time exactly; stops
+// at events (close approach, collision of the bodies' extents) for every integrator alike;
+// and on a failed step leaves `state` at the last valid state (docs/equations.md §16).
+#include <noether/forces.hpp>
+#include <noether/integrator.hpp>
+#include <noether/potential.hpp>
+#include <noether/state.hpp>
+#include <noether/system.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  // Called at t0, at every output time and at the end (or at the event that ended the run),
+  // with the potential evaluated at that state.
+  virtual void observe(const State& state, const Forces& forces) = 0;
+};
+
+struct Events {
+  // Stop when two body centres come closer than this (0: off).
+  double close_approach = 0.0;
+  // Stop when the bounding spheres of two bodies touch (Body::radius; pairs where both radii
+  // are 0 are not checked).
+  bool collisions = true;
+};
+
+struct Schedule {
+  double t_end = 0.0;         // integrate from state.t to t_end
+  double output_every = 0.0;  // observer interval; the observer also sees t0 and t_end
+  Events events;
+  // Called after every step with the time reached (progress reports); may be empty.
+  std::function<void(double)> on_step;
+};
+
+// What ended the run.
+struct StopInfo {
+  std::string reason;  // empty when t_end was reached, else the event, in words
+  std::string event;   // "", "close approach" or "collision"
+  double t = 0.0;
+  std::size_t body_a = 0, body_b = 0;  // the pair of an event
+};
+
+// Runs `integrator` from `state` (at state.t) to schedule.t_end. On return `state` is the
+// final state (at t_end or at the event). On IntegrationError it is the last valid state and
+// the error propagates.
+StopInfo integrate(Integrator& integrator, const Potential& potential, const System& system,
+                   State& state, const Schedule& schedule, Observer& observer);
+
+// For fixed-step methods: the number of steps of size h in `interval`. Throws SceneError
+// (naming `what`) when the interval is not a whole number of steps.
+std::int64_t whole_steps(double interval, double h, const char* what);
+
+// Output times t0, t0 + Δ, t0 + 2Δ, ..., and t_end.
+std::vector<double> output_times(double t0, double t_end, double output_every);
+
+}  // namespace noether

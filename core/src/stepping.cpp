@@ -1,0 +1,229 @@
+// The stepping loop (docs/equations.md §16): outputs, the final time, events and rollback for
+// every integrator.
+#include <noether/error.hpp>
+#include <noether/stepping.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace noether {
+
+Integrator::~Integrator() = default;
+bool Integrator::interpolate(double, State&) { return false; }
+double Integrator::fixed_step() const { return 0.0; }
+std::vector<StepSeries> Integrator::step_series() const { return {}; }
+
+std::int64_t whole_steps(double interval, double h, const char* what) {
+  const double n = std::round(interval / h);
+  if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
+    std::ostringstream msg;
+    msg << what << " = " << interval << " is not a whole number of steps of " << h << " ("
+        << interval / h << " steps); choose integrator.step = (" << what << ")/N";
+    throw SceneError(msg.str());
+  }
+  return static_cast<std::int64_t>(n);
+}
+
+std::vector<double> output_times(double t0, double t_end, double output_every) {
+  if (!(output_every > 0.0) || !(t_end > t0))
+    throw SceneError("output times need t_end > t0 and output_every > 0");
+  std::vector<double> times{t0};
+  for (std::int64_t k = 1;; ++k) {
+    const double t = t0 + static_cast<double>(k) * output_every;
+    if (t >= t_end - 1e-12 * std::abs(t_end)) break;
+    times.push_back(t);
+  }
+  times.push_back(t_end);
+  return times;
+}
+
+namespace {
+
+// One pair of bodies watched for an event: g = ‖x_a − x_b‖ − threshold, an event when g
+// crosses from positive to ≤ 0 over a step (16.1). A pair that starts at g ≤ 0 is armed only
+// once g > 0 again.
+struct Watch {
+  std::size_t a = 0, b = 0;
+  double threshold = 0.0;
+  const char* kind = "";
+  bool armed = false;
+};
+
+double gap(const State& s, const Watch& w) {
+  return (s.x.col(static_cast<Eigen::Index>(w.a)) - s.x.col(static_cast<Eigen::Index>(w.b))).norm() -
+         w.threshold;
+}
+
+// Positions at t ∈ [s0.t, s1.t] by cubic Hermite interpolation of x and v = γ/m (16.2), for
+// integrators without dense output; only positions are filled.
+void hermite_positions(const System& system, const State& s0, const State& s1, double t, State& out) {
+  const double dt = s1.t - s0.t, s = (t - s0.t) / dt;
+  const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s,
+               h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
+  out.x.resize(3, s0.x.cols());
+  for (Eigen::Index i = 0; i < s0.x.cols(); ++i) {
+    const double m = system.body(static_cast<std::size_t>(i)).mass;
+    out.x.col(i) = h00 * s0.x.col(i) + h10 * dt / m * s0.p.col(i) + h01 * s1.x.col(i) +
+                   h11 * dt / m * s1.p.col(i);
+  }
+  out.t = t;
+}
+
+std::vector<Watch> watches(const System& system, const Events& events) {
+  std::vector<Watch> out;
+  for (std::size_t a = 0; a < system.size(); ++a)
+    for (std::size_t b = a + 1; b < system.size(); ++b) {
+      if (events.close_approach > 0) out.push_back({a, b, events.close_approach, "close approach"});
+      const double contact = system.body(a).radius + system.body(b).radius;
+      if (events.collisions && contact > 0) out.push_back({a, b, contact, "collision"});
+    }
+  return out;
+}
+
+}  // namespace
+
+StopInfo integrate(Integrator& integrator, const Potential& potential, const System& system,
+                   State& state, const Schedule& schedule, Observer& observer) {
+  const double t0 = state.t, t_end = schedule.t_end;
+  if (!(t_end > t0) || !(schedule.output_every > 0.0))
+    throw SceneError("the run needs t_end > t0 and output_every > 0");
+  const double h = integrator.fixed_step();
+  std::int64_t n_steps = 0, stride = 0;
+  std::vector<double> times;
+  if (h > 0) {
+    n_steps = whole_steps(t_end - t0, h, "run.t_end − t0");
+    stride = whole_steps(schedule.output_every, h, "run.output_every");
+  } else {
+    times = output_times(t0, t_end, schedule.output_every);
+  }
+
+  Forces forces;
+  forces.resize(system);
+  integrator.start(state);
+  integrator.current(state, forces);
+  state.t = t0;
+  observer.observe(state, forces);
+
+  std::vector<Watch> watch = watches(system, schedule.events);
+  State previous, reached, probe;
+  Forces reached_forces;
+  reached_forces.resize(system);
+  if (!watch.empty()) {
+    previous = state;
+    for (auto& w : watch) w.armed = gap(state, w) > 0;
+  }
+  // The state at τ inside the last step: the method's dense output, else Hermite positions.
+  auto positions_at = [&](double tau) -> const State& {
+    if (!integrator.interpolate(tau, probe)) hermite_positions(system, previous, reached, tau, probe);
+    return probe;
+  };
+
+  StopInfo stop;
+  std::size_t next_output = 1;
+  for (std::int64_t k = 1;; ++k) {
+    const double t_prev = integrator.time();
+    try {
+      integrator.step(t_end);
+    } catch (const Error&) {
+      integrator.current(state, forces);  // the last valid state (the contract of step())
+      throw;
+    }
+    const double t = h > 0 ? t0 + static_cast<double>(k) * h : integrator.time();
+    if (schedule.on_step) schedule.on_step(t);
+
+    // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
+    // variant of regula falsi on the interpolated positions (16.3).
+    if (!watch.empty()) {
+      integrator.current(reached, reached_forces);
+      reached.t = t;
+      double t_event = std::numeric_limits<double>::infinity();
+      const Watch* hit = nullptr;
+      for (auto& w : watch) {
+        const double g1 = gap(reached, w);
+        if (!w.armed) {
+          w.armed = g1 > 0;
+          continue;
+        }
+        if (g1 > 0) continue;
+        double a = t_prev, b = t, ga = gap(previous, w), gb = g1;
+        int side = 0;
+        for (int it = 0; it < 200 && b - a > 1e-14 * std::max(1.0, std::abs(b)); ++it) {
+          const double c = (a * gb - b * ga) / (gb - ga);
+          const double gc = gap(positions_at(c), w);
+          if (gc > 0) {
+            a = c, ga = gc;
+            if (side == -1) gb *= 0.5;
+            side = -1;
+          } else {
+            b = c, gb = gc;
+            if (side == 1) ga *= 0.5;
+            side = 1;
+          }
+        }
+        if (b < t_event) t_event = b, hit = &w;
+      }
+      if (hit) {
+        // Outputs before the event, then the state at the event itself.
+        if (h <= 0)
+          for (; next_output < times.size() && times[next_output] < t_event; ++next_output) {
+            integrator.interpolate(times[next_output], state);
+            potential.evaluate(state, forces);
+            observer.observe(state, forces);
+          }
+        if (h > 0 || !integrator.interpolate(t_event, state)) {
+          // No dense output: one shortened step of the method from the step's start.
+          integrator.start(previous);
+          integrator.step(t_event);
+          integrator.current(state, forces);
+        } else {
+          potential.evaluate(state, forces);
+        }
+        state.t = t_event;
+        observer.observe(state, forces);
+        std::ostringstream why;
+        why << hit->kind << ": bodies '" << system.body(hit->a).name << "' and '"
+            << system.body(hit->b).name << "' came within " << hit->threshold
+            << (hit->kind == std::string("collision") ? " (the sum of their radii)" : "")
+            << " at t = " << t_event;
+        stop.reason = why.str();
+        stop.event = hit->kind;
+        stop.t = t_event;
+        stop.body_a = hit->a;
+        stop.body_b = hit->b;
+        return stop;
+      }
+      std::swap(previous, reached);
+    }
+
+    if (h > 0) {
+      if (k % stride == 0 || k == n_steps) {
+        integrator.current(state, forces);
+        state.t = t;
+        observer.observe(state, forces);
+      }
+      if (k == n_steps) break;
+    } else {
+      const double tol = 1e-12 * std::max(1.0, std::abs(t));
+      for (; next_output < times.size() && times[next_output] <= t + tol; ++next_output) {
+        const double tau = times[next_output];
+        if (std::abs(tau - t) <= tol) {
+          integrator.current(state, forces);
+        } else {
+          if (!integrator.interpolate(tau, state))
+            throw Error("the integrator chooses its own steps but has no dense output to reach t = " +
+                        std::to_string(tau));
+          potential.evaluate(state, forces);
+        }
+        state.t = tau;
+        observer.observe(state, forces);
+      }
+      if (next_output == times.size()) break;
+    }
+  }
+  stop.t = state.t;
+  return stop;
+}
+
+}  // namespace noether
