@@ -3,8 +3,6 @@
 // the cube says they must.
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 

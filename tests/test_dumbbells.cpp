@@ -1,8 +1,6 @@
 // The reference scene of Lee, Leok & McClamroch 2007 §5 (docs/equations.md §6) run end to end through the plugins.
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 

@@ -2,8 +2,6 @@
 // three-body problem, against the analytic Kepler solution and plain Störmer–Verlet.
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 

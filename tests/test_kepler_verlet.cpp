@@ -2,8 +2,6 @@
 // bounded and its phase error falls as h².
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/error.hpp>
 
 #include <gtest/gtest.h>

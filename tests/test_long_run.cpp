@@ -3,8 +3,6 @@
 // LGVI stays on SO(3) while dopri5 leaves it ever further.
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/diagnostics.hpp>
 
 #include <gtest/gtest.h>

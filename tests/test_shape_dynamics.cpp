@@ -3,8 +3,6 @@
 // frames, its second order against rk/cvode, and the Didymos example against GUBAS-RS.
 #include "test_support.hpp"
 
-#include <noether/stepping.hpp>
-
 #include <noether/diagnostics.hpp>
 #include <noether/simulation.hpp>
 

@@ -183,6 +183,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
         state.t = t_event;
         observer.observe(state, forces);
         std::ostringstream why;
+        why.precision(10);
         why << hit->kind << ": bodies '" << system.body(hit->a).name << "' and '"
             << system.body(hit->b).name << "' came within " << hit->threshold
             << (hit->kind == std::string("collision") ? " (the sum of their radii)" : "")
