@@ -5,6 +5,7 @@
 #include <noether/error.hpp>
 #include <noether/least_action.hpp>
 #include <noether/periodic_orbit.hpp>
+#include <noether/simulation.hpp>
 
 #include <gtest/gtest.h>
 
@@ -18,22 +19,26 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Chenciner–Montgomery figure-eight (docs/equations.md §9), G = m = 1.
-VectorXd figure_eight(PlanarSystem& sys) {
-  sys.G = 1;
-  sys.masses = {1, 1, 1};
+// Three unit point masses, G = 1, under the point-mass plugin.
+const OrbitModel& three() {
+  static PluginRegistry registry = test::bundled_plugins();
+  static const OrbitModel model = OrbitModel::point_masses({1, 1, 1}, 1.0, registry);
+  return model;
+}
+
+// Chenciner–Montgomery figure-eight (docs/equations.md §9), G = m = 1, in the planar layout.
+VectorXd figure_eight_planar() {
   VectorXd xi(12);
   const double vx = -0.93240737, vy = -0.86473146;
   xi << 0.97000436, -0.24308753, -0.97000436, 0.24308753, 0, 0,  //
       -vx / 2, -vy / 2, -vx / 2, -vy / 2, vx, vy;
   return xi;
 }
+VectorXd figure_eight() { return lift_planar(figure_eight_planar()); }
 constexpr double kEightPeriod = 6.32591398;
 
 // Equal-mass Lagrange triangle, circumradius 1, G = m = 1: ω² = 1/√3.
-VectorXd lagrange(PlanarSystem& sys, double& period) {
-  sys.G = 1;
-  sys.masses = {1, 1, 1};
+VectorXd lagrange(double& period) {
   const double w = std::pow(3.0, -0.25);
   period = 2 * kPi / w;
   VectorXd xi(12);
@@ -42,7 +47,7 @@ VectorXd lagrange(PlanarSystem& sys, double& period) {
     xi.segment<2>(2 * j) << std::cos(th), std::sin(th);
     xi.segment<2>(6 + 2 * j) << -w * std::sin(th), w * std::cos(th);
   }
-  return xi;
+  return lift_planar(xi);
 }
 
 FlowOptions tolerance(double rtol) {
@@ -56,14 +61,18 @@ FlowOptions tolerance(double rtol) {
 // at the origin, energy scaled to theirs (x → ρx, v → v/√ρ, t → ρ^{3/2} t), time shifted to
 // the moment one body crosses the origin, then the rotation, labelling, reflection and time
 // direction that match their state best. Returns the distance to it.
-double distance_to_figure_eight(const PlanarSystem& sys, VectorXd xi, double T, double* period_at_their_energy) {
-  PlanarSystem cm_sys;
-  const VectorXd cm = figure_eight(cm_sys);
+double distance_to_figure_eight(const VectorXd& xi3, double T, double* period_at_their_energy) {
+  const OrbitModel& sys = three();
+  // In the planar layout: the flow, the energy and the accelerations of the 3-D model.
+  auto flow = [&](const VectorXd& v, double t) { return planar_part(integrate_flow(sys, lift_planar(v), t, false).end); };
+  auto energy = [&](const VectorXd& v) { return sys.energy(lift_planar(v)); };
+  VectorXd xi = planar_part(xi3);
+  const VectorXd cm = figure_eight_planar();
   for (int d = 0; d < 2; ++d) {  // centre of mass to rest at the origin (equal masses)
     const double X = (xi[d] + xi[2 + d] + xi[4 + d]) / 3, V = (xi[6 + d] + xi[8 + d] + xi[10 + d]) / 3;
     for (int j = 0; j < 3; ++j) xi[2 * j + d] -= X, xi[6 + 2 * j + d] -= V;
   }
-  const double rho = sys.energy(xi) / cm_sys.energy(cm);
+  const double rho = energy(xi) / energy(cm);
   xi.head(6) *= rho;
   xi.tail(6) /= std::sqrt(rho);
   T *= std::pow(rho, 1.5);
@@ -76,16 +85,16 @@ double distance_to_figure_eight(const PlanarSystem& sys, VectorXd xi, double T, 
   for (int i = 0; i < grid; ++i) {
     for (int j = 0; j < 3; ++j)
       if (s.segment<2>(2 * j).norm() < best) best = s.segment<2>(2 * j).norm(), tau = T * i / grid, body = j;
-    s = integrate_flow(sys, s, T / grid, false).end;
+    s = flow(s, T / grid);
   }
-  VectorXd at = integrate_flow(sys, xi, tau, false).end;
+  VectorXd at = flow(xi, tau);
   for (int it = 0; it < 20; ++it) {
     const Eigen::Vector2d x = at.segment<2>(2 * body), v = at.segment<2>(6 + 2 * body);
-    const VectorXd a = sys.rhs(at).tail(6);
+    const VectorXd a = planar_part(sys.rhs(lift_planar(at))).tail(6);
     const double g = x.dot(v), dg = v.squaredNorm() + x.dot(a.segment<2>(2 * body));
     const double dt = -g / dg;
     tau += dt;
-    at = integrate_flow(sys, xi, tau, false).end;
+    at = flow(xi, tau);
     if (std::abs(dt) < 1e-15 * T) break;
   }
   double closest = 1e300;
@@ -150,12 +159,10 @@ TEST(LeastAction, FinderRecoversTheFigureEight) {
     if (std::abs(o.action - 24.3719272) > 1e-5) continue;  // the Lagrange circle has 19.604
     ++found;
     EXPECT_LT(o.residual, 1e-2);  // 15 modes resolve the figure-eight to 3e-3
-    PlanarSystem sys;
-    sys.masses = p.masses;
-    const Refinement r = refine_periodic_orbit(sys, o.initial_state(p), 2 * kPi);
+    const Refinement r = refine_periodic_orbit(three(), lift_planar(o.initial_state(p)), 2 * kPi);
     EXPECT_LT(r.closure, 1e-11);
     double T = 0;
-    const double d = distance_to_figure_eight(sys, r.xi0, r.period, &T);
+    const double d = distance_to_figure_eight(r.xi0, r.period, &T);
     EXPECT_LT(d, 1e-6);
     EXPECT_NEAR(T, kEightPeriod, 1e-6);  // the period at their energy
   }
@@ -176,9 +183,9 @@ TEST(LeastAction, FinderReturnsVerifiedChoreographies) {
     for (unsigned seed = 1; seed <= 20 && !verified; ++seed) {
       const FourierOrbit o = minimize_action(p, random_start(p, seed));
       if (o.residual > 1e-4) continue;
-      PlanarSystem sys;
-      sys.masses = p.masses;
-      const VectorXd xi = o.initial_state(p);
+      PluginRegistry registry = test::bundled_plugins();
+      const OrbitModel sys = OrbitModel::point_masses(p.masses, 1.0, registry);
+      const VectorXd xi = lift_planar(o.initial_state(p));
       const double closure = (integrate_flow(sys, xi, 2 * kPi, false).end - xi).norm();
       verified = closure < 1e-5;  // before any refinement: the Fourier curve itself
     }
@@ -212,8 +219,8 @@ TEST(LeastAction, BadProblemsAreRefused) {
 // The figure-eight is linearly stable: every multiplier left after projecting out the first
 // integrals is on the unit circle (measured within 2e-12).
 TEST(PeriodicOrbit, FigureEightIsLinearlyStable) {
-  PlanarSystem sys;
-  const VectorXd xi = figure_eight(sys);
+  const OrbitModel& sys = three();
+  const VectorXd xi = figure_eight();
   const Refinement r = refine_periodic_orbit(sys, xi, kEightPeriod);
   EXPECT_LT(r.closure, 1e-12);
   const FlowResult f = integrate_flow(sys, r.xi0, r.period, true);
@@ -226,15 +233,16 @@ TEST(PeriodicOrbit, FigureEightIsLinearlyStable) {
       ++on_circle;
     }
   EXPECT_EQ(on_circle, 5);  // 12 − 7 projected directions
+  EXPECT_EQ(s.out_of_plane.size(), 6u);
 }
 
 // The equal-mass Lagrange triangle is unstable; its largest multiplier (85.01969522) is
 // converged to 4 digits — in fact 10 — as the tolerance is refined, and the multipliers move by
 // less than 1e-6 between tolerances a factor 100 apart.
 TEST(PeriodicOrbit, LagrangeTriangleIsUnstableAndConverged) {
-  PlanarSystem sys;
+  const OrbitModel& sys = three();
   double T = 0;
-  const VectorXd xi = lagrange(sys, T);
+  const VectorXd xi = lagrange(T);
   std::vector<double> largest;
   std::vector<Stability> all;
   for (double rtol : {1e-9, 1e-11, 1e-13}) {
@@ -252,10 +260,61 @@ TEST(PeriodicOrbit, LagrangeTriangleIsUnstableAndConverged) {
 // The seed's first-order product Π (I + h A) at its resolution is far from the converged
 // monodromy: for the figure-eight it reports multipliers of modulus ≈ 26, not 1.
 TEST(PeriodicOrbit, FirstOrderProductIsNotConverged) {
-  PlanarSystem sys;
-  const VectorXd xi = figure_eight(sys);
+  const OrbitModel& sys = three();
+  const VectorXd xi = figure_eight();
   const Stability first = stability(sys, xi, first_order_monodromy(sys, xi, kEightPeriod, 100), 1e-6);
   const Stability converged = stability(sys, xi, integrate_flow(sys, xi, kEightPeriod, true).monodromy, 1e-6);
   EXPECT_GT(first.max_unprojected, 10.0);
   EXPECT_LT(converged.max_unprojected, 1.0 + 1e-5);
+}
+
+// `noether orbit verify` and `noether run` see one model: the scene's potential and the rk
+// plugin through the stepping loop. Energy and closure after one period agree, on a
+// central-field scene (where verify once ignored the field) and on the figure-eight.
+TEST(PeriodicOrbit, VerifyAndRunAgreeOnTheScenesModel) {
+  const std::string rkf78 = "integrator={plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-15}";
+  for (const auto& [file, period] : {std::pair<std::string, double>{"examples/orbits/kepler-central.yaml", 2 * kPi},
+                                     {"examples/figure-eight.yaml", kEightPeriod}}) {
+    SCOPED_TRACE(file);
+    char t_end[64];
+    std::snprintf(t_end, sizeof t_end, "%.17g", period);
+    const Scene scene = load_scene(test::source_path(file), {rkf78, std::string("run.t_end=") + t_end,
+                                                             std::string("run.output_every=") + t_end});
+    auto registry = test::bundled_plugins();
+    const OrbitModel model = OrbitModel::from_scene(scene, registry);
+    const VectorXd xi = model.phase_point(scene.initial);
+    const double T = scene.run.t_end;
+    const FlowResult flow = integrate_flow(model, xi, T, false);
+    const RunSummary run = run_scene(scene, registry, {});
+    EXPECT_NEAR(model.energy(xi), run.initial.energy, 1e-14 * std::abs(run.initial.energy));
+    const double closure_run = (model.phase_point(run.final_state) - xi).norm();
+    const double closure_verify = (flow.end - xi).norm();
+    EXPECT_NEAR(closure_verify, closure_run, 1e-14);
+    EXPECT_LT(closure_verify, 1e-6);  // both orbits close (the figure-eight to its 8 digits)
+  }
+  // The central-field energy is the Kepler value −μ m/(2a) = −0.5, not the mutual energy of
+  // the one body (0 + ½ m v² = 1.5) that a planar point-mass model would report.
+  auto registry = test::bundled_plugins();
+  const Scene kepler = load_scene(test::source_path("examples/orbits/kepler-central.yaml"));
+  const OrbitModel model = OrbitModel::from_scene(kepler, registry);
+  EXPECT_NEAR(model.energy(model.phase_point(kepler.initial)), -0.5, 1e-15);
+}
+
+TEST(PeriodicOrbit, WhatTheCommandsCannotHandleIsRefusedByName) {
+  auto registry = test::bundled_plugins();
+  try {
+    OrbitModel::from_scene(test::dumbbell_scene(), registry);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is rigid"), std::string::npos) << e.what();
+  }
+  const Scene kepler = load_scene(test::source_path("examples/orbits/kepler-central.yaml"));
+  const OrbitModel model = OrbitModel::from_scene(kepler, registry);
+  const VectorXd xi = model.phase_point(kepler.initial);
+  try {
+    stability(model, xi, integrate_flow(model, xi, 2 * kPi, true).monodromy, 1e-6);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("potential 'central-field'"), std::string::npos) << e.what();
+  }
 }

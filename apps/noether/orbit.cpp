@@ -5,6 +5,8 @@
 #include <noether/periodic_orbit.hpp>
 #include <noether/scene.hpp>
 
+#include <complex>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,11 +19,14 @@ namespace noether::app {
 
 namespace {
 
-noether::PlanarSystem orbit_system(const OrbitOptions& o, Eigen::VectorXd& xi, double& T) {
+// The scene's bodies and potential; ξ from its initial state; T from --period or run.t_end.
+noether::OrbitModel orbit_model(const OrbitOptions& o, Eigen::VectorXd& xi, double& T) {
   const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
-  auto sys = noether::PlanarSystem::from(scene.system, scene.initial, xi);
+  noether::PluginRegistry registry;
+  auto model = noether::OrbitModel::from_scene(scene, registry);
+  xi = model.phase_point(scene.initial);
   T = o.period > 0 ? o.period : scene.run.t_end;
-  return sys;
+  return model;
 }
 
 noether::FlowOptions flow_options(const OrbitOptions& o) {
@@ -31,17 +36,23 @@ noether::FlowOptions flow_options(const OrbitOptions& o) {
   return f;
 }
 
+void print_multipliers(const std::vector<std::complex<double>>& list) {
+  for (auto l : list)
+    if (std::abs(l) > 1e-9) std::printf("  %+.10f %+.10fi   |lambda| = %.12f\n", l.real(), l.imag(), std::abs(l));
+}
+
 }  // namespace
 
 int orbit_verify(const OrbitOptions& o) {
   Eigen::VectorXd xi;
   double T;
-  const auto sys = orbit_system(o, xi, T);
-  const auto f = noether::integrate_flow(sys, xi, T, false, flow_options(o));
+  const auto model = orbit_model(o, xi, T);
+  const auto f = noether::integrate_flow(model, xi, T, false, flow_options(o));
   const double closure = (f.end - xi).norm();
-  std::printf("period %.15g, rkf78 rtol %.1e, %zu steps\nclosure ||xi(T) - xi(0)|| = %.3e (relative %.3e)\n", T,
-              o.rtol, f.steps, closure, closure / xi.norm());
-  std::printf("energy %.15g\n", sys.energy(xi));
+  std::printf("period %.15g, integrator rk rkf78 rtol %.1e on the scene's potential, %zu steps\n"
+              "closure ||xi(T) - xi(0)|| = %.3e (relative %.3e)\n",
+              T, o.rtol, f.steps, closure, closure / xi.norm());
+  std::printf("energy %.15g\n", model.energy(xi));
   if (closure <= o.tolerance * std::max(1.0, xi.norm())) return 0;
   std::fprintf(stderr, "noether: the orbit does not close: relative closure %.3e > tolerance %.1e (wrong period, "
                "or not a periodic orbit; try noether orbit refine)\n", closure / std::max(1.0, xi.norm()), o.tolerance);
@@ -51,18 +62,19 @@ int orbit_verify(const OrbitOptions& o) {
 int orbit_stability(const OrbitOptions& o) {
   Eigen::VectorXd xi;
   double T;
-  const auto sys = orbit_system(o, xi, T);
-  const auto f = noether::integrate_flow(sys, xi, T, true, flow_options(o));
-  const auto s = noether::stability(sys, xi, f.monodromy, o.tolerance);
+  const auto model = orbit_model(o, xi, T);
+  const auto f = noether::integrate_flow(model, xi, T, true, flow_options(o));
+  const auto s = noether::stability(model, xi, f.monodromy, o.tolerance);
   std::printf("period %.15g, closure %.3e, variational equations by rkf78 rtol %.1e (%zu steps)\n", T,
               (f.end - xi).norm(), o.rtol, f.steps);
-  std::printf("multipliers of P Phi(T) P (first integrals projected out), by modulus:\n");
-  for (auto l : s.multipliers)
-    if (std::abs(l) > 1e-9) std::printf("  %+.10f %+.10fi   |lambda| = %.12f\n", l.real(), l.imag(), std::abs(l));
+  std::printf("in-plane multipliers of P Phi(T) P (first integrals projected out), by modulus:\n");
+  print_multipliers(s.multipliers);
   std::printf("max |lambda(Phi)| = %.10f, max |lambda(P Phi P)| = %.10f\n", s.max_unprojected, s.max_projected);
+  std::printf("out-of-plane multipliers (z, v_z block of Phi; not judged):\n");
+  print_multipliers(s.out_of_plane);
   if (o.first_order > 0) {
-    const auto M = noether::first_order_monodromy(sys, xi, T, static_cast<std::size_t>(o.first_order), flow_options(o));
-    const auto s1 = noether::stability(sys, xi, M, o.tolerance);
+    const auto M = noether::first_order_monodromy(model, xi, T, static_cast<std::size_t>(o.first_order), flow_options(o));
+    const auto s1 = noether::stability(model, xi, M, o.tolerance);
     std::printf("the seed's first-order product with %d steps: max |lambda| = %.4f, projected %.4f\n", o.first_order,
                 s1.max_unprojected, s1.max_projected);
   }
@@ -73,12 +85,12 @@ int orbit_stability(const OrbitOptions& o) {
 int orbit_refine(const OrbitOptions& o) {
   Eigen::VectorXd xi;
   double T;
-  const auto sys = orbit_system(o, xi, T);
-  const double before = (noether::integrate_flow(sys, xi, T, false, flow_options(o)).end - xi).norm();
-  const auto r = noether::refine_periodic_orbit(sys, xi, T, 1e-12, 12, flow_options(o));
+  const auto model = orbit_model(o, xi, T);
+  const double before = (noether::integrate_flow(model, xi, T, false, flow_options(o)).end - xi).norm();
+  const auto r = noether::refine_periodic_orbit(model, xi, T, 1e-12, 12, flow_options(o));
   std::printf("closure %.3e -> %.3e in %d Newton steps; period %.15g -> %.15g\n", before, r.closure, r.iterations, T, r.period);
   const std::string out = o.output.empty() ? o.scene : o.output;
-  std::ofstream(out) << noether::orbit_scene(sys, r.xi0, r.period, "refined by noether orbit refine from " + o.scene);
+  std::ofstream(out) << noether::orbit_scene(model, r.xi0, r.period, "refined by noether orbit refine from " + o.scene);
   std::printf("written: %s\n", out.c_str());
   return r.closure <= 1e-10 ? 0 : 1;
 }
@@ -95,6 +107,8 @@ int orbit_find(OrbitOptions o) {
   }();
   p.validate();
   std::filesystem::create_directories(o.out_dir);
+  noether::PluginRegistry registry;
+  const auto model = noether::OrbitModel::point_masses(p.masses, 1.0, registry);
   std::vector<double> found_actions;
   int k = 0, failures = 0;
   for (int s = 0; s < o.starts; ++s) {
@@ -112,13 +126,11 @@ int orbit_find(OrbitOptions o) {
       std::printf("  (found before)\n");
       continue;
     }
-    noether::PlanarSystem sys;
-    sys.masses = p.masses;
-    Eigen::VectorXd xi = orbit.initial_state(p);
+    Eigen::VectorXd xi = noether::lift_planar(orbit.initial_state(p));
     double T = 2 * std::numbers::pi;
-    double closure = (noether::integrate_flow(sys, xi, T, false).end - xi).norm();
+    double closure = (noether::integrate_flow(model, xi, T, false).end - xi).norm();
     if (o.refine) {
-      const auto r = noether::refine_periodic_orbit(sys, xi, T);
+      const auto r = noether::refine_periodic_orbit(model, xi, T);
       if (r.closure < closure) xi = r.xi0, T = r.period, closure = r.closure;
     }
     if (closure > 1e-8 * std::max(1.0, xi.norm())) {  // verified by integration, or not an orbit
@@ -133,7 +145,7 @@ int orbit_find(OrbitOptions o) {
     char desc[256];
     std::snprintf(desc, sizeof desc, "least-action orbit %d: action %.10f, EOM residual %.2e, closure %.2e", k,
                   orbit.action, orbit.residual, closure);
-    std::ofstream(stem + ".yaml") << noether::orbit_scene(sys, xi, T, desc);
+    std::ofstream(stem + ".yaml") << noether::orbit_scene(model, xi, T, desc);
     std::ofstream curve(stem + ".csv");
     curve << "t";
     for (std::size_t j = 0; j < p.n(); ++j) curve << ",x" << j + 1 << ",y" << j + 1;

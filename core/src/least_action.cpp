@@ -249,21 +249,4 @@ VectorXd FourierOrbit::initial_state(const LeastActionProblem& p) const {
   return xi;
 }
 
-std::string orbit_scene(const PlanarSystem& sys, const VectorXd& xi0, double period, const std::string& description) {
-  std::ostringstream out;
-  out.precision(17);
-  const auto n = static_cast<Eigen::Index>(sys.n());
-  out << "# " << description << "\n";
-  out << "description: periodic orbit, period " << period << "\n";
-  out << "G: " << sys.G << "\nbodies:\n";
-  for (Eigen::Index j = 0; j < n; ++j)
-    out << "  - {name: b" << j + 1 << ", mass: " << sys.masses[static_cast<std::size_t>(j)] << ", position: ["
-        << xi0[2 * j] << ", " << xi0[2 * j + 1] << ", 0], velocity: [" << xi0[2 * n + 2 * j] << ", "
-        << xi0[2 * n + 2 * j + 1] << ", 0]}\n";
-  out << "potential: {plugin: point-mass}\n";
-  out << "integrator: {plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-15}\n";
-  out << "run: {t_end: " << period << ", output_every: " << period / 200 << "}\n";
-  return out.str();
-}
-
 }  // namespace noether

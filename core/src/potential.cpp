@@ -24,6 +24,16 @@ void SumPotential::evaluate(const State& state, Forces& forces) const {
 
 Potential::~Potential() = default;
 std::vector<PairModel> Potential::pair_models() const { return {}; }
+bool Potential::position_hessian(const State&, Eigen::MatrixXd&) const { return false; }
+
+bool SumPotential::position_hessian(const State& state, Eigen::MatrixXd& hessian) const {
+  Eigen::MatrixXd term;
+  for (std::size_t m = 0; m < terms_.size(); ++m) {
+    if (!terms_[m]->position_hessian(state, m == 0 ? hessian : term)) return false;
+    if (m > 0) hessian += term;
+  }
+  return true;
+}
 
 std::vector<PairModel> SumPotential::pair_models() const {
   std::vector<PairModel> all;

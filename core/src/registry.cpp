@@ -198,6 +198,13 @@ class FiniteChecked final : public Potential {
     throw IntegrationError(msg.str(), state.t);
   }
   std::vector<PairModel> pair_models() const override { return inner_->pair_models(); }
+  bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override {
+    if (!inner_->position_hessian(state, hessian)) return false;
+    if (!hessian.allFinite())
+      throw IntegrationError("potential plugin '" + plugin_ + "' returned a non-finite Hessian at t = " +
+                             std::to_string(state.t), state.t);
+    return true;
+  }
 
  private:
   std::shared_ptr<const Potential> inner_;

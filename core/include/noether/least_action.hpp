@@ -51,8 +51,4 @@ Eigen::VectorXd random_start(const LeastActionProblem& p, unsigned seed);
 // Positions of body j at time t on the Fourier curve (for pictures and checks).
 Eigen::Vector2d fourier_position(const LeastActionProblem& p, const Eigen::VectorXd& c, std::size_t j, double t);
 
-// A scene `noether run` accepts: point masses at ξ0, G = 1, one period with rkf78.
-std::string orbit_scene(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double period,
-                        const std::string& description);
-
 }  // namespace noether

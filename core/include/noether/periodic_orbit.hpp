@@ -1,31 +1,57 @@
 #pragma once
-// Periodic orbits of planar point masses (G = 1 or the scene's G; docs/equations.md §8–9, Vanderbei 2002):
-// closure of one period, the monodromy matrix of the variational equations integrated with a
-// high-order method, its multipliers with the directions of the first integrals projected
-// out, and Newton (shooting) refinement of an orbit's initial state and period.
-#include <noether/system.hpp>
+// Periodic orbits on a scene's own model (docs/equations.md §8–9, Vanderbei 2002): the flow of
+// point masses in 3-D under the scene's potential, integrated by an integrator plugin through
+// the stepping loop; closure of one period; the monodromy matrix of the variational equations;
+// its multipliers with the directions of the first integrals projected out; and Newton
+// (shooting) refinement of an orbit's initial state and period.
+#include <noether/potential.hpp>
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
 #include <noether/state.hpp>
+#include <noether/system.hpp>
 
 #include <Eigen/Dense>
 
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace noether {
 
-// Planar phase-space point ξ = (x_1, y_1, …, x_n, y_n, u_1, v_1, …, u_n, v_n) (positions, velocities).
-struct PlanarSystem {
-  double G = 1.0;
-  std::vector<double> masses;
-  std::size_t n() const { return masses.size(); }
-  // From a scene: point masses with z = 0 and v_z = 0 only (clear SceneError otherwise).
-  static PlanarSystem from(const System& system, const State& state, Eigen::VectorXd& xi);
-  // Accelerations and the Jacobian A(ξ) = [[0, I], [K, 0]] of the flow ξ̇ = F(ξ).
+// Phase point ξ = (x_1, …, x_n, v_1, …, v_n) ∈ R^{6n} of n point masses (positions, velocities).
+struct OrbitModel {
+  System system;
+  std::shared_ptr<const Potential> potential;
+  std::vector<PluginConfig> potentials;        // the scene's `potential:` entries
+  std::shared_ptr<PluginRegistry> registry;    // for the flow's integrator plugin
+
+  // The scene's bodies and potential, made by name. Refuses rigid bodies by name (orbits of
+  // rigid bodies are not supported yet).
+  static OrbitModel from_scene(const Scene& scene, PluginRegistry& registry);
+  // n point masses under mutual gravity (the point-mass plugin), G as given.
+  static OrbitModel point_masses(const std::vector<double>& masses, double G, PluginRegistry& registry);
+
+  std::size_t n() const { return system.size(); }
+  Eigen::VectorXd phase_point(const State& state) const;
+  State state(const Eigen::VectorXd& xi, double t = 0.0) const;
+  // ξ̇ = F(ξ) = (v, f/m): one potential evaluation.
   Eigen::VectorXd rhs(const Eigen::VectorXd& xi) const;
+  // A(ξ) = ∂F/∂ξ = [[0, I], [K, 0]], K = ∂(f/m)/∂x = −M⁻¹ ∂²U/∂x∂x (9.2): from the
+  // potential's position_hessian() when it has one, else by central differences of the forces
+  // (6n evaluations; the variational flow is then much slower).
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi) const;
+  // E = Σ ½ m_j ‖v_j‖² + U(x).
   double energy(const Eigen::VectorXd& xi) const;
+  // z = 0 and v_z = 0 for every body (to 1e-12 of the orbit's scale), and the potential keeps
+  // them there (f_z = 0).
+  bool planar(const Eigen::VectorXd& xi) const;
 };
+
+// Between the planar layout (x_1, y_1, …, x_n, y_n, u_1, v_1, …) of the least-action finder
+// and ξ.
+Eigen::VectorXd lift_planar(const Eigen::VectorXd& planar);
+Eigen::VectorXd planar_part(const Eigen::VectorXd& xi);
 
 struct FlowOptions {
   double rtol = 1e-13;
@@ -33,40 +59,45 @@ struct FlowOptions {
 };
 
 struct FlowResult {
-  Eigen::VectorXd end;          // ξ(T)
-  Eigen::MatrixXd monodromy;    // Φ(T) = ∂ξ(T)/∂ξ(0) (empty if not asked for)
+  Eigen::VectorXd end;        // ξ(T)
+  Eigen::MatrixXd monodromy;  // Φ(T) = ∂ξ(T)/∂ξ(0) (empty if not asked for)
   std::size_t steps = 0;
 };
 
-// Integrates ξ (and Φ with Φ(0) = I when `variational`) over [0, T] with Fehlberg 7(8).
-FlowResult integrate_flow(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double T,
-                          bool variational, const FlowOptions& options = {});
+// ξ over [0, T]: without `variational`, by the rk plugin (Fehlberg 7(8) at rtol, atol) through
+// the stepping loop; with it, ξ and Φ (Φ(0) = I) together by Fehlberg 7(8), Φ̇ = A(ξ) Φ (9.1).
+FlowResult integrate_flow(const OrbitModel& model, const Eigen::VectorXd& xi0, double T, bool variational,
+                          const FlowOptions& options = {});
 
-// The directions of the first integrals at ξ (docs/equations.md §9): translations ×2, moving frame ×2,
-// rotation, and dilation (x − 3v/2, −v/2 − 3a/2) per body; columns of a 4n × 6 matrix.
-Eigen::MatrixXd invariant_directions(const PlanarSystem& sys, const Eigen::VectorXd& xi);
+// The directions of the first integrals of a planar orbit of mutual point-mass gravity at ξ
+// (docs/equations.md §9), in the planar layout: translations ×2, moving frame ×2, rotation,
+// dilation and the flow; columns of a 4n × 7 matrix.
+Eigen::MatrixXd invariant_directions(const OrbitModel& model, const Eigen::VectorXd& xi);
 
 struct Stability {
-  std::vector<std::complex<double>> multipliers;            // eigenvalues of Φ(T) Π, by modulus
-  std::vector<std::complex<double>> unprojected;            // eigenvalues of Φ(T)
-  std::vector<std::complex<double>> right_projected;        // eigenvalues of Φ(T) Π (the seed's)
-  double max_projected = 0.0, max_unprojected = 0.0;        // max |λ(ΛΠ)|, max |λ(Λ)|
-  std::string verdict;  // "linearly stable", "unstable", or "undecided"
+  std::vector<std::complex<double>> multipliers;      // in-plane: eigenvalues of Π Φ Π, by modulus
+  std::vector<std::complex<double>> unprojected;      // in-plane: eigenvalues of Φ
+  std::vector<std::complex<double>> right_projected;  // in-plane: eigenvalues of Φ Π (the seed's)
+  std::vector<std::complex<double>> out_of_plane;     // eigenvalues of the (z, v_z) block of Φ
+  double max_projected = 0.0, max_unprojected = 0.0;  // max |λ(ΠΦΠ)|, max |λ(Φ)|
+  std::string verdict;  // "linearly stable", "unstable", or "undecided" (in-plane)
 };
 
-// Multipliers of Φ Π, Π = I − P (PᵀP)⁻¹ Pᵀ. `tolerance` decides: all |λ| ≤ 1 + tol → stable;
-// some |λ| > 1 + 100 tol → unstable; else undecided.
-Stability stability(const PlanarSystem& sys, const Eigen::VectorXd& xi0, const Eigen::MatrixXd& monodromy,
+// Multipliers of a planar orbit of mutual point-mass gravity: the in-plane block of Φ with
+// Π = I − P (PᵀP)⁻¹ Pᵀ applied. `tolerance` decides: all |λ| ≤ 1 + tol → stable; some
+// |λ| > 1 + 100 tol → unstable; else undecided. Refuses (SceneError, by name) orbits that are
+// not planar and potentials other than point-mass, whose first integrals differ.
+Stability stability(const OrbitModel& model, const Eigen::VectorXd& xi0, const Eigen::MatrixXd& monodromy,
                     double tolerance);
 
 // The seed's first-order monodromy Π_i (I + h A(ξ(t_i))), h = T/steps, along the flow.
-Eigen::MatrixXd first_order_monodromy(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double T,
+Eigen::MatrixXd first_order_monodromy(const OrbitModel& model, const Eigen::VectorXd& xi0, double T,
                                       std::size_t steps, const FlowOptions& options = {});
 
 struct Refinement {
   Eigen::VectorXd xi0;
   double period = 0;
-  double closure = 0;  // ‖ξ(T) − ξ(0)‖ after refinement
+  double closure = 0;  // ‖ξ(T) − ξ(0)‖ after refinement (the variational flow's)
   int iterations = 0;
 };
 
@@ -74,8 +105,13 @@ struct Refinement {
 // ξ(T; ξ0) − ξ0 = 0 (the Jacobian [Φ(T) − I | F(ξ(T))] is singular along the symmetries, so
 // steps are least squares). With a free period a step that would change T by more than 10 %
 // is not taken (the trivial solution T → 0 attracts otherwise).
-Refinement refine_periodic_orbit(const PlanarSystem& sys, const Eigen::VectorXd& xi0, double T,
+Refinement refine_periodic_orbit(const OrbitModel& model, const Eigen::VectorXd& xi0, double T,
                                  double target = 1e-12, int max_iterations = 12,
                                  const FlowOptions& options = {}, bool free_period = false);
+
+// A scene `noether run` accepts: the model's bodies at ξ0 and its potential, one period with
+// rkf78.
+std::string orbit_scene(const OrbitModel& model, const Eigen::VectorXd& xi0, double period,
+                        const std::string& description);
 
 }  // namespace noether

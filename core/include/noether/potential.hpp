@@ -33,6 +33,10 @@ class NOETHER_API Potential {
   virtual void evaluate(const State& state, Forces& forces) const = 0;
   // The model chosen for each pair, for models that choose (none by default).
   virtual std::vector<PairModel> pair_models() const;
+  // Optional: the Hessian ∂²U/∂x∂x of U in the body positions (3n × 3n, body-major), for the
+  // variational equations of periodic orbits (docs/equations.md §9). Returns false (the
+  // default) when the model does not provide it; callers then difference the forces.
+  virtual bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const;
 };
 
 // The sum of several models: U = Σ U_m, forces and moments add.
@@ -41,6 +45,7 @@ class NOETHER_API SumPotential final : public Potential {
   explicit SumPotential(std::vector<std::shared_ptr<const Potential>> terms);
   void evaluate(const State& state, Forces& forces) const override;
   std::vector<PairModel> pair_models() const override;
+  bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override;
 
  private:
   std::vector<std::shared_ptr<const Potential>> terms_;

@@ -39,6 +39,27 @@ class PointMass final : public noether::Potential {
     }
   }
 
+  // ∂²U/∂x∂x: for each pair, B = G m_i m_j (I − 3 d̂ d̂ᵀ)/r³ with d = x_i − x_j
+  // (= ∂²U_ij/∂x_i², since ∂U_ij/∂x_i = G m_i m_j d/r³) enters the diagonal blocks (i, i) and
+  // (j, j) as +B and the blocks (i, j) and (j, i) as −B (docs/equations.md §9).
+  bool position_hessian(const State& s, Eigen::MatrixXd& H) const override {
+    const Eigen::Index n = s.x.cols();
+    H.setZero(3 * n, 3 * n);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (Eigen::Index j = i + 1; j < n; ++j) {
+        const Eigen::Vector3d d = s.x.col(i) - s.x.col(j);
+        const double r2 = d.squaredNorm();
+        if (!(r2 > 0.0)) collision(i, j, s.t);
+        const double r = std::sqrt(r2);
+        const double Gmm = G_ * mass_[static_cast<std::size_t>(i)] * mass_[static_cast<std::size_t>(j)];
+        const Eigen::Matrix3d B = Gmm / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
+        H.block<3, 3>(3 * i, 3 * j) -= B;
+        H.block<3, 3>(3 * j, 3 * i) -= B;
+        H.block<3, 3>(3 * i, 3 * i) += B;
+        H.block<3, 3>(3 * j, 3 * j) += B;
+      }
+    return true;
+  }
 
  private:
   [[noreturn]] void collision(Eigen::Index i, Eigen::Index j, double t) const {
