@@ -24,6 +24,9 @@
 #include <string>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 class ContinuousEquations {
@@ -57,3 +60,5 @@ std::unique_ptr<ContinuousEquations> make_continuous_equations(
     const std::string& frame = "inertial", const std::string& form = "hamiltonian");
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -6,6 +6,9 @@
 // Shared by every LGVI form (inertial and relative frame).
 #include <noether/lie.hpp>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 // G(f) = (sin‖f‖/‖f‖) J f + ((1 − cos‖f‖)/‖f‖²) f × J f      (128)
@@ -30,3 +33,5 @@ DiscreteAttitude solve_discrete_attitude(const Vec3& g, const Mat3& J,
                                          const DiscreteAttitudeOptions& options = {});
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -10,6 +10,9 @@
 #include <stdexcept>
 #include <string>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 class NOETHER_API Error : public std::runtime_error {
@@ -54,3 +57,5 @@ class NOETHER_API OutputError : public Error {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -9,6 +9,9 @@
 
 #include <memory>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct ExactMutualOptions {
@@ -43,3 +46,5 @@ class NOETHER_API ExactMutual {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -2,6 +2,9 @@
 // Forces: what a Potential computes at a State (docs/equations.md §2).
 #include <noether/system.hpp>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct Forces {
@@ -14,3 +17,5 @@ struct Forces {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

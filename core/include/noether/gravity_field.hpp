@@ -8,6 +8,9 @@
 
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct FieldValue {
@@ -64,3 +67,5 @@ NOETHER_API SurfaceRule ellipsoid_surface_rule(const Vec3& semi_axes, int n_thet
 NOETHER_API void gauss_legendre01(int n, std::vector<double>& nodes, std::vector<double>& weights);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

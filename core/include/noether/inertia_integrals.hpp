@@ -9,6 +9,9 @@
 #include <array>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 // Multi-indices α = (l, m, n) of total degree ≤ N in one fixed order: by degree, then by
@@ -74,3 +77,5 @@ class NOETHER_API IntegralRotation {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

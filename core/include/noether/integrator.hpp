@@ -21,6 +21,9 @@
 #include <string>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct WorkCounters {
@@ -63,3 +66,5 @@ class NOETHER_API Integrator {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

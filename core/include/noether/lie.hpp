@@ -4,6 +4,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 using Vec3 = Eigen::Vector3d;
@@ -55,3 +58,5 @@ namespace noether {
 // small angles).
 Vec3 log_so3(const Mat3& R);
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct Mesh {
@@ -38,3 +41,5 @@ NOETHER_API void validate_mesh(const Mesh& mesh);
 NOETHER_API double mesh_volume(const Mesh& mesh);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

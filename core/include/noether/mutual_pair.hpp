@@ -7,6 +7,9 @@
 #include <noether/mutual_series.hpp>
 #include <noether/state.hpp>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct MutualPair {
@@ -26,3 +29,5 @@ NOETHER_API PairFrame pair_frame(const State& s, const MutualPair& p);
 NOETHER_API void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -12,6 +12,9 @@
 #include <array>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct MutualTerms {
@@ -64,3 +67,5 @@ class NOETHER_API MutualSeries {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -9,6 +9,9 @@
 #include <map>
 #include <memory>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 // The error of `approx` against `exact` that a tolerance bounds (15.1): the largest of the
@@ -54,3 +57,5 @@ NOETHER_API OrderChoice choose_series_order(SeriesBank& bank, double G, const In
                                             const OrderSelection& options);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

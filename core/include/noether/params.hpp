@@ -6,6 +6,9 @@
 #include <utility>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 class Params {
@@ -79,3 +82,5 @@ std::size_t edit_distance(const std::string& a, const std::string& b);
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -16,6 +16,9 @@
 #include <cstdint>
 #include <memory>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 #define NOETHER_PLUGIN_API_VERSION 2u
 
 namespace noether {
@@ -57,3 +60,5 @@ struct PluginDescriptor {
 #define NOETHER_PLUGIN_DESCRIPTOR                      \
   extern "C" __attribute__((visibility("default"))) \
   const noether::PluginDescriptor noether_plugin_descriptor
+
+#pragma GCC visibility pop

@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 // What a model chose for one pair of bodies, and whether the run stayed where the choice
@@ -53,3 +56,5 @@ class NOETHER_API SumPotential final : public Potential {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -10,6 +10,9 @@
 #include <memory>
 #include <string>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct Solid {
@@ -39,3 +42,5 @@ NOETHER_API std::shared_ptr<const Solid> make_ellipsoid(const Vec3& semi_axes, d
 NOETHER_API std::shared_ptr<const Solid> make_polyhedron(Mesh mesh, double density, bool principal_axes);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

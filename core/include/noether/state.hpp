@@ -7,6 +7,9 @@
 
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct State {
@@ -21,3 +24,5 @@ struct State {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
+
 namespace noether {
 
 struct Body {
@@ -58,3 +61,5 @@ class System {
 void validate_inertia(const Mat3& J, const std::string& context);
 
 }  // namespace noether
+
+#pragma GCC visibility pop

@@ -10,11 +10,6 @@
 
 namespace noether {
 
-Integrator::~Integrator() = default;
-bool Integrator::interpolate(double, State&) { return false; }
-double Integrator::fixed_step() const { return 0.0; }
-std::vector<StepSeries> Integrator::step_series() const { return {}; }
-
 std::int64_t whole_steps(double interval, double h, const char* what) {
   const double n = std::round(interval / h);
   if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
