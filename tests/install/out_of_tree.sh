@@ -19,3 +19,6 @@ NOETHER_PLUGIN_PATH="$work/build" "$work/prefix/bin/noether" plugins | tee "$wor
 grep -Eq '^potential +j2 +point masses plus the J2' "$work/plugins.txt"
 grep -Eq 'radius +reference' "$work/plugins.txt"
 ctest --test-dir "$work/build" --output-on-failure
+# The out-of-tree plugin links the installed libnoether-core only, and only its interface.
+core=$(find "$work/prefix" -name 'libnoether-core.so' | head -1)
+"$src/tests/abi/check_plugin_abi.sh" "$core" "$work/build/noether-j2.so" | tail -1
