@@ -3,9 +3,14 @@
 // library, named noether-<name>.so, that exports one C symbol, `noether_plugin_descriptor`,
 // of type PluginDescriptor.
 //
-// Version policy: NOETHER_PLUGIN_API_VERSION changes whenever PluginDescriptor, Potential,
-// Integrator, System, State, Forces or Params change in a way that breaks binary
-// compatibility. `api_version` stays the first member in every version, so a registry can
+// Version policy: NOETHER_PLUGIN_API_VERSION changes whenever anything a header of
+// noether-core declares (this folder's headers: PluginDescriptor, Potential, Integrator,
+// System, State, Forces, Params and the shared mathematics) changes in a way that breaks
+// binary compatibility. Plugins link libnoether-core only; the host library (scenes, registry,
+// stepping loop, output) is not part of the interface (tests/abi checks both).
+// Version 3: Integrator is one step at a time (start/step/current/interpolate); the host's
+// stepping loop owns outputs and events; Potential::needs_attitudes removed,
+// Potential::position_hessian added. `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
 #include <noether/integrator.hpp>
 #include <noether/params.hpp>
@@ -19,7 +24,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 2u
+#define NOETHER_PLUGIN_API_VERSION 3u
 
 namespace noether {
 
