@@ -5,6 +5,10 @@ namespace noether {
 // Out of line, so that the vtable and type information of Integrator live in noether-core
 // only (one copy for the host and every plugin).
 Integrator::~Integrator() = default;
+void Integrator::current_state(State& state) {
+  Forces unused;
+  current(state, unused);
+}
 bool Integrator::interpolate(double, State&) { return false; }
 double Integrator::fixed_step() const { return 0.0; }
 std::vector<StepSeries> Integrator::step_series() const { return {}; }

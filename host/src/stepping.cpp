@@ -103,8 +103,6 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
 
   std::vector<Watch> watch = watches(system, schedule.events);
   State previous, reached, probe;
-  Forces reached_forces;
-  reached_forces.resize(system);
   if (!watch.empty()) {
     previous = state;
     for (auto& w : watch) w.armed = gap(state, w) > 0;
@@ -131,7 +129,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
     // variant of regula falsi on the interpolated positions (16.3).
     if (!watch.empty()) {
-      integrator.current(reached, reached_forces);
+      integrator.current_state(reached);
       reached.t = t;
       double t_event = std::numeric_limits<double>::infinity();
       const Watch* hit = nullptr;
@@ -157,7 +155,8 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
             side = 1;
           }
         }
-        if (b < t_event) t_event = b, hit = &w;
+        // A method that passed t_end (jm-hybrid, dense dopri5) reports no event beyond it.
+        if (b < t_event && b <= t_end) t_event = b, hit = &w;
       }
       if (hit) {
         // Outputs before the event, then the state at the event itself.

@@ -52,6 +52,9 @@ class NOETHER_API Integrator {
   // The current state and the forces there (for output; an evaluation made only for this is
   // not counted as work).
   virtual void current(State& state, Forces& forces) = 0;
+  // The current state alone (the loop's event checks after every step): by default current()
+  // with scratch forces; integrators whose current() evaluates the potential override it.
+  virtual void current_state(State& state);
   // Dense output inside the last step; false (the default) when the method has none.
   virtual bool interpolate(double t, State& state);
   // The fixed step h of a fixed-step method (the loop then requires whole numbers of steps

@@ -119,6 +119,10 @@ class Cvode final : public noether::Integrator {
     equations_->potential().evaluate(state, forces);  // for output; not counted as work
   }
 
+  void current_state(noether::State& state) override {
+    equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
+  }
+
   // CVODE's own interpolating polynomial over the last step (CVodeGetDky, k = 0).
   bool interpolate(double t, noether::State& state) override {
     check(CVodeGetDky(session_->memory, t, 0, session_->dky), "CVodeGetDky", t);

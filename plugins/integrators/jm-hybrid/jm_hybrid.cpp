@@ -88,8 +88,13 @@ class JmHybrid final : public noether::Integrator {
   // One step of the current phase; its length is the method's (a JM step's Δt is an outcome),
   // so it may pass t_max: outputs and events inside it come from interpolate().
   void step(double) override {
-    const Vec q0 = q_, p0 = p_, grad0 = grad_;
-    const double t0 = t_, V0 = V_, V0_prev = V_prev_;
+    // The step's start, kept for interpolation and to stay there if the step fails.
+    q_prev_ = q_;
+    p_prev_ = p_;
+    t_prev_ = t_;
+    const Vec& q0 = q_prev_;
+    const Vec grad0 = grad_;
+    const double V0 = V_, V0_prev = V_prev_;
     try {
       if (phase_ == kVI) {
         vi_step(h_now_);
@@ -118,12 +123,9 @@ class JmHybrid final : public noether::Integrator {
         }
       }
     } catch (const IntegrationError&) {
-      q_ = q0, p_ = p0, grad_ = grad0, t_ = t0, V_ = V0, V_prev_ = V0_prev;  // the last valid state
+      q_ = q_prev_, p_ = p_prev_, grad_ = grad0, t_ = t_prev_, V_ = V0, V_prev_ = V0_prev;  // the last valid state
       throw;
     }
-    q_prev_ = q0;
-    p_prev_ = p0;
-    t_prev_ = t0;
   }
 
   double time() const override { return t_; }
@@ -133,6 +135,11 @@ class JmHybrid final : public noether::Integrator {
     unflatten(q_, p_, t_, state);
     forces.resize(system_);
     potential_->evaluate(state, forces);  // for output; not counted as work
+  }
+
+  void current_state(noether::State& state) override {
+    state = noether::State::zeros(system_);
+    unflatten(q_, p_, t_, state);
   }
 
   // Cubic Hermite interpolation of (q, q̇) between the two ends of the last step: third

@@ -95,6 +95,8 @@ class Rk final : public noether::Integrator {
     equations_->potential().evaluate(state, forces);  // for output; not counted as work
   }
 
+  void current_state(noether::State& state) override { equations_->unpack(y_.data(), t_, state); }
+
   // Dopri5: its own (4th-order) dense output. Rkf78 and dopri5 with renormalize: one step of
   // the same method from the step's start, on a copy, so outputs carry the method's own
   // accuracy (those evaluations count as work). rk4: none (the loop lands by a short step).
