@@ -67,17 +67,17 @@ inline std::vector<ToleranceRow> check_tolerances(const std::string& scene_file,
     row.tolerance = tol;
     char spec[160];
     std::snprintf(spec, sizeof spec, "{plugin: mutual-series, tolerance: %.17g, max_order: %d}", tol, max_order);
-    auto potential = registry.make_potential("mutual-series", sys, parse_params(spec, "test"));
+    noether::PotentialEvaluator evaluate(registry.make_potential("mutual-series", sys, parse_params(spec, "test")));
     Forces f;
     f.resize(sys);
     try {
-      potential->evaluate(scene.initial, f);  // the choice is made at the initial state
+      evaluate(scene.initial, f);  // the choice is made at the initial state
     } catch (const SceneError&) {
       std::printf("  %9.0e  refused: no order up to %d meets it\n", tol, max_order);
       rows.push_back(row);
       continue;
     }
-    row.order = potential->pair_models().at(0).order;
+    row.order = evaluate.pair_models().at(0).order;
     int within = 0;
     for (std::size_t k = 0; k < configs.size(); ++k) {
       const auto& [R, C] = configs[k];

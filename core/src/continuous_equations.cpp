@@ -5,7 +5,37 @@
 
 namespace noether {
 
+ContinuousEquations::~ContinuousEquations() = default;
+
 namespace {
+
+// What every form holds: the system, the potential with this form's own workspace, and the
+// count of evaluations.
+class Form : public ContinuousEquations {
+ public:
+  Form(const System& system, std::shared_ptr<const Potential> potential)
+      : system_(system), evaluate_(std::move(potential)) {
+    forces_.resize(system_);
+  }
+  void forces(const State& state, Forces& forces) override {
+    forces.resize(system_);
+    evaluate_(state, forces);
+  }
+  std::int64_t evaluations() const override { return evaluations_; }
+  const System& system() const override { return system_; }
+  PotentialEvaluator& evaluator() override { return evaluate_; }
+
+ protected:
+  // One counted evaluation into forces_.
+  void evaluate_counted(const State& state) {
+    evaluate_(state, forces_);
+    ++evaluations_;
+  }
+  System system_;
+  PotentialEvaluator evaluate_;
+  Forces forces_;
+  std::int64_t evaluations_ = 0;
+};
 
 using Map3 = Eigen::Map<Vec3>;
 using CMap3 = Eigen::Map<const Vec3>;
@@ -14,13 +44,11 @@ using CMapM = Eigen::Map<const Mat3>;
 
 // Inertial frame, any number of bodies. Layout: [x (3n) | γ or v (3n) | R (9 per rigid body) |
 // Π or Ω (3 per rigid body)].
-class Inertial final : public ContinuousEquations {
+class Inertial final : public Form {
  public:
   Inertial(const System& system, std::shared_ptr<const Potential> potential, bool lagrangian)
-      : ContinuousEquations(system, std::move(potential)), lagrangian_(lagrangian),
-        n_(system.size()), nr_(system.rigid_count()), scratch_(State::zeros(system)) {
-    forces_.resize(system_);
-  }
+      : Form(system, std::move(potential)), lagrangian_(lagrangian),
+        n_(system.size()), nr_(system.rigid_count()), scratch_(State::zeros(system)) {}
   std::size_t size() const override { return 6 * n_ + 12 * nr_; }
 
   void pack(const State& s, double* y) const override {
@@ -59,8 +87,7 @@ class Inertial final : public ContinuousEquations {
 
   void rhs(double t, const double* y, double* dydt) override {
     unpack(y, t, scratch_);
-    potential_->evaluate(scratch_, forces_);
-    ++evaluations_;
+    evaluate_counted(scratch_);
     for (std::size_t i = 0; i < n_; ++i) {
       const double m = system_.body(i).mass;
       const Vec3 f = forces_.f.col(static_cast<Eigen::Index>(i));
@@ -92,17 +119,16 @@ class Inertial final : public ContinuousEquations {
   bool lagrangian_;
   std::size_t n_, nr_;
   State scratch_;
-  Forces forces_;
 };
 
 // Relative frame, two rigid bodies. Layout: [X | Γ or V | R (9) | Π or ω | Π2 or Ω2 |
 // x2 | γ2 or v2 | R2 (9)].
-class Relative final : public ContinuousEquations {
+class Relative final : public Form {
  public:
   enum : std::size_t { kX = 0, kG = 3, kR = 6, kPi = 15, kPi2 = 18, kx2 = 21, kg2 = 24, kR2 = 27, kSize = 36 };
 
   Relative(const System& system, std::shared_ptr<const Potential> potential, bool lagrangian)
-      : ContinuousEquations(system, std::move(potential)), lagrangian_(lagrangian),
+      : Form(system, std::move(potential)), lagrangian_(lagrangian),
         canonical_(State::zeros(system)) {
     if (system.size() != 2 || system.rigid_count() != 2)
       throw SceneError("frame: relative needs exactly two rigid bodies (the full two-body "
@@ -113,7 +139,6 @@ class Relative final : public ContinuousEquations {
     m_ = m1_ * m2_ / (m1_ + m2_);
     J1_ = system.body(0).inertia;
     J2_ = system.body(1).inertia;
-    forces_.resize(system_);
   }
   std::size_t size() const override { return kSize; }
 
@@ -160,8 +185,7 @@ class Relative final : public ContinuousEquations {
     canonical_.x.col(1).setZero();
     canonical_.R[0] = R;
     canonical_.R[1].setIdentity();
-    potential_->evaluate(canonical_, forces_);
-    ++evaluations_;
+    evaluate_counted(canonical_);
     const Vec3 dU_dX = -forces_.f.col(0);
     const Vec3 M = R * Vec3(forces_.M.col(0));
     const Vec3 M2 = forces_.M.col(1);  // = X × ∂U/∂X − M, evaluated without cancellation
@@ -193,7 +217,6 @@ class Relative final : public ContinuousEquations {
   double m1_, m2_, m_;
   Mat3 J1_, J2_;
   State canonical_;
-  Forces forces_;
 };
 
 }  // namespace

@@ -39,7 +39,7 @@ class J2Potential final : public noether::Potential {
     for (const auto& b : system.bodies()) mass_.push_back(b.mass);
   }
 
-  void evaluate(const State& s, Forces& out) const override {
+  void evaluate(const State& s, Forces& out, noether::Workspace&) const override {
     out.set_zero();
     const auto n = static_cast<std::size_t>(s.x.cols());
     // Point-mass field between every pair.

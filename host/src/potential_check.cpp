@@ -27,13 +27,16 @@ void check_state(const System& sys, const Potential& potential, const State& s,
   Forces f0, tmp;
   f0.resize(sys);
   tmp.resize(sys);
-  potential.evaluate(s, f0);
+  // One workspace for the state and its neighbours: models that choose (orders from a
+  // tolerance) choose once, at s.
+  const auto workspace = potential.make_workspace();
+  potential.evaluate(s, f0, *workspace);
   if (!finite(f0)) {
     rows.push_back({label, "finite", "all", NAN, 0.0, false});
     return;
   }
   auto U = [&](const State& st) {
-    potential.evaluate(st, tmp);
+    potential.evaluate(st, tmp, *workspace);
     return tmp.U;
   };
   const double hx = 1e-5 * length_scale(s), hR = 1e-5;

@@ -183,8 +183,13 @@ class FiniteChecked final : public Potential {
     for (const auto& b : system.bodies()) names_.push_back(b.name);
     for (std::size_t k = 0; k < system.rigid_count(); ++k) rigid_.push_back(system.body_of_rigid(k));
   }
-  void evaluate(const State& state, Forces& forces) const override {
-    inner_->evaluate(state, forces);
+  std::unique_ptr<Workspace> make_workspace() const override {
+    auto workspace = inner_->make_workspace();
+    if (!workspace) throw PluginError("potential plugin '" + plugin_ + "' made no workspace");
+    return workspace;
+  }
+  void evaluate(const State& state, Forces& forces, Workspace& workspace) const override {
+    inner_->evaluate(state, forces, workspace);
     if (std::isfinite(forces.U) && forces.f.allFinite() && forces.M.allFinite()) return;
     std::string what = "the energy U";
     for (Eigen::Index i = 0; i < forces.f.cols(); ++i)
@@ -197,7 +202,9 @@ class FiniteChecked final : public Potential {
         << " at t = " << state.t;
     throw IntegrationError(msg.str(), state.t);
   }
-  std::vector<PairModel> pair_models() const override { return inner_->pair_models(); }
+  std::vector<PairModel> pair_models(const Workspace& workspace) const override {
+    return inner_->pair_models(workspace);
+  }
   bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override {
     if (!inner_->position_hessian(state, hessian)) return false;
     if (!hessian.allFinite())

@@ -114,7 +114,12 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
                                              scene.integrator.params);
   summary.integrator = scene.integrator.plugin;
 
-  summary.pair_models = potential->pair_models();
+  // What the potential chose per pair, as the integrator's evaluations saw it.
+  auto pair_models = [&integrator] {
+    const PotentialEvaluator* evaluator = integrator->potential_evaluator();
+    return evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
+  };
+  summary.pair_models = pair_models();
   std::unique_ptr<H5Writer> writer;
   if (options.output) writer = std::make_unique<H5Writer>(*options.output, scene);
   if (writer) writer->write_pair_models(summary.pair_models);
@@ -138,7 +143,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
     summary.work = integrator->work();
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (writer) {
-      writer->write_pair_models(potential->pair_models());
+      writer->write_pair_models(pair_models());
       writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what(),
                      integrator->step_series());
     }
@@ -148,7 +153,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.stop_reason = stop.reason;
   summary.final_state = std::move(state);
-  summary.pair_models = potential->pair_models();  // now with what the run saw
+  summary.pair_models = pair_models();  // now with what the run saw
   if (writer) writer->write_pair_models(summary.pair_models);
   if (writer)
     writer->finish(summary.work, summary.wall_seconds,

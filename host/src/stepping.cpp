@@ -96,6 +96,14 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
 
   Forces forces;
   forces.resize(system);
+  // Output frames between steps are evaluated with the integrator's own evaluator (the model
+  // choices its steps made), or with a workspace of the loop's when it has none.
+  std::unique_ptr<Workspace> own_workspace;
+  auto evaluate = [&](const State& at, Forces& into) {
+    if (PotentialEvaluator* evaluator = integrator.potential_evaluator()) return (*evaluator)(at, into);
+    if (!own_workspace) own_workspace = potential.make_workspace();
+    potential.evaluate(at, into, *own_workspace);
+  };
   integrator.start(state);
   integrator.current(state, forces);
   state.t = t0;
@@ -163,7 +171,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
         if (h <= 0)
           for (; next_output < times.size() && times[next_output] < t_event; ++next_output) {
             integrator.interpolate(times[next_output], state);
-            potential.evaluate(state, forces);
+            evaluate(state, forces);
             observer.observe(state, forces);
           }
         if (h > 0 || !integrator.interpolate(t_event, state)) {
@@ -172,7 +180,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           integrator.step(t_event);
           integrator.current(state, forces);
         } else {
-          potential.evaluate(state, forces);
+          evaluate(state, forces);
         }
         state.t = t_event;
         observer.observe(state, forces);
@@ -209,7 +217,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           if (!integrator.interpolate(tau, state))
             throw Error("the integrator chooses its own steps but has no dense output to reach t = " +
                         std::to_string(tau));
-          potential.evaluate(state, forces);
+          evaluate(state, forces);
         }
         state.t = tau;
         observer.observe(state, forces);

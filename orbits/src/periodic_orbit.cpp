@@ -65,11 +65,14 @@ State OrbitModel::state(const VectorXd& xi, double t) const {
   return s;
 }
 
-VectorXd OrbitModel::rhs(const VectorXd& xi) const {
+VectorXd OrbitModel::rhs(const VectorXd& xi) const { return rhs(xi, *potential->make_workspace()); }
+MatrixXd OrbitModel::jacobian(const VectorXd& xi) const { return jacobian(xi, *potential->make_workspace()); }
+
+VectorXd OrbitModel::rhs(const VectorXd& xi, Workspace& workspace) const {
   const auto N = static_cast<Eigen::Index>(3 * n());
   Forces f;
   f.resize(system);
-  potential->evaluate(state(xi), f);
+  potential->evaluate(state(xi), f, workspace);
   VectorXd d(2 * N);
   d.head(N) = xi.tail(N);
   for (std::size_t j = 0; j < n(); ++j)
@@ -77,7 +80,7 @@ VectorXd OrbitModel::rhs(const VectorXd& xi) const {
   return d;
 }
 
-MatrixXd OrbitModel::jacobian(const VectorXd& xi) const {
+MatrixXd OrbitModel::jacobian(const VectorXd& xi, Workspace& workspace) const {
   const auto N = static_cast<Eigen::Index>(3 * n());
   MatrixXd A = MatrixXd::Zero(2 * N, 2 * N);
   A.topRightCorner(N, N).setIdentity();
@@ -93,9 +96,9 @@ MatrixXd OrbitModel::jacobian(const VectorXd& xi) const {
   VectorXd y = xi;
   for (Eigen::Index k = 0; k < N; ++k) {
     y[k] = xi[k] + e;
-    const VectorXd plus = rhs(y).tail(N);
+    const VectorXd plus = rhs(y, workspace).tail(N);
     y[k] = xi[k] - e;
-    const VectorXd minus = rhs(y).tail(N);
+    const VectorXd minus = rhs(y, workspace).tail(N);
     y[k] = xi[k];
     A.block(N, k, N, 1) = (plus - minus) / (2 * e);
   }
@@ -181,11 +184,12 @@ FlowResult integrate_flow(const OrbitModel& model, const VectorXd& xi0, double T
     Vec y(static_cast<std::size_t>(d * (1 + d)), 0.0);
     std::copy(xi0.data(), xi0.data() + d, y.begin());
     for (Eigen::Index i = 0; i < d; ++i) y[static_cast<std::size_t>(d + i * d + i)] = 1.0;  // Φ(0) = I
+    const auto workspace = model.potential->make_workspace();
     auto rhs = [&](const Vec& x, Vec& dxdt, double) {
       const Eigen::Map<const VectorXd> xi(x.data(), d);
-      Eigen::Map<VectorXd>(dxdt.data(), d) = model.rhs(xi);
+      Eigen::Map<VectorXd>(dxdt.data(), d) = model.rhs(xi, *workspace);
       const Eigen::Map<const MatrixXd> Phi(x.data() + d, d, d);  // Φ̇ = A(ξ) Φ (9.1)
-      Eigen::Map<MatrixXd>(dxdt.data() + d, d, d) = model.jacobian(xi) * Phi;
+      Eigen::Map<MatrixXd>(dxdt.data() + d, d, d) = model.jacobian(xi, *workspace) * Phi;
     };
     auto stepper = odeint::make_controlled(options.atol, options.rtol, odeint::runge_kutta_fehlberg78<Vec>());
     result.steps = odeint::integrate_adaptive(stepper, rhs, y, 0.0, T, T / 1000);
@@ -280,8 +284,9 @@ MatrixXd first_order_monodromy(const OrbitModel& model, const VectorXd& xi0, dou
   MatrixXd M = MatrixXd::Identity(d, d);
   VectorXd xi = xi0;
   const double h = T / static_cast<double>(steps);
+  const auto workspace = model.potential->make_workspace();
   for (std::size_t i = 0; i < steps; ++i) {
-    M = (MatrixXd::Identity(d, d) + h * model.jacobian(xi)) * M;
+    M = (MatrixXd::Identity(d, d) + h * model.jacobian(xi, *workspace)) * M;
     std::size_t unused = 0;
     xi = plugin_flow(model, xi, h, options, unused);  // ξ*(t_i) by the accurate flow
   }

@@ -14,6 +14,7 @@
 // (our sign of M is the negative of the seed's in the relative equations). Attitudes are
 // carried as nine plain numbers, as the seed's Runge–Kutta does: a general-purpose solver lets
 // them drift off SO(3), and that drift is part of what noether reports.
+#include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
@@ -29,28 +30,25 @@
 
 namespace noether {
 
-class ContinuousEquations {
+// An interface only: the forms live in continuous_equations.cpp. Each holds the potential
+// with a workspace of its own (PotentialEvaluator), so it is one thread's.
+class NOETHER_API ContinuousEquations {
  public:
-  virtual ~ContinuousEquations() = default;
+  virtual ~ContinuousEquations();
   virtual std::size_t size() const = 0;
   // Inertial State ↔ y of this form.
   virtual void pack(const State& state, double* y) const = 0;
   virtual void unpack(const double* y, double t, State& state) const = 0;
-  // dydt = F(t, y): one potential evaluation.
+  // dydt = F(t, y): one potential evaluation, counted.
   virtual void rhs(double t, const double* y, double* dydt) = 0;
   // Offsets in y of every 3×3 attitude (column-major), for optional re-orthonormalisation.
   virtual std::vector<std::size_t> rotation_offsets() const = 0;
-
-  std::int64_t evaluations() const { return evaluations_; }
-  const System& system() const { return system_; }
-  const Potential& potential() const { return *potential_; }
-
- protected:
-  ContinuousEquations(const System& system, std::shared_ptr<const Potential> potential)
-      : system_(system), potential_(std::move(potential)) {}
-  System system_;
-  std::shared_ptr<const Potential> potential_;
-  std::int64_t evaluations_ = 0;
+  // The forces at an inertial state (for output): not counted as an evaluation.
+  virtual void forces(const State& state, Forces& forces) = 0;
+  // Potential evaluations made by rhs() so far.
+  virtual std::int64_t evaluations() const = 0;
+  virtual const System& system() const = 0;
+  virtual PotentialEvaluator& evaluator() = 0;
 };
 
 // frame: "inertial" or "relative" (two rigid bodies only); form: "hamiltonian" or

@@ -11,10 +11,14 @@
 //    outcome (jm-hybrid) may pass t_max, and must then provide dense output.
 //  * If step() throws (IntegrationError for a method failure), the integrator stays at the
 //    state before the step: current() returns the last valid state.
+//  * It evaluates the potential through a PotentialEvaluator of its own (the potential is
+//    shared and immutable; the workspace is the integrator's), so that runs on several
+//    threads may share one potential.
 //  * interpolate(t, s): the state at t inside the last step, [t_prev, time()], by the method's
 //    own dense output; false when it has none.
 #include <noether/export.hpp>
 #include <noether/forces.hpp>
+#include <noether/potential.hpp>
 #include <noether/state.hpp>
 
 #include <cstdint>
@@ -62,6 +66,10 @@ class NOETHER_API Integrator {
   virtual double fixed_step() const;
   // Per-step records, if the integrator keeps any (none by default).
   virtual std::vector<StepSeries> step_series() const;
+  // The evaluator (the shared potential with this integrator's own workspace) the steps use:
+  // the host evaluates output frames with it (the same model choices as the steps) and reports
+  // what it saw (pair models). Null by default: the host then uses a workspace of its own.
+  virtual PotentialEvaluator* potential_evaluator();
   const WorkCounters& work() const { return work_; }
 
  protected:

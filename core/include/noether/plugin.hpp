@@ -10,7 +10,10 @@
 // stepping loop, output) is not part of the interface (tests/abi checks both).
 // Version 3: Integrator is one step at a time (start/step/current/interpolate); the host's
 // stepping loop owns outputs and events; Potential::needs_attitudes removed,
-// Potential::position_hessian added. `api_version` stays the first member in every version, so a registry can
+// Potential::position_hessian added.
+// Version 4: a Potential is immutable and evaluates into a caller-owned Workspace
+// (make_workspace, evaluate(state, forces, workspace), pair_models(workspace));
+// Integrator::potential_evaluator; ContinuousEquations is an interface without data members. `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
 #include <noether/integrator.hpp>
 #include <noether/params.hpp>
@@ -24,7 +27,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 3u
+#define NOETHER_PLUGIN_API_VERSION 4u
 
 namespace noether {
 

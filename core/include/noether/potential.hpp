@@ -1,8 +1,12 @@
 #pragma once
 // Potential: a gravitational model U(x_1..x_n, R_1..R_n) and its derivatives (docs/equations.md §2).
+// A Potential is immutable once made: every method is const and thread-safe. What an
+// evaluation writes (scratch, the orders a tolerance chose, what a run came close to) lives in
+// a Workspace the caller owns (noether/workspace.hpp); PotentialEvaluator pairs the two.
 #include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/state.hpp>
+#include <noether/workspace.hpp>
 
 #include <memory>
 #include <string>
@@ -31,28 +35,52 @@ struct PairModel {
 class NOETHER_API Potential {
  public:
   virtual ~Potential();
-  // Fills U, f_i = −∂U/∂x_i and, for rigid bodies, the body-frame moments M_k.
-  // `forces` is already sized for the system; implementations overwrite every entry.
-  virtual void evaluate(const State& state, Forces& forces) const = 0;
-  // The model chosen for each pair, for models that choose (none by default).
-  virtual std::vector<PairModel> pair_models() const;
+  // A workspace for one evaluating thread. The default is empty: models that write nothing
+  // while evaluating need not override it.
+  virtual std::unique_ptr<Workspace> make_workspace() const;
+  // Fills U, f_i = −∂U/∂x_i and, for rigid bodies, the body-frame moments M_k, writing only
+  // into `workspace` (made by this potential's make_workspace()). `forces` is already sized
+  // for the system; implementations overwrite every entry.
+  virtual void evaluate(const State& state, Forces& forces, Workspace& workspace) const = 0;
+  // One evaluation with a fresh workspace: for one-off evaluations and tests. Loops keep a
+  // workspace (PotentialEvaluator) instead: this one allocates, and forgets what it saw.
+  void evaluate(const State& state, Forces& forces) const;
+  // The model chosen for each pair, for models that choose (none by default), with what the
+  // evaluations made with `workspace` saw.
+  virtual std::vector<PairModel> pair_models(const Workspace& workspace) const;
   // Optional: the Hessian ∂²U/∂x∂x of U in the body positions (3n × 3n, body-major), for the
   // variational equations of periodic orbits (docs/equations.md §9). Returns false (the
   // default) when the model does not provide it; callers then difference the forces.
   virtual bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const;
 };
 
+// A shared model with a workspace of one's own: what one integrator (one thread) evaluates.
+class NOETHER_API PotentialEvaluator {
+ public:
+  explicit PotentialEvaluator(std::shared_ptr<const Potential> potential);
+  void operator()(const State& state, Forces& forces) { potential_->evaluate(state, forces, *workspace_); }
+  const Potential& potential() const { return *potential_; }
+  const std::shared_ptr<const Potential>& shared() const { return potential_; }
+  const Workspace& workspace() const { return *workspace_; }
+  std::vector<PairModel> pair_models() const { return potential_->pair_models(*workspace_); }
+
+ private:
+  std::shared_ptr<const Potential> potential_;
+  std::unique_ptr<Workspace> workspace_;
+};
+
 // The sum of several models: U = Σ U_m, forces and moments add.
 class NOETHER_API SumPotential final : public Potential {
  public:
   explicit SumPotential(std::vector<std::shared_ptr<const Potential>> terms);
-  void evaluate(const State& state, Forces& forces) const override;
-  std::vector<PairModel> pair_models() const override;
+  std::unique_ptr<Workspace> make_workspace() const override;
+  using Potential::evaluate;
+  void evaluate(const State& state, Forces& forces, Workspace& workspace) const override;
+  std::vector<PairModel> pair_models(const Workspace& workspace) const override;
   bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override;
 
  private:
   std::vector<std::shared_ptr<const Potential>> terms_;
-  mutable Forces scratch_;
 };
 
 }  // namespace noether

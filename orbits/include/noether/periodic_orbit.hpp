@@ -35,11 +35,15 @@ struct OrbitModel {
   std::size_t n() const { return system.size(); }
   Eigen::VectorXd phase_point(const State& state) const;
   State state(const Eigen::VectorXd& xi, double t = 0.0) const;
+  // The model is shared and immutable; the evaluations below write into `workspace` (made
+  // by potential->make_workspace(), one per thread), or into a fresh one when it is omitted.
   // ξ̇ = F(ξ) = (v, f/m): one potential evaluation.
+  Eigen::VectorXd rhs(const Eigen::VectorXd& xi, Workspace& workspace) const;
   Eigen::VectorXd rhs(const Eigen::VectorXd& xi) const;
   // A(ξ) = ∂F/∂ξ = [[0, I], [K, 0]], K = ∂(f/m)/∂x = −M⁻¹ ∂²U/∂x∂x (9.2): from the
   // potential's position_hessian() when it has one, else by central differences of the forces
   // (6n evaluations; the variational flow is then much slower).
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi, Workspace& workspace) const;
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi) const;
   // E = Σ ½ m_j ‖v_j‖² + U(x).
   double energy(const Eigen::VectorXd& xi) const;

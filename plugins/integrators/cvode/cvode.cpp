@@ -115,9 +115,10 @@ class Cvode final : public noether::Integrator {
 
   void current(noether::State& state, noether::Forces& forces) override {
     equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
-    forces.resize(equations_->system());
-    equations_->potential().evaluate(state, forces);  // for output; not counted as work
+    equations_->forces(state, forces);  // for output; not counted as work
   }
+
+  noether::PotentialEvaluator* potential_evaluator() override { return &equations_->evaluator(); }
 
   void current_state(noether::State& state) override {
     equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);

@@ -49,7 +49,7 @@ class JmHybrid final : public noether::Integrator {
  public:
   JmHybrid(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
            const Params& p)
-      : system_(system), potential_(std::move(potential)) {
+      : system_(system), evaluate_(std::move(potential)) {
     if (system.rigid_count() > 0)
       throw SceneError(p.here() + "jm-hybrid integrates natural systems of point masses; body '" +
                        system.body(system.body_of_rigid(0)).name +
@@ -134,8 +134,10 @@ class JmHybrid final : public noether::Integrator {
     state = noether::State::zeros(system_);
     unflatten(q_, p_, t_, state);
     forces.resize(system_);
-    potential_->evaluate(state, forces);  // for output; not counted as work
+    evaluate_(state, forces);  // for output; not counted as work
   }
+
+  noether::PotentialEvaluator* potential_evaluator() override { return &evaluate_; }
 
   void current_state(noether::State& state) override {
     state = noether::State::zeros(system_);
@@ -175,7 +177,7 @@ class JmHybrid final : public noether::Integrator {
   double evaluate(const Vec& q, Vec& grad) {
     state_.x = Eigen::Map<const Eigen::Matrix3Xd>(q.data(), 3, q.size() / 3);
     state_.t = t_;
-    potential_->evaluate(state_, forces_);
+    evaluate_(state_, forces_);
     ++work_.potential_evaluations;
     grad = -Eigen::Map<const Vec>(forces_.f.data(), forces_.f.size());
     return forces_.U;
@@ -386,7 +388,7 @@ class JmHybrid final : public noether::Integrator {
   }
 
   const noether::System system_;
-  std::shared_ptr<const noether::Potential> potential_;
+  noether::PotentialEvaluator evaluate_;
   double h_ = 0, theta_ = 0, Kc_ = 0, tol_ = 0, ratio_ = 1.2;
   int max_iter_ = 25;
   bool record_ = true;

@@ -49,9 +49,12 @@ noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Set
 // parts cancel and would lose a factor 1/‖f‖ of precision every step.
 Vec3 lagrangian_momentum(const Vec3& f, const Mat3& J);
 
-std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
-std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
-std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
-std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System&, std::shared_ptr<const noether::Potential>, const Settings&);
+// Each flow evaluates the potential through the plugin's evaluator (its workspace), which
+// outlives it.
+using noether::PotentialEvaluator;
+std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System&, PotentialEvaluator&, const Settings&);
+std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System&, PotentialEvaluator&, const Settings&);
+std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System&, PotentialEvaluator&, const Settings&);
+std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System&, PotentialEvaluator&, const Settings&);
 
 }  // namespace lgvi

@@ -32,9 +32,9 @@ namespace {
 
 class InertialHamiltonian final : public DiscreteFlow {
  public:
-  InertialHamiltonian(const System& system, std::shared_ptr<const noether::Potential> potential,
+  InertialHamiltonian(const System& system, noether::PotentialEvaluator& evaluate,
                       const Settings& settings)
-      : system_(system), potential_(std::move(potential)), settings_(settings) {
+      : system_(system), evaluate_(evaluate), settings_(settings) {
     for (auto* f : {&current_, &next_}) f->resize(system_);
     F_.resize(system_.rigid_count());
   }
@@ -95,12 +95,12 @@ class InertialHamiltonian final : public DiscreteFlow {
 
  private:
   void evaluate(const State& s, Forces& f) {
-    potential_->evaluate(s, f);
+    evaluate_(s, f);
     ++work.potential_evaluations;
   }
 
   const System system_;
-  std::shared_ptr<const noether::Potential> potential_;
+  noether::PotentialEvaluator& evaluate_;
   Settings settings_;
   State s_;
   Forces current_, next_;
@@ -111,9 +111,9 @@ class InertialHamiltonian final : public DiscreteFlow {
 
 }  // namespace
 
-std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System& s, std::shared_ptr<const noether::Potential> p,
+std::unique_ptr<DiscreteFlow> make_inertial_hamiltonian(const System& s, noether::PotentialEvaluator& p,
                                                         const Settings& settings) {
-  return std::make_unique<InertialHamiltonian>(s, std::move(p), settings);
+  return std::make_unique<InertialHamiltonian>(s, p, settings);
 }
 
 }  // namespace lgvi

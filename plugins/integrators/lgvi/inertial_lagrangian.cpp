@@ -20,15 +20,15 @@ namespace {
 
 class InertialLagrangian final : public DiscreteFlow {
  public:
-  InertialLagrangian(const System& system, std::shared_ptr<const noether::Potential> potential,
+  InertialLagrangian(const System& system, noether::PotentialEvaluator& evaluate,
                      const Settings& settings)
-      : system_(system), potential_(std::move(potential)), settings_(settings) {
+      : system_(system), evaluate_(evaluate), settings_(settings) {
     forces_.resize(system_);
   }
 
   void start(const State& s) override {
     s_ = s;
-    potential_->evaluate(s_, forces_);
+    evaluate_(s_, forces_);
     ++work.potential_evaluations;
     h_ = 0;
   }
@@ -67,7 +67,7 @@ class InertialLagrangian final : public DiscreteFlow {
       L_[r] = lagrangian_momentum(F[r].f, system_.body(system_.body_of_rigid(r)).inertia);
     }
     s_.t += h;
-    potential_->evaluate(s_, forces_);
+    evaluate_(s_, forces_);
     ++work.potential_evaluations;
     ++work.steps;
     // The discrete Legendre transform at k+1.
@@ -87,7 +87,7 @@ class InertialLagrangian final : public DiscreteFlow {
 
  private:
   const System system_;
-  std::shared_ptr<const noether::Potential> potential_;
+  noether::PotentialEvaluator& evaluate_;
   Settings settings_;
   double h_ = 0;
   State s_;
@@ -98,9 +98,9 @@ class InertialLagrangian final : public DiscreteFlow {
 
 }  // namespace
 
-std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System& s, std::shared_ptr<const noether::Potential> p,
+std::unique_ptr<DiscreteFlow> make_inertial_lagrangian(const System& s, noether::PotentialEvaluator& p,
                                                        const Settings& settings) {
-  return std::make_unique<InertialLagrangian>(s, std::move(p), settings);
+  return std::make_unique<InertialLagrangian>(s, p, settings);
 }
 
 }  // namespace lgvi

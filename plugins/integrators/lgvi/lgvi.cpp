@@ -18,7 +18,8 @@ using noether::SceneError;
 class Lgvi final : public noether::Integrator {
  public:
   Lgvi(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
-       const Params& params) {
+       const Params& params)
+      : evaluator_(std::move(potential)) {
     h_ = params.at("step").as_double();
     if (!(h_ > 0.0)) throw SceneError(params.at("step").here() + "lgvi: 'step' must be positive");
     lgvi::Settings settings;
@@ -39,12 +40,14 @@ class Lgvi final : public noether::Integrator {
       throw SceneError(params.at("order").here() +
                        "lgvi: order 4 (Yoshida composition) needs a one-step map: use form: hamiltonian");
     if (frame == "inertial")
-      flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, potential, settings)
-                                    : lgvi::make_inertial_lagrangian(system, potential, settings);
+      flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, evaluator_, settings)
+                                    : lgvi::make_inertial_lagrangian(system, evaluator_, settings);
     else
-      flow_ = form == "hamiltonian" ? lgvi::make_relative_hamiltonian(system, potential, settings)
-                                    : lgvi::make_relative_lagrangian(system, potential, settings);
+      flow_ = form == "hamiltonian" ? lgvi::make_relative_hamiltonian(system, evaluator_, settings)
+                                    : lgvi::make_relative_lagrangian(system, evaluator_, settings);
   }
+
+  noether::PotentialEvaluator* potential_evaluator() override { return &evaluator_; }
 
   void start(const noether::State& state) override {
     flow_->start(state);
@@ -104,6 +107,7 @@ class Lgvi final : public noether::Integrator {
     if (order_ == 4) work_.steps /= 3;  // steps of size h, each of three substeps
   }
 
+  noether::PotentialEvaluator evaluator_;  // declared before flow_, which keeps a reference
   std::unique_ptr<lgvi::DiscreteFlow> flow_;
   double h_ = 0.0;
   int order_ = 2;

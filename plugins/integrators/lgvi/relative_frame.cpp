@@ -4,8 +4,8 @@
 
 namespace lgvi {
 
-RelativeFrame::RelativeFrame(const System& system, std::shared_ptr<const noether::Potential> potential)
-    : system_(system), potential_(std::move(potential)) {
+RelativeFrame::RelativeFrame(const System& system, noether::PotentialEvaluator& evaluate)
+    : system_(system), evaluate_(evaluate) {
   if (system.size() != 2 || system.rigid_count() != 2)
     throw noether::SceneError(
         "lgvi: frame: relative needs exactly two rigid bodies (the full two-body problem of "
@@ -55,14 +55,14 @@ void RelativeFrame::reconstruct(const Reduced& r, State& s) const {
   s.Pi.col(1) = r.Pi2;
 }
 
-void RelativeFrame::evaluate(const Reduced& r, ReducedForces& f) const {
+void RelativeFrame::evaluate(const Reduced& r, ReducedForces& f) {
   canonical_.t = r.t;
   canonical_.x.col(0) = r.X;
   canonical_.x.col(1).setZero();
   canonical_.R[0] = r.R;
   canonical_.R[1].setIdentity();
   if (f.inertial.f.cols() != 2) f.inertial.resize(system_);
-  potential_->evaluate(canonical_, f.inertial);
+  evaluate_(canonical_, f.inertial);
   f.U = f.inertial.U;
   f.dU_dX = -f.inertial.f.col(0);   // with R2 = I, f1 = −∂U/∂X
   f.M = r.R * Vec3(f.inertial.M.col(0));

@@ -31,12 +31,12 @@ struct ReducedForces {
 
 class RelativeFrame {
  public:
-  RelativeFrame(const System& system, std::shared_ptr<const noether::Potential> potential);
+  RelativeFrame(const System& system, noether::PotentialEvaluator& evaluate);
   Reduced reduce(const State& s) const;
   void reconstruct(const Reduced& r, State& s) const;
   // U and its reduced derivatives at (X, R): one potential evaluation, at x1 = X, x2 = 0,
   // R1 = R, R2 = I (U depends on the relative configuration only).
-  void evaluate(const Reduced& r, ReducedForces& f) const;
+  void evaluate(const Reduced& r, ReducedForces& f);
   // The inertial forces of a reduced evaluation (f rotated by R2; body-frame M unchanged).
   void inertial_forces(const Reduced& r, const ReducedForces& rf, Forces& f) const;
 
@@ -46,8 +46,8 @@ class RelativeFrame {
 
  private:
   System system_;
-  std::shared_ptr<const noether::Potential> potential_;
-  mutable State canonical_;
+  noether::PotentialEvaluator& evaluate_;
+  State canonical_;  // scratch
 };
 
 }  // namespace lgvi

@@ -22,9 +22,9 @@ namespace {
 
 class RelativeHamiltonian final : public DiscreteFlow {
  public:
-  RelativeHamiltonian(const System& system, std::shared_ptr<const noether::Potential> potential,
+  RelativeHamiltonian(const System& system, noether::PotentialEvaluator& evaluate,
                       const Settings& settings)
-      : frame_(system, std::move(potential)), settings_(settings) {}
+      : frame_(system, evaluate), settings_(settings) {}
 
   void start(const State& s) override {
     r_ = frame_.reduce(s);
@@ -75,9 +75,9 @@ class RelativeHamiltonian final : public DiscreteFlow {
 
 }  // namespace
 
-std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System& s, std::shared_ptr<const noether::Potential> p,
+std::unique_ptr<DiscreteFlow> make_relative_hamiltonian(const System& s, noether::PotentialEvaluator& p,
                                                        const Settings& settings) {
-  return std::make_unique<RelativeHamiltonian>(s, std::move(p), settings);
+  return std::make_unique<RelativeHamiltonian>(s, p, settings);
 }
 
 }  // namespace lgvi

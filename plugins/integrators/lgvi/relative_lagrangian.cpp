@@ -28,9 +28,9 @@ namespace {
 
 class RelativeLagrangian final : public DiscreteFlow {
  public:
-  RelativeLagrangian(const System& system, std::shared_ptr<const noether::Potential> potential,
+  RelativeLagrangian(const System& system, noether::PotentialEvaluator& evaluate,
                      const Settings& settings)
-      : frame_(system, std::move(potential)), settings_(settings) {}
+      : frame_(system, evaluate), settings_(settings) {}
 
   void start(const State& s) override {
     r_ = frame_.reduce(s);
@@ -99,9 +99,9 @@ class RelativeLagrangian final : public DiscreteFlow {
 
 }  // namespace
 
-std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System& s, std::shared_ptr<const noether::Potential> p,
+std::unique_ptr<DiscreteFlow> make_relative_lagrangian(const System& s, noether::PotentialEvaluator& p,
                                                       const Settings& settings) {
-  return std::make_unique<RelativeLagrangian>(s, std::move(p), settings);
+  return std::make_unique<RelativeLagrangian>(s, p, settings);
 }
 
 }  // namespace lgvi

@@ -91,9 +91,10 @@ class Rk final : public noether::Integrator {
 
   void current(noether::State& state, noether::Forces& forces) override {
     equations_->unpack(y_.data(), t_, state);
-    forces.resize(equations_->system());
-    equations_->potential().evaluate(state, forces);  // for output; not counted as work
+    equations_->forces(state, forces);  // for output; not counted as work
   }
+
+  noether::PotentialEvaluator* potential_evaluator() override { return &equations_->evaluator(); }
 
   void current_state(noether::State& state) override { equations_->unpack(y_.data(), t_, state); }
 

@@ -25,7 +25,7 @@ class CentralField final : public noether::Potential {
       name_.push_back(b.name);
     }
   }
-  void evaluate(const noether::State& s, noether::Forces& out) const override {
+  void evaluate(const noether::State& s, noether::Forces& out, noether::Workspace&) const override {
     out.set_zero();
     for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
       const Eigen::Vector3d d = s.x.col(i) - c_;

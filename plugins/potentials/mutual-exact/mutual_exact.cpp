@@ -18,8 +18,12 @@ using noether::SceneError;
 using noether::State;
 using noether::System;
 
-struct Pair : noether::MutualPair {
-  std::unique_ptr<noether::ExactMutual> exact;
+using Pair = noether::MutualPair;
+
+// The reference evaluators of every pair: each keeps the surface rules it has built and the
+// quadrature level it last reached, so they are one thread's.
+struct Evaluators final : noether::Workspace {
+  std::vector<noether::ExactMutual> of_pair;
 };
 
 class MutualExactPotential final : public noether::Potential {
@@ -45,18 +49,29 @@ class MutualExactPotential final : public noether::Potential {
       for (std::size_t j = i + 1; j < system.size(); ++j) {
         Pair p;
         p.a = i, p.b = j, p.rigid_a = system.rigid_index(i), p.rigid_b = system.rigid_index(j);
-        p.exact = std::make_unique<noether::ExactMutual>(system.G(), system.body(i).solid, system.body(i).mass,
-                                                         system.body(j).solid, system.body(j).mass, options);
-        pairs_.push_back(std::move(p));
+        pairs_.push_back(p);
       }
+    G_ = system.G();
+    options_ = options;
+    for (const auto& body : system.bodies()) solid_.push_back(body.solid), mass_.push_back(body.mass);
+    make_workspace();  // checks the pairs can be evaluated (the constructor's errors) now
   }
 
-  void evaluate(const State& s, Forces& out) const override {
+  std::unique_ptr<noether::Workspace> make_workspace() const override {
+    auto w = std::make_unique<Evaluators>();
+    for (const Pair& p : pairs_)
+      w->of_pair.emplace_back(G_, solid_[p.a], mass_[p.a], solid_[p.b], mass_[p.b], options_);
+    return w;
+  }
+
+  void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
+    auto& exact = noether::workspace_as<Evaluators>(workspace, "mutual-exact").of_pair;
     out.set_zero();
-    for (const Pair& p : pairs_) {
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
       const noether::PairFrame frame = noether::pair_frame(s, p);
       try {
-        noether::add_mutual_terms(p, frame, p.exact->evaluate(frame.R, frame.C), out);
+        noether::add_mutual_terms(p, frame, exact[k].evaluate(frame.R, frame.C), out);
       } catch (const noether::Error& e) {
         std::ostringstream msg;
         msg << "mutual-exact: bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at t = " << s.t
@@ -70,6 +85,10 @@ class MutualExactPotential final : public noether::Potential {
  private:
   std::vector<std::string> names_;
   std::vector<Pair> pairs_;
+  double G_ = 1.0;
+  noether::ExactMutualOptions options_;
+  std::vector<std::shared_ptr<const noether::Solid>> solid_;
+  std::vector<double> mass_;
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params& params) {

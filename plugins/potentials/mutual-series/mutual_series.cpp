@@ -36,11 +36,21 @@ constexpr int kMaxOrder = 24;
 
 struct Pair : noether::MutualPair {  // a is the frame of the expansion (extended if either is)
   double reach = 0.0;  // radius_a + radius_b: beyond it the series converges for sure
+};
+
+// What one run of a pair writes: its order (chosen from a tolerance at the first evaluation,
+// or the fixed one), the watch on that choice and what is reported.
+struct PairRun {
   int order = 0;
-  // Tolerance mode: the watch on the choice, and what is reported.
   double check_below = 0.0;  // estimate again when the separation drops below this
   noether::PairModel report;
   bool warned_reach = false;
+};
+
+struct SeriesWorkspace final : noether::Workspace {
+  noether::SeriesBank bank;  // the series evaluators, by order (scratch)
+  std::vector<PairRun> pairs;
+  bool chosen = false;
 };
 
 class MutualSeriesPotential final : public noether::Potential {
@@ -82,15 +92,24 @@ class MutualSeriesPotential final : public noether::Potential {
         p.a = swap ? j : i, p.b = swap ? i : j;
         p.rigid_a = system.rigid_index(p.a), p.rigid_b = system.rigid_index(p.b);
         p.reach = radius_[p.a] + radius_[p.b];
-        p.order = fixed_order_;
         pairs_.push_back(p);
       }
   }
 
-  void evaluate(const State& s, Forces& out) const override {
-    if (tolerance_ > 0.0 && !chosen_) choose(s);
+  std::unique_ptr<noether::Workspace> make_workspace() const override {
+    auto w = std::make_unique<SeriesWorkspace>();
+    w->pairs.resize(pairs_.size());
+    for (PairRun& run : w->pairs) run.order = fixed_order_;
+    return w;
+  }
+
+  void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
+    auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
+    if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
     out.set_zero();
-    for (Pair& p : pairs_) {
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
+      PairRun& run = w.pairs[k];
       const noether::PairFrame frame = noether::pair_frame(s, p);
       const double R = frame.R.norm();
       if (!(R > 0.0)) {
@@ -99,14 +118,14 @@ class MutualSeriesPotential final : public noether::Potential {
             << "' are at the same position at t = " << s.t << " (a collision)";
         throw noether::IntegrationError(msg.str(), s.t);
       }
-      if (!p.warned_reach && R < p.reach) {
-        p.warned_reach = true;
+      if (!run.warned_reach && R < p.reach) {
+        run.warned_reach = true;
         spdlog::warn("mutual-series: bodies '{}' and '{}' are {:.6g} apart at t = {:.6g}, closer than "
                      "the sum of their radii {:.6g}: the series may converge slowly or not at all",
                      names_[p.a], names_[p.b], R, s.t, p.reach);
       }
-      if (tolerance_ > 0.0 && R < p.check_below) watch(p, frame, s.t);
-      if (p.order == 0) {  // point masses: one term
+      if (tolerance_ > 0.0 && R < run.check_below) watch(p, run, w.bank, frame, s.t);
+      if (run.order == 0) {  // point masses: one term
         const double U = -G_ * mass_[p.a] * mass_[p.b] / R;
         noether::MutualTerms t;
         t.U = U;
@@ -114,16 +133,17 @@ class MutualSeriesPotential final : public noether::Potential {
         noether::add_mutual_terms(p, frame, t, out);
       } else {
         noether::add_mutual_terms(
-            p, frame, bank_.at(p.order).evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
+            p, frame, w.bank.at(run.order).evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
       }
     }
   }
 
 
-  std::vector<noether::PairModel> pair_models() const override {
+  std::vector<noether::PairModel> pair_models(const noether::Workspace& workspace) const override {
+    const auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
     std::vector<noether::PairModel> out;
-    if (chosen_)
-      for (const Pair& p : pairs_) out.push_back(p.report);
+    if (w.chosen)
+      for (const PairRun& run : w.pairs) out.push_back(run.report);
     return out;
   }
 
@@ -177,15 +197,17 @@ class MutualSeriesPotential final : public noether::Potential {
     return 0.9 * h.squaredNorm() / (mu * (1.0 + e));
   }
 
-  void choose(const State& s) const {
+  void choose(const State& s, SeriesWorkspace& w) const {
     noether::OrderSelection options;
     options.tolerance = tolerance_;
     options.max_order = max_order_;
-    for (Pair& p : pairs_) {
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
+      PairRun& run = w.pairs[k];
       const noether::PairFrame frame = noether::pair_frame(s, p);
       const double separation = expected_separation(p, s);
       const noether::OrderChoice choice = noether::choose_series_order(
-          bank_, G_, integrals_[p.a], integrals_[p.b], radius_[p.a], radius_[p.b], separation, frame.R, frame.C, options);
+          w.bank, G_, integrals_[p.a], integrals_[p.b], radius_[p.a], radius_[p.b], separation, frame.R, frame.C, options);
       if (!choice.met) {
         std::ostringstream msg;
         msg << "mutual-series: no order up to max_order " << max_order_ << " meets the tolerance " << tolerance_
@@ -195,48 +217,47 @@ class MutualSeriesPotential final : public noether::Potential {
             << "give a larger min_separation if the bodies never come that close, or use mutual-exact";
         throw SceneError(msg.str());
       }
-      p.order = choice.order;
-      p.check_below = separation;
-      p.report.body_a = names_[std::min(p.a, p.b)];
-      p.report.body_b = names_[std::max(p.a, p.b)];
-      p.report.order = p.order;
-      p.report.model = p.order == 0 ? "point masses" : "series order " + std::to_string(p.order);
-      p.report.tolerance = tolerance_;
-      p.report.estimated_error = choice.estimated_error;
-      p.report.separation = separation;
+      run.order = choice.order;
+      run.check_below = separation;
+      run.report.body_a = names_[std::min(p.a, p.b)];
+      run.report.body_b = names_[std::max(p.a, p.b)];
+      run.report.order = run.order;
+      run.report.model = run.order == 0 ? "point masses" : "series order " + std::to_string(run.order);
+      run.report.tolerance = tolerance_;
+      run.report.estimated_error = choice.estimated_error;
+      run.report.separation = separation;
     }
-    chosen_ = true;
+    w.chosen = true;
   }
 
   // The pair is closer than its order was chosen for: estimate the error here (15.2).
-  void watch(Pair& p, const noether::PairFrame& frame, double t) const {
+  void watch(const Pair& p, PairRun& run, noether::SeriesBank& bank, const noether::PairFrame& frame,
+             double t) const {
     const double R = frame.R.norm();
-    p.check_below = 0.99 * R;  // again only once they are 1 % closer
-    if (p.report.exceeded) return;
-    const double estimate = noether::series_error_estimate(bank_, p.order, G_, integrals_[p.a], integrals_[p.b],
+    run.check_below = 0.99 * R;  // again only once they are 1 % closer
+    if (run.report.exceeded) return;
+    const double estimate = noether::series_error_estimate(bank, run.order, G_, integrals_[p.a], integrals_[p.b],
                                                            radius_[p.a], radius_[p.b], frame.R, frame.C);
     if (estimate <= tolerance_) return;
-    p.report.exceeded = true;
-    p.report.exceeded_time = t, p.report.exceeded_separation = R, p.report.exceeded_error = estimate;
+    run.report.exceeded = true;
+    run.report.exceeded_time = t, run.report.exceeded_separation = R, run.report.exceeded_error = estimate;
     std::ostringstream msg;
     msg << "mutual-series: at t = " << t << " bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' are "
-        << R << " apart, closer than the " << p.report.separation << " their order " << p.order
+        << R << " apart, closer than the " << run.report.separation << " their order " << run.order
         << " was chosen for, and its estimated error " << estimate << " exceeds the tolerance " << tolerance_;
     if (stop_on_exceed_) throw noether::IntegrationError(msg.str() + " (on_exceed: stop)", t);
     spdlog::warn("{}; the run goes on with order {} (on_exceed: stop would stop it; a smaller min_separation "
-                 "would choose a higher order)", msg.str(), p.order);
+                 "would choose a higher order)", msg.str(), run.order);
   }
 
   double G_;
   int fixed_order_ = 0, max_order_ = 12;
   double tolerance_ = 0.0, min_separation_ = 0.0;
   bool stop_on_exceed_ = false;
-  mutable bool chosen_ = false;
-  mutable noether::SeriesBank bank_;  // scratch: one evaluation at a time
   std::vector<InertiaIntegrals> integrals_;
   std::vector<double> radius_, mass_;
   std::vector<std::string> names_;
-  mutable std::vector<Pair> pairs_;
+  std::vector<Pair> pairs_;
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params& params) {

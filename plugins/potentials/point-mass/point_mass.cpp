@@ -21,7 +21,7 @@ class PointMass final : public noether::Potential {
     }
   }
 
-  void evaluate(const State& s, Forces& out) const override {
+  void evaluate(const State& s, Forces& out, noether::Workspace&) const override {
     out.set_zero();
     const Eigen::Index n = s.x.cols();
     for (Eigen::Index i = 0; i < n; ++i) {

@@ -101,7 +101,14 @@ class SphereCluster final : public noether::Potential {
     }
   }
 
-  void evaluate(const State& s, Forces& out) const override {
+  // Scratch: the inertial positions of every point.
+  struct Points final : noether::Workspace {
+    std::vector<std::vector<Vec3>> of_body;
+  };
+  std::unique_ptr<noether::Workspace> make_workspace() const override { return std::make_unique<Points>(); }
+
+  void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
+    auto& points_ = noether::workspace_as<Points>(workspace, "sphere-cluster").of_body;
     out.set_zero();
     const std::size_t n = clusters_.size();
     // Inertial positions of every point: x_i + R_i ρ_p.
@@ -158,7 +165,6 @@ class SphereCluster final : public noether::Potential {
   std::vector<Cluster> clusters_;
   std::vector<int> rigid_;
   std::vector<std::string> name_;
-  mutable std::vector<std::vector<Vec3>> points_;  // scratch
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params&) {
