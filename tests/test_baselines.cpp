@@ -70,7 +70,7 @@ TEST(Baselines, Rk4IsFourthOrder) {
   EXPECT_NEAR(std::log2(coarse / fine), 4.0, 0.3) << coarse << " / " << fine;
 }
 
-// The seed's point: a Runge–Kutta on the continuous equations drifts off SO(3); the LGVI does
+// Lee et al.'s point: a Runge–Kutta on the continuous equations drifts off SO(3); the LGVI does
 // not. With renormalize the drift is projected away at every step (opt-in).
 TEST(Baselines, RungeKuttaDriftsOffSO3UnlessRenormalized) {
   auto registry = test::bundled_plugins();

@@ -1,5 +1,5 @@
 // noether compare as a regression gate: on a short dumbbell run every family's errors fall as
-// its step or tolerance tightens, and the geometric orderings of the seed hold (the LGVI keeps
+// its step or tolerance tightens, and the geometric orderings of Lee et al. (2007) hold (the LGVI keeps
 // SO(3) and angular momentum to round-off, every baseline drifts).
 #include "test_support.hpp"
 

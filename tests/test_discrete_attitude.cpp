@@ -63,7 +63,7 @@ TEST(DiscreteAttitude, NewtonSolvesTheDefiningEquation) {
   EXPECT_LE(max_iterations, 8);
 }
 
-// At the dumbbell's spin (|Ω| = 9, h = 2e-4) the seed reports 3–4 iterations.
+// At the dumbbell's spin (|Ω| = 9, h = 2e-4) Lee et al. (2007) report 3–4 iterations.
 TEST(DiscreteAttitude, FewIterationsAtTheDumbbellSpin) {
   const Vec3 Pi = J1 * Vec3(0, 0, 9);
   const auto s = solve_discrete_attitude(2e-4 * Pi, J1);

@@ -1,4 +1,4 @@
-// jm-hybrid (Nair, Ober-Blöbaum & Marsden 2009, docs/equations.md §7) on the seed's eccentric Kepler orbit and the Pythagorean
+// jm-hybrid (Nair, Ober-Blöbaum & Marsden 2009, docs/equations.md §7) on Nair et al.'s eccentric Kepler orbit and the Pythagorean
 // three-body problem, against the analytic Kepler solution and plain Störmer–Verlet.
 #include "test_support.hpp"
 
@@ -65,7 +65,7 @@ constexpr double kPeriod = 18.893672;  // 2π a^{3/2}, a = 1/(2 · 0.24)
 
 }  // namespace
 
-// 100 orbits (t = 1889) of the seed's orbit, e = 0.9608. Measured: precession per orbit
+// 100 orbits (t = 1889) of Nair et al.'s orbit, e = 0.9608. Measured: precession per orbit
 // −1.85e-3 (hybrid, h = θ = 0.01), 4.55e-2 (Störmer–Verlet h = 0.01), 1.89e-3 (h = 0.002);
 // max |ΔE| 1.1e-2, 5.5e-2, 9.9e-3.
 TEST(JmHybrid, KeplerOrbitStaysClosedWhereStormerVerletPrecesses) {
@@ -76,7 +76,7 @@ TEST(JmHybrid, KeplerOrbitStaysClosedWhereStormerVerletPrecesses) {
   const double p_hybrid = std::abs(hybrid.orbit.precession_per_orbit(kPeriod));
   const double p_sv = std::abs(sv.orbit.precession_per_orbit(kPeriod));
   const double p_fine = std::abs(sv_fine.orbit.precession_per_orbit(kPeriod));
-  EXPECT_GT(p_sv, 1e-2);                 // the seed's Figure 1 (center): the orbit does not close
+  EXPECT_GT(p_sv, 1e-2);                 // Nair et al.'s Figure 1 (center): the orbit does not close
   EXPECT_LT(p_hybrid, 0.1 * p_sv);       // the hybrid's does, to 2e-3 rad per orbit
   EXPECT_LT(hybrid.orbit.max_energy_error(), 0.5 * sv.orbit.max_energy_error());
   // Störmer–Verlet needs a five times smaller step to match the hybrid.

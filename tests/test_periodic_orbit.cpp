@@ -19,6 +19,14 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+// A least-action problem for point masses with G = 1 (the model made by the point-mass plugin).
+LeastActionProblem problem(const std::vector<double>& masses) {
+  static PluginRegistry registry = test::bundled_plugins();
+  LeastActionProblem p;
+  p.model = OrbitModel::point_masses(masses, 1.0, registry);
+  return p;
+}
+
 // Three unit point masses, G = 1, under the point-mass plugin.
 const OrbitModel& three() {
   static PluginRegistry registry = test::bundled_plugins();
@@ -125,8 +133,7 @@ double distance_to_figure_eight(const VectorXd& xi3, double T, double* period_at
 
 TEST(LeastAction, GradientMatchesFiniteDifferences) {
   for (bool choreography : {true, false}) {
-    LeastActionProblem p;
-    p.masses = {1, 1, 1};
+    LeastActionProblem p = problem({1, 1, 1});
     p.modes = 6;
     p.points = 30;
     p.choreography = choreography;
@@ -148,8 +155,7 @@ TEST(LeastAction, GradientMatchesFiniteDifferences) {
 // From random starts (3 bodies, 15 modes, 102 points, choreography ansatz) the finder returns
 // the figure-eight; refined by shooting and aligned, it is Chenciner–Montgomery's orbit.
 TEST(LeastAction, FinderRecoversTheFigureEight) {
-  LeastActionProblem p;
-  p.masses = {1, 1, 1};
+  LeastActionProblem p = problem({1, 1, 1});
   p.modes = 15;
   p.points = 102;
   p.choreography = true;
@@ -169,13 +175,12 @@ TEST(LeastAction, FinderRecoversTheFigureEight) {
   EXPECT_EQ(found, 1);
 }
 
-// Other orbits the seed names: the Lagrange triangle and choreographies of 4 and 5 bodies
+// Other orbits Vanderbei (2002) names: the Lagrange triangle and choreographies of 4 and 5 bodies
 // (from random starts the finder returns their rotating regular polygons), each verified by
 // integrating one period.
 TEST(LeastAction, FinderReturnsVerifiedChoreographies) {
   for (int n : {3, 4, 5}) {
-    LeastActionProblem p;
-    p.masses.assign(static_cast<std::size_t>(n), 1.0);
+    LeastActionProblem p = problem(std::vector<double>(static_cast<std::size_t>(n), 1.0));
     p.modes = 10;
     p.points = 60;
     p.choreography = true;
@@ -183,10 +188,8 @@ TEST(LeastAction, FinderReturnsVerifiedChoreographies) {
     for (unsigned seed = 1; seed <= 20 && !verified; ++seed) {
       const FourierOrbit o = minimize_action(p, random_start(p, seed));
       if (o.residual > 1e-4) continue;
-      PluginRegistry registry = test::bundled_plugins();
-      const OrbitModel sys = OrbitModel::point_masses(p.masses, 1.0, registry);
       const VectorXd xi = lift_planar(o.initial_state(p));
-      const double closure = (integrate_flow(sys, xi, 2 * kPi, false).end - xi).norm();
+      const double closure = (integrate_flow(p.model, xi, 2 * kPi, false).end - xi).norm();
       verified = closure < 1e-5;  // before any refinement: the Fourier curve itself
     }
     EXPECT_TRUE(verified) << n << " bodies";
@@ -194,12 +197,13 @@ TEST(LeastAction, FinderReturnsVerifiedChoreographies) {
 }
 
 TEST(LeastAction, BadProblemsAreRefused) {
-  LeastActionProblem p;
-  p.masses = {1};
+  LeastActionProblem p = problem({1});
+  EXPECT_THROW(p.validate(), SceneError);  // one body and only mutual gravity
+  EXPECT_THROW(problem({1, -1, 1}), SceneError);
+  p = problem({1, 1, 1});
+  p.period = -1;
   EXPECT_THROW(p.validate(), SceneError);
-  p.masses = {1, -1, 1};
-  EXPECT_THROW(p.validate(), SceneError);
-  p.masses = {1, 1, 1};
+  p.period = 2 * kPi;
   p.modes = 15;
   p.points = 30;  // aliasing: needs > 30
   try {
@@ -211,9 +215,42 @@ TEST(LeastAction, BadProblemsAreRefused) {
   p.points = 100;
   p.choreography = true;  // 100 is not a multiple of 3
   EXPECT_THROW(p.validate(), SceneError);
-  p.masses = {1, 2, 1};
+  p.model = problem({1, 2, 1}).model;
   p.points = 99;
   EXPECT_THROW(p.validate(), SceneError);  // a choreography needs equal masses
+}
+
+// The finder minimises the action of the scene's own potential: one body in the central field
+// of the central-field plugin (μ = 2, m = 0.5), period T = 10. By Gordon (1977) every Kepler
+// ellipse of period T minimises the action among loops around the centre, with the same value
+// A = 3π m μ^{2/3} (T/2π)^{1/3} whatever its eccentricity; the finder's orbit must have it and
+// satisfy the equations of motion, and its initial state must close after T under the flow.
+TEST(LeastAction, MinimisesTheActionOfTheScenesPotential) {
+  PluginRegistry registry = test::bundled_plugins();
+  const Scene scene = parse_scene(
+      "G: 1\nbodies:\n  - {name: satellite, mass: 0.5, position: [1, 0, 0], velocity: [0, 1, 0]}\n"
+      "potential: {plugin: central-field, mu: 2}\nintegrator: {plugin: rk}\nrun: {t_end: 10, output_every: 1}\n",
+      "kepler");
+  LeastActionProblem p;
+  p.model = OrbitModel::from_scene(scene, registry);
+  p.period = 10;
+  p.modes = 12;
+  p.points = 64;
+  p.validate();
+  // Start: a circle of radius 1 traversed once (not the Kepler radius (μ (T/2π)²)^{1/3} = 1.72).
+  VectorXd start = VectorXd::Zero(static_cast<Eigen::Index>(p.size()));
+  const Eigen::Index per = 1 + 2 * p.modes;
+  start[1] = 1.0;              // x: a_1 cos τ
+  start[per + p.modes + 1] = 1.0;  // y: b_1 sin τ
+  const FourierOrbit o = minimize_action(p, start);
+  const double expected = 3 * kPi * 0.5 * std::pow(2.0, 2.0 / 3.0) * std::cbrt(10 / (2 * kPi));
+  EXPECT_NEAR(o.action, expected, 1e-9 * expected);
+  EXPECT_LT(o.residual, 1e-6);  // 12 modes of an ellipse: the truncation leaves 3e-8
+  const VectorXd xi = lift_planar(o.initial_state(p));
+  const double closure = (integrate_flow(p.model, xi, 10, false).end - xi).norm();
+  std::printf("Kepler by least action: A = %.12f (Gordon: %.12f), EOM residual %.1e, closure %.1e\n", o.action,
+              expected, o.residual, closure);
+  EXPECT_LT(closure, 1e-6 * xi.norm());
 }
 
 // The figure-eight is linearly stable: every multiplier left after projecting out the first
@@ -257,7 +294,7 @@ TEST(PeriodicOrbit, LagrangeTriangleIsUnstableAndConverged) {
   EXPECT_NEAR(largest[2], 85.0196952, 1e-6);
 }
 
-// The seed's first-order product Π (I + h A) at its resolution is far from the converged
+// Vanderbei's first-order product Π (I + h A) at its resolution is far from the converged
 // monodromy: for the figure-eight it reports multipliers of modulus ≈ 26, not 1.
 TEST(PeriodicOrbit, FirstOrderProductIsNotConverged) {
   const OrbitModel& sys = three();

@@ -40,6 +40,7 @@ struct OrbitOptions {
   // find
   std::vector<double> masses;
   int bodies = 3, modes = 15, points = 0, starts = 20;
+  bool bodies_given = false;  // --bodies on the command line (refused with --scene)
   unsigned seed = 1;
   bool choreography = false, refine = true;
   double max_residual = 1e-2;

@@ -59,8 +59,13 @@ int main(int argc, char** argv) {
   orbit_cmd->require_subcommand(1);
   noether::app::OrbitOptions orbit;
   auto* find_cmd = orbit_cmd->add_subcommand("find", "minimize a Fourier-discretized action from random starts");
-  find_cmd->add_option("--bodies", orbit.bodies, "number of bodies (equal masses)")->capture_default_str();
+  auto* bodies_opt = find_cmd->add_option("--bodies", orbit.bodies, "number of bodies (equal masses, G = 1, point-mass)")
+                         ->capture_default_str();
   find_cmd->add_option("--masses", orbit.masses, "masses (overrides --bodies)")->delimiter(',');
+  find_cmd->add_option("--scene", orbit.scene,
+                       "take the bodies, G and potential from this scene instead (point masses, planar)");
+  find_cmd->add_option("--set", orbit.overrides, "override a key of --scene")->take_all();
+  find_cmd->add_option("--period", orbit.period, "period T of the orbits sought (default 2 pi)");
   find_cmd->add_option("--modes", orbit.modes, "Fourier modes per coordinate")->capture_default_str();
   find_cmd->add_option("--points", orbit.points, "quadrature points (default: 100, or more than 2 × modes)");
   find_cmd->add_flag("--choreography", orbit.choreography, "all bodies on one curve, z_j(t) = z(t + 2 pi j/n)");
@@ -84,7 +89,7 @@ int main(int argc, char** argv) {
   }
   orbit_scene_cmds[0]->add_option("--tolerance", orbit.tolerance, "closure accepted (relative)")->capture_default_str();
   orbit_scene_cmds[1]->add_option("--tolerance", orbit.tolerance, "|lambda| <= 1 + tolerance is stable")->capture_default_str();
-  orbit_scene_cmds[1]->add_option("--first-order", orbit.first_order, "also the seed's first-order product with N steps");
+  orbit_scene_cmds[1]->add_option("--first-order", orbit.first_order, "also Vanderbei's first-order product with N steps");
   orbit_scene_cmds[2]->add_option("-o,--output", orbit.output, "refined scene (default: overwrite the input)");
 
   auto* check_cmd = app.add_subcommand(
@@ -104,6 +109,7 @@ int main(int argc, char** argv) {
                       "skip the net force and torque rows (for external-field models)");
 
   CLI11_PARSE(app, argc, argv);
+  orbit.bodies_given = bodies_opt->count() > 0;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
     if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress);

@@ -5,6 +5,8 @@
 #include <noether/periodic_orbit.hpp>
 #include <noether/scene.hpp>
 
+#include <sstream>
+
 #include <complex>
 
 #include <cstdio>
@@ -75,7 +77,7 @@ int orbit_stability(const OrbitOptions& o) {
   if (o.first_order > 0) {
     const auto M = noether::first_order_monodromy(model, xi, T, static_cast<std::size_t>(o.first_order), flow_options(o));
     const auto s1 = noether::stability(model, xi, M, o.tolerance);
-    std::printf("the seed's first-order product with %d steps: max |lambda| = %.4f, projected %.4f\n", o.first_order,
+    std::printf("Vanderbei's first-order product with %d steps: max |lambda| = %.4f, projected %.4f\n", o.first_order,
                 s1.max_unprojected, s1.max_projected);
   }
   std::printf("verdict: %s (tolerance %.1e)\n", s.verdict.c_str(), o.tolerance);
@@ -97,24 +99,37 @@ int orbit_refine(const OrbitOptions& o) {
 
 int orbit_find(OrbitOptions o) {
   noether::LeastActionProblem p;
-  p.masses = o.masses.empty() ? std::vector<double>(static_cast<std::size_t>(o.bodies), 1.0) : o.masses;
+  noether::PluginRegistry registry;
+  if (!o.scene.empty()) {  // the scene's bodies, G and potential
+    if (!o.masses.empty() || o.bodies_given)
+      throw noether::SceneError("orbit find: --bodies and --masses do not go with --scene (the scene gives the bodies)");
+    p.model = noether::OrbitModel::from_scene(noether::load_scene(o.scene, o.overrides), registry);
+  } else {
+    for (std::size_t j = 0; j < o.masses.size(); ++j)
+      if (!(o.masses[j] > 0))
+        throw noether::SceneError("orbit find: --masses must be positive; body " + std::to_string(j + 1) + " has " +
+                                  (std::ostringstream() << o.masses[j]).str());
+    p.model = noether::OrbitModel::point_masses(
+        o.masses.empty() ? std::vector<double>(static_cast<std::size_t>(std::max(o.bodies, 0)), 1.0) : o.masses, 1.0,
+        registry);
+  }
+  if (o.period > 0) p.period = o.period;
   p.modes = o.modes;
   p.choreography = o.choreography;
-  p.points = o.points > 0 ? o.points : [&] {  // the seed's 100, adjusted: > 2F, multiple of n
+  p.points = o.points > 0 ? o.points : [&] {  // Vanderbei's 100, adjusted: > 2F, multiple of n
     int m = std::max(100, 2 * o.modes + 2);
-    while (p.choreography && m % static_cast<int>(p.masses.size()) != 0) ++m;
+    while (p.choreography && p.n() > 0 && m % static_cast<int>(p.n()) != 0) ++m;
     return m;
   }();
   p.validate();
   std::filesystem::create_directories(o.out_dir);
-  noether::PluginRegistry registry;
-  const auto model = noether::OrbitModel::point_masses(p.masses, 1.0, registry);
+  const auto& model = p.model;
   std::vector<double> found_actions;
   int k = 0, failures = 0;
   for (int s = 0; s < o.starts; ++s) {
     const auto orbit = noether::minimize_action(p, noether::random_start(p, o.seed + static_cast<unsigned>(s)));
-    std::printf("start %3d: action %.10f, EOM residual %.2e, min distance %.3f", s, orbit.action, orbit.residual,
-                orbit.min_distance);
+    std::printf("start %3d: action %.10f, EOM residual %.2e", s, orbit.action, orbit.residual);
+    if (p.n() > 1) std::printf(", min distance %.3f", orbit.min_distance);
     bool seen = false;
     for (double a : found_actions) seen |= std::abs(a - orbit.action) < 1e-6 * std::abs(a);
     if (orbit.residual > o.max_residual || orbit.min_distance < 1e-3) {
@@ -127,7 +142,7 @@ int orbit_find(OrbitOptions o) {
       continue;
     }
     Eigen::VectorXd xi = noether::lift_planar(orbit.initial_state(p));
-    double T = 2 * std::numbers::pi;
+    double T = p.period;
     double closure = (noether::integrate_flow(model, xi, T, false).end - xi).norm();
     if (o.refine) {
       const auto r = noether::refine_periodic_orbit(model, xi, T);
@@ -151,10 +166,10 @@ int orbit_find(OrbitOptions o) {
     for (std::size_t j = 0; j < p.n(); ++j) curve << ",x" << j + 1 << ",y" << j + 1;
     curve << "\n";
     for (int i = 0; i <= 400; ++i) {
-      const double t = 2 * std::numbers::pi * i / 400;
-      curve << t;
+      const double tau = 2 * std::numbers::pi * i / 400;
+      curve << p.period * i / 400;
       for (std::size_t j = 0; j < p.n(); ++j) {
-        const auto z = noether::fourier_position(p, orbit.coefficients, j, t);
+        const auto z = noether::fourier_position(p, orbit.coefficients, j, tau);
         curve << ',' << z.x() << ',' << z.y();
       }
       curve << "\n";

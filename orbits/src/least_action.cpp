@@ -14,9 +14,14 @@ using Eigen::VectorXd;
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
 void LeastActionProblem::validate() const {
-  if (masses.size() < 2) throw SceneError("orbit find: need at least 2 bodies, not " + std::to_string(masses.size()));
-  for (double m : masses)
-    if (!(m > 0)) throw SceneError("orbit find: masses must be positive");
+  if (!model.potential) throw SceneError("orbit find: the problem has no model (bodies and potential)");
+  bool mutual_only = true;
+  for (const auto& p : model.potentials) mutual_only &= p.plugin == "point-mass";
+  if (n() < 1 || (mutual_only && n() < 2))
+    throw SceneError("orbit find: need at least 2 bodies under mutual gravity (or 1 in an external field), not " +
+                     std::to_string(n()));
+  if (!(period > 0) || !std::isfinite(period))
+    throw SceneError("orbit find: the period must be positive and finite");
   if (modes < 1) throw SceneError("orbit find: need at least one Fourier mode");
   if (points <= 2 * modes)
     throw SceneError("orbit find: " + std::to_string(points) + " quadrature points alias " +
@@ -26,8 +31,8 @@ void LeastActionProblem::validate() const {
     if (points % static_cast<int>(n()) != 0)
       throw SceneError("orbit find: a choreography needs the number of points to be a multiple of the "
                        "number of bodies (" + std::to_string(n()) + ")");
-    for (double m : masses)
-      if (m != masses.front()) throw SceneError("orbit find: a choreography needs equal masses");
+    for (std::size_t j = 0; j < n(); ++j)
+      if (mass(j) != mass(0)) throw SceneError("orbit find: a choreography needs equal masses");
   }
 }
 
@@ -77,31 +82,44 @@ void evaluate_curve(const LeastActionProblem& p, const Tables& tb, const VectorX
 
 }  // namespace
 
-double action(const LeastActionProblem& p, const VectorXd& c, VectorXd* gradient) {
+// The model's state with body j at (X_j, 0) (the bodies at rest: U depends on positions only).
+void place(const std::vector<Eigen::Vector2d>& X, State& state) {
+  for (std::size_t j = 0; j < X.size(); ++j)
+    state.x.col(static_cast<Eigen::Index>(j)) = Vec3(X[j].x(), X[j].y(), 0.0);
+}
+
+double action(const LeastActionProblem& p, const VectorXd& c, VectorXd* gradient, Workspace* workspace) {
   static thread_local Tables tb;
   static thread_local std::pair<int, int> key{-1, -1};
   if (key != std::make_pair(p.points, p.modes)) {
     tb = tables(p);
     key = {p.points, p.modes};
   }
+  std::unique_ptr<Workspace> own;
+  if (!workspace) own = p.model.potential->make_workspace(), workspace = own.get();
   if (gradient) gradient->setZero(c.size());
   const std::size_t n = p.n();
+  const double omega = kTwoPi / p.period;  // dτ/dt
   double A = 0;
-  // Kinetic part, exactly: ∫₀^{2π} ½ m ż² dt = (π/2) m Σ k² (a_k² + b_k²)... per coordinate.
+  // Kinetic part, exactly: ∫₀^T ½ m ‖dz/dt‖² dt = ω (π/2) m Σ k² (a_k² + b_k²) per coordinate (8.2).
   for (std::size_t j = 0; j < n; ++j) {
     const std::size_t curve = p.choreography ? 0 : j;
     for (int d = 0; d < 2; ++d)
       for (int k = 1; k <= p.modes; ++k)
         for (int slot : {k, p.modes + k}) {
           const auto ix = static_cast<Eigen::Index>(index(p, curve, d, slot));
-          A += 0.5 * std::numbers::pi * p.masses[j] * k * k * c[ix] * c[ix];
-          if (gradient) (*gradient)[ix] += std::numbers::pi * p.masses[j] * k * k * c[ix];
+          A += 0.5 * omega * std::numbers::pi * p.mass(j) * k * k * c[ix] * c[ix];
+          if (gradient) (*gradient)[ix] += omega * std::numbers::pi * p.mass(j) * k * k * c[ix];
         }
   }
-  // Potential part by the trapezoid rule: (2π/m) Σ_i Σ_{j<l} m_j m_l / r_jl.
-  const double w = kTwoPi / p.points;
+  // Potential part by the trapezoid rule: −(1/ω)(2π/m) Σ_i U(z(τ_i)), U and f = −∂U/∂x from
+  // the model's potential (8.3).
+  const double w = kTwoPi / p.points / omega;
   std::vector<Eigen::Vector2d> X(n);
   std::vector<std::pair<std::size_t, int>> at(n);
+  State state = State::zeros(p.model.system);
+  Forces forces;
+  forces.resize(p.model.system);
   for (int i = 0; i < p.points; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       at[j] = curve_of(p, j, i);
@@ -111,25 +129,21 @@ double action(const LeastActionProblem& p, const VectorXd& c, VectorXd* gradient
         X[j][d] = z;
       }
     }
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t l = j + 1; l < n; ++l) {
-        const Eigen::Vector2d r = X[j] - X[l];
-        const double rn = r.norm(), mm = p.masses[j] * p.masses[l];
-        A += w * mm / rn;
-        if (!gradient) continue;
-        const Eigen::Vector2d g = -w * mm / (rn * rn * rn) * r;  // ∂(mm/r)/∂X_j
-        for (std::size_t b : {j, l}) {
-          const Eigen::Vector2d gb = b == j ? g : Eigen::Vector2d(-g);
-          const auto [curve, ii] = at[b];
-          for (int d = 0; d < 2; ++d) {
-            (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, 0))] += gb[d];
-            for (int k = 1; k <= p.modes; ++k) {
-              (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, k))] += gb[d] * tb.cos[static_cast<std::size_t>(ii * p.modes + k - 1)];
-              (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, p.modes + k))] += gb[d] * tb.sin[static_cast<std::size_t>(ii * p.modes + k - 1)];
-            }
-          }
+    place(X, state);
+    p.model.potential->evaluate(state, forces, *workspace);
+    A -= w * forces.U;
+    if (!gradient) continue;
+    for (std::size_t j = 0; j < n; ++j) {
+      const Eigen::Vector2d g = w * forces.f.col(static_cast<Eigen::Index>(j)).head<2>();  // ∂(−wU)/∂X_j = w f_j
+      const auto [curve, ii] = at[j];
+      for (int d = 0; d < 2; ++d) {
+        (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, 0))] += g[d];
+        for (int k = 1; k <= p.modes; ++k) {
+          (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, k))] += g[d] * tb.cos[static_cast<std::size_t>(ii * p.modes + k - 1)];
+          (*gradient)[static_cast<Eigen::Index>(index(p, curve, d, p.modes + k))] += g[d] * tb.sin[static_cast<std::size_t>(ii * p.modes + k - 1)];
         }
       }
+    }
   }
   return A;
 }
@@ -137,15 +151,16 @@ double action(const LeastActionProblem& p, const VectorXd& c, VectorXd* gradient
 namespace {
 struct NloptData {
   const LeastActionProblem* p;
+  Workspace* workspace;
   int evaluations = 0;
 };
 double objective(unsigned n, const double* x, double* grad, void* data) {
   auto* d = static_cast<NloptData*>(data);
   ++d->evaluations;
   const Eigen::Map<const VectorXd> c(x, n);
-  if (!grad) return action(*d->p, c, nullptr);
+  if (!grad) return action(*d->p, c, nullptr, d->workspace);
   VectorXd g;
-  const double A = action(*d->p, c, &g);
+  const double A = action(*d->p, c, &g, d->workspace);
   std::copy(g.data(), g.data() + n, grad);
   return std::isfinite(A) ? A : 1e300;
 }
@@ -155,7 +170,8 @@ FourierOrbit minimize_action(const LeastActionProblem& p, const VectorXd& start,
   p.validate();
   const auto n = static_cast<unsigned>(p.size());
   nlopt_opt opt = nlopt_create(NLOPT_LD_LBFGS, n);
-  NloptData data{&p};
+  const auto workspace = p.model.potential->make_workspace();
+  NloptData data{&p, workspace.get()};
   nlopt_set_min_objective(opt, &objective, &data);
   nlopt_set_ftol_rel(opt, 1e-15);
   nlopt_set_xtol_rel(opt, 1e-13);
@@ -169,10 +185,15 @@ FourierOrbit minimize_action(const LeastActionProblem& p, const VectorXd& start,
   o.coefficients = Eigen::Map<VectorXd>(x.data(), static_cast<Eigen::Index>(n));
   o.action = f;
   o.evaluations = data.evaluations;
-  // Residual of the equations of motion along the curve, and the closest approach.
+  // Residual of the equations of motion m ω² z'' = F along the curve (F from the model, in
+  // 3-D: a force out of the plane counts as residual), and the closest approach.
   const Tables tb = tables(p);
+  const double omega2 = std::pow(kTwoPi / p.period, 2);
   double worst = 0, fmax = 0;
   o.min_distance = 1e300;
+  State state = State::zeros(p.model.system);
+  Forces forces;
+  forces.resize(p.model.system);
   for (int i = 0; i < p.points; ++i) {
     std::vector<Eigen::Vector2d> X(p.n()), Acc(p.n());
     for (std::size_t j = 0; j < p.n(); ++j) {
@@ -181,18 +202,16 @@ FourierOrbit minimize_action(const LeastActionProblem& p, const VectorXd& start,
         double z, zd, zdd;
         evaluate_curve(p, tb, o.coefficients, curve, d, ii, z, zd, zdd);
         X[j][d] = z;
-        Acc[j][d] = zdd;
+        Acc[j][d] = omega2 * zdd;
       }
     }
+    place(X, state);
+    p.model.potential->evaluate(state, forces, *workspace);
     for (std::size_t j = 0; j < p.n(); ++j) {
-      Eigen::Vector2d F = Eigen::Vector2d::Zero();
-      for (std::size_t l = 0; l < p.n(); ++l)
-        if (l != j) {
-          const Eigen::Vector2d r = X[l] - X[j];
-          o.min_distance = std::min(o.min_distance, r.norm());
-          F += p.masses[j] * p.masses[l] / std::pow(r.norm(), 3) * r;
-        }
-      worst = std::max(worst, (p.masses[j] * Acc[j] - F).norm());
+      for (std::size_t l = j + 1; l < p.n(); ++l) o.min_distance = std::min(o.min_distance, (X[l] - X[j]).norm());
+      const Vec3 F = forces.f.col(static_cast<Eigen::Index>(j));
+      const Vec3 ma(p.mass(j) * Acc[j].x(), p.mass(j) * Acc[j].y(), 0.0);
+      worst = std::max(worst, (ma - F).norm());
       fmax = std::max(fmax, F.norm());
     }
   }
@@ -243,7 +262,7 @@ VectorXd FourierOrbit::initial_state(const LeastActionProblem& p) const {
         zd += k * (-a * std::sin(k * t) + b * std::cos(k * t));
       }
       xi[2 * j + d] = z;
-      xi[2 * n + 2 * j + d] = zd;
+      xi[2 * n + 2 * j + d] = (kTwoPi / p.period) * zd;  // dz/dt = ω dz/dτ
     }
   }
   return xi;

@@ -11,8 +11,8 @@
 //   relative, Lagrangian (55)–(62): the same with V = Γ/m, ω and Ω2 as variables:
 //     V̇ = V × Ω2 − (1/m) ∂U/∂X,  ω̇ = J_R⁻¹(M − ω × J_R ω) − Ω2 × ω,  J2 Ω̇2 + Ω2 × J2 Ω2 = M2
 // with M = R M1 (moment on body 1 seen from body 2) and M2 = X × ∂U/∂X − M the moment on body 2
-// (our sign of M is the negative of the seed's in the relative equations). Attitudes are
-// carried as nine plain numbers, as the seed's Runge–Kutta does: a general-purpose solver lets
+// (our sign of M is the negative of Lee et al.'s in the relative equations). Attitudes are
+// carried as nine plain numbers, as Lee et al.'s Runge–Kutta does: a general-purpose solver lets
 // them drift off SO(3), and that drift is part of what noether reports.
 #include <noether/export.hpp>
 #include <noether/forces.hpp>

@@ -81,7 +81,7 @@ Eigen::MatrixXd invariant_directions(const OrbitModel& model, const Eigen::Vecto
 struct Stability {
   std::vector<std::complex<double>> multipliers;      // in-plane: eigenvalues of Π Φ Π, by modulus
   std::vector<std::complex<double>> unprojected;      // in-plane: eigenvalues of Φ
-  std::vector<std::complex<double>> right_projected;  // in-plane: eigenvalues of Φ Π (the seed's)
+  std::vector<std::complex<double>> right_projected;  // in-plane: eigenvalues of Φ Π (Vanderbei's)
   std::vector<std::complex<double>> out_of_plane;     // eigenvalues of the (z, v_z) block of Φ
   double max_projected = 0.0, max_unprojected = 0.0;  // max |λ(ΠΦΠ)|, max |λ(Φ)|
   std::string verdict;  // "linearly stable", "unstable", or "undecided" (in-plane)
@@ -94,7 +94,7 @@ struct Stability {
 Stability stability(const OrbitModel& model, const Eigen::VectorXd& xi0, const Eigen::MatrixXd& monodromy,
                     double tolerance);
 
-// The seed's first-order monodromy Π_i (I + h A(ξ(t_i))), h = T/steps, along the flow.
+// Vanderbei's first-order monodromy Π_i (I + h A(ξ(t_i))), h = T/steps, along the flow.
 Eigen::MatrixXd first_order_monodromy(const OrbitModel& model, const Eigen::VectorXd& xi0, double T,
                                       std::size_t steps, const FlowOptions& options = {});
 
@@ -110,7 +110,7 @@ struct Refinement {
 // steps are least squares). With a free period a step that would change T by more than 10 %
 // is not taken (the trivial solution T → 0 attracts otherwise).
 Refinement refine_periodic_orbit(const OrbitModel& model, const Eigen::VectorXd& xi0, double T,
-                                 double target = 1e-12, int max_iterations = 12,
+                                 double target = 1e-12, int max_iterations = 30,
                                  const FlowOptions& options = {}, bool free_period = false);
 
 // A scene `noether run` accepts: the model's bodies at ξ0 and its potential, one period with

@@ -13,7 +13,7 @@
 //        Δ = q_{k+1} − q_k, L = ‖Δ‖_M, ∇W = −∇V / W.
 //    Time per step (seed eq. (11)): Δt_k = L / W(q̄); the momentum at q_{k+1} is D2 A_d.
 //
-// Decisions where the seed is silent (docs/jm-hybrid.md):
+// Decisions where the paper is silent (docs/jm-hybrid.md):
 //  * Entering JM after a VI step: E := the discrete energy of that last VI step, and the JM map
 //    starts from the last two VI points (so the discrete energy is continuous at the switch).
 //    The parameter coordinate is the one with the largest |Δ_i| of that step.

@@ -5,7 +5,7 @@
 //   Π = R Π1 (body 1's angular momentum seen from body 2),  Π2,
 // plus body 2's inertial (x2, γ2, R2) for reconstruction.
 //
-// Sign convention (differs from the seed, whose relative M is the negative of ours): M = R M1
+// Sign convention (differs from Lee et al. (2007), whose relative M is the negative of ours): M = R M1
 // is the gravitational moment on body 1 expressed in body 2's frame, and the moment on body 2
 // is M2 = X × ∂U/∂X − M. Derivation: under R2 → R2 exp(ε S(η)), X → X − ε η × X and
 // R → exp(−ε S(η)) R, so −dU/dε = η · (X × ∂U/∂X − R M1).

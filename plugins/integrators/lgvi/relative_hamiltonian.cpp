@@ -1,7 +1,7 @@
 // LGVI, relative frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (118)–(124), with the reconstruction
 // of body 2's inertial motion (125)–(127) (docs/equations.md §5). Derived here by reducing (93)–(97) by
 // the symmetry U(x1, x2, R1, R2) = U(X, R), so that it reproduces the inertial trajectory for
-// the same h up to round-off; our M is the negative of the seed's relative M (see
+// the same h up to round-off; our M is the negative of Lee et al.'s relative M (see
 // relative_frame.hpp):
 //   h S(Π2_k + (h/2) M2_k) = F2_k Jd2 − Jd2 F2_kᵀ                                   (124)
 //   h S(Π_k + (h/2) M_k)   = F_k JdR_k − JdR_k F_kᵀ,  JdR = R Jd1 Rᵀ                  (123)

@@ -6,8 +6,8 @@
 //   F2_k Jd2 − Jd2 F2_kᵀ = Jd2 F2_{k−1} − F2_{k−1}ᵀ Jd2 + h² S(M2_k)                  (114)
 //   R_{k+1} = F2_kᵀ F_k R_k,  R2_{k+1} = R2_k F2_k                               (115), (116)
 //   x2_{k+1} − 2 x2_k + x2_{k−1} = (h²/m2) R2_k ∂U_k/∂X_k                            (117)
-// (113), (114) are the seed's up to its sign of M, with the sides as the Hamiltonian form
-// implies (the seed's extraction is garbled there). Carried without loss of precision as
+// (113), (114) are Lee et al.'s up to its sign of M, with the sides as the Hamiltonian form
+// implies (Lee et al.'s extraction is garbled there). Carried without loss of precision as
 //   D_k = X_k − F2_{k−1}ᵀ X_{k−1}:  D_{k+1} = F2_kᵀ (D_k − (h²/m) ∂U_k/∂X),
 //                                   X_{k+1} = F2_kᵀ X_k + D_{k+1}                      (112)
 //   A_k = F2_{k−1}ᵀ vee(F_{k−1} JdR_{k−1} − JdR_{k−1} F_{k−1}ᵀ):  S(A_k + h² M_k) = F_k JdR_k − …  (113)

@@ -1,6 +1,6 @@
 // rk: classical explicit Runge–Kutta baselines on the continuous equations (docs/equations.md §3), from
 // Boost.Odeint: RK4 with a fixed step, Dormand–Prince 5(4) and Fehlberg 7(8) with error
-// control. Like the seed's Runge–Kutta they integrate R as nine numbers and drift off SO(3);
+// control. Like Lee et al.'s Runge–Kutta they integrate R as nine numbers and drift off SO(3);
 // `renormalize: true` projects every R back onto SO(3) after each accepted step (opt-in,
 // never silent: the output records it in /parameters).
 #include <noether/continuous_equations.hpp>
