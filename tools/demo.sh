@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 ./tools/install-deps.sh
 cmake --preset release
 cmake --build --preset release
-./build/release/bin/noether run examples/dumbbells.yaml -o dumbbells.h5
+./build/release/bin/noether run examples/dumbbells.yaml --force -o dumbbells.h5  # the demo replaces its own output

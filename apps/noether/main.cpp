@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", overrides, "override a scene key: --set integrator.step=1e-3")
       ->take_all();
   run_cmd->add_flag("--no-progress", no_progress, "no progress line on stderr");
+  bool force = false;
+  run_cmd->add_flag("--force", force, "overwrite an existing output file (never a link or the scene)");
 
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin found");
 
@@ -108,11 +111,16 @@ int main(int argc, char** argv) {
   check_cmd->add_flag("--no-third-law", no_third_law,
                       "skip the net force and torque rows (for external-field models)");
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);  // prints help, the version, or the usage error
+    return code == 0 ? 0 : 2;      // usage errors exit 2, as documented
+  }
   orbit.bodies_given = bodies_opt->count() > 0;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
-    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress);
+    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force);
     if (*plugins_cmd) return noether::app::list_plugins();
     if (*find_cmd) return noether::app::orbit_find(orbit);
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);
@@ -124,6 +132,9 @@ int main(int argc, char** argv) {
       return noether::app::check_potential(scene, overrides, check_options);
     }
   } catch (const noether::Error& e) {
+    std::cerr << "noether: " << e.what() << "\n";
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {  // e.g. a read-only --out-dir
     std::cerr << "noether: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {

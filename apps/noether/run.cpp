@@ -6,6 +6,7 @@
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
 
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 
@@ -30,19 +31,46 @@ void print_shapes(const noether::Scene& scene, std::ostream& out) {
   }
 }
 
+namespace {
+
+// SIGINT and SIGTERM ask the run to stop after its current step (the stepping loop reads the
+// flag); a second one of either ends the process at once (SA_RESETHAND).
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void on_stop_signal(int signal) { g_signal = signal; }
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+}  // namespace
+
 int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress) {
+        const std::vector<std::string>& overrides, bool progress, bool force) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   noether::RunOptions options;
   if (!output.empty()) options.output = output;
+  options.overwrite = force;
   options.progress = progress;
+  options.interrupt = &g_signal;
+  install_stop_handlers();
   try {
     const auto summary = noether::run_scene(scene, registry, options);
     std::cout << "scene                         " << scene_file << "\n";
     print_shapes(scene, std::cout);
     std::cout << noether::format_summary(summary);
     if (!output.empty()) std::cout << "output                        " << output << "\n";
+    if (g_signal != 0) {
+      std::cerr << "noether: " << (g_signal == SIGINT ? "SIGINT" : "SIGTERM") << ": stopped at t = "
+                << summary.final_state.t << " after a complete step"
+                << (output.empty() ? std::string() : "; the output up to there is in " + output) << "\n";
+      return 128 + g_signal;
+    }
   } catch (const noether::IntegrationError& e) {
     std::cerr << "noether: integration stopped at t = " << e.t_reached() << ": " << e.what()
               << "\n";

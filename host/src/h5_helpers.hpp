@@ -5,17 +5,28 @@
 
 #include <hdf5.h>
 
+#include <cerrno>
+
 #include <algorithm>
 #include <string>
 #include <vector>
 
 namespace noether::h5 {
 
+// What the system said when HDF5 failed, if it is a condition a user can act on.
+inline std::string system_reason() {
+  const int e = errno;
+  if (e == ENOSPC) return ": no space left on the device (ENOSPC)";
+  if (e == EDQUOT) return ": disk quota exceeded (EDQUOT)";
+  if (e == EROFS) return ": read-only file system (EROFS)";
+  if (e == EIO) return ": input/output error (EIO)";
+  return "";
+}
 inline void check(herr_t status, const char* what) {
-  if (status < 0) throw OutputError(std::string("HDF5 error while ") + what);
+  if (status < 0) throw OutputError(std::string("HDF5 error while ") + what + system_reason());
 }
 inline hid_t check_id(hid_t id, const char* what) {
-  if (id < 0) throw OutputError(std::string("HDF5 error while ") + what);
+  if (id < 0) throw OutputError(std::string("HDF5 error while ") + what + system_reason());
   return id;
 }
 

@@ -5,6 +5,11 @@
 #include "h5_helpers.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace noether {
 
@@ -76,7 +81,49 @@ struct Series {
 
 }  // namespace
 
+// Claims `path` for this run before anything is truncated (docs/user-guide.md, "Output
+// files"): refuses a symbolic link, anything but a regular file, one of the run's inputs, and
+// an existing file unless `overwrite`; then takes an exclusive lock (flock) on it, held until
+// the file is closed, so that a second run on the same path is refused before anything is
+// truncated. (HDF5 1.10 locks only after opening with O_TRUNC, and a record lock would be
+// dropped when HDF5 closes any descriptor of the file, so the lock is ours and HDF5's own is
+// switched off for the files noether writes: HDF5_USE_FILE_LOCKING=FALSE unless the user set
+// it.) Returns the descriptor that holds the lock.
+int claim_output(const std::filesystem::path& path, const OutputOptions& options) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status link = fs::symlink_status(path, ec);
+  if (fs::is_symlink(link))
+    throw OutputError(path.string() + " is a symbolic link; noether does not write through links: give the file "
+                      "it points to, or another path");
+  const bool exists = fs::exists(link);
+  if (exists && !fs::is_regular_file(link))
+    throw OutputError(path.string() + " exists and is not a regular file");
+  for (const auto& input : options.inputs)
+    if (exists && fs::equivalent(path, input, ec))
+      throw OutputError("the output " + path.string() + " is the run's input " + input.string() +
+                        "; choose another output file");
+  if (exists && !options.overwrite)
+    throw OutputError(path.string() + " exists; noether does not overwrite output unless asked: pass --force, "
+                      "or choose another output file");
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(errno) +
+                      " (does its folder exist, and is it writable?)");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int e = errno;
+    ::close(fd);
+    if (e == EWOULDBLOCK)
+      throw OutputError("another process is writing " + path.string() +
+                        " (a second noether run on the same output?); its output is left untouched");
+    throw OutputError("cannot lock the output file " + path.string() + ": " + std::strerror(e));
+  }
+  return fd;
+}
+
 struct H5Writer::Impl {
+  int lock = -1;  // the descriptor holding the output's lock (claim_output)
   hid_t file = -1;
   OutputOptions options;
   Clock::time_point last_flush = Clock::now();
@@ -116,10 +163,15 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become OutputError, not stderr noise
   Impl& m = *impl_;
   m.options = options;
+  m.lock = claim_output(path, options);
   m.file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (m.file < 0)
-    throw OutputError("cannot create the output file " + path.string() +
+  if (m.file < 0) {
+    const std::string reason = system_reason();
+    ::close(m.lock);
+    m.lock = -1;
+    throw OutputError("cannot create the output file " + path.string() + reason +
                       " (does its folder exist, and is it writable?)");
+  }
   const System& sys = scene.system;
   m.n_bodies = sys.size();
   m.n_rigid = sys.rigid_count();
@@ -237,6 +289,7 @@ H5Writer::~H5Writer() {
     impl_->step_series.reset();
     H5Fclose(impl_->file);
   }
+  if (impl_ && impl_->lock >= 0) ::close(impl_->lock);
 }
 
 void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnostics& d) {
@@ -343,6 +396,8 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   m.step_series.reset();
   check(H5Fclose(m.file), "closing the output file");
   m.file = -1;
+  ::close(m.lock);
+  m.lock = -1;
 }
 
 }  // namespace noether

@@ -121,7 +121,12 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   };
   summary.pair_models = pair_models();
   std::unique_ptr<H5Writer> writer;
-  if (options.output) writer = std::make_unique<H5Writer>(*options.output, scene);
+  if (options.output) {
+    OutputOptions output;
+    output.overwrite = options.overwrite;
+    if (!scene.file.empty() && std::filesystem::exists(scene.file)) output.inputs.push_back(scene.file);
+    writer = std::make_unique<H5Writer>(*options.output, scene, output);
+  }
   if (writer) writer->write_pair_models(summary.pair_models);
   State state = scene.initial;
   const Integrator* current = integrator.get();
@@ -130,7 +135,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
 
   Schedule schedule{scene.run.t_end, scene.run.output_every,
                     Events{scene.run.close_approach, scene.run.collisions},
-                    {}};
+                    {}, options.interrupt};
   if (options.progress)  // the clock read every 16 steps only
     schedule.on_step = [&progress, n = 0u](double t) mutable {
       if ((++n & 15u) == 0) progress.update(t);

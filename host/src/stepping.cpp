@@ -107,7 +107,12 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
   integrator.start(state);
   integrator.current(state, forces);
   state.t = t0;
-  observer.observe(state, forces);
+  double last_observed = t0;
+  auto observe = [&] {
+    observer.observe(state, forces);
+    last_observed = state.t;
+  };
+  observe();
 
   std::vector<Watch> watch = watches(system, schedule.events);
   State previous, reached, probe;
@@ -172,7 +177,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           for (; next_output < times.size() && times[next_output] < t_event; ++next_output) {
             integrator.interpolate(times[next_output], state);
             evaluate(state, forces);
-            observer.observe(state, forces);
+            observe();
           }
         if (h > 0 || !integrator.interpolate(t_event, state)) {
           // No dense output: one shortened step of the method from the step's start.
@@ -183,7 +188,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           evaluate(state, forces);
         }
         state.t = t_event;
-        observer.observe(state, forces);
+        observe();
         std::ostringstream why;
         why.precision(10);
         why << hit->kind << ": bodies '" << system.body(hit->a).name << "' and '"
@@ -204,7 +209,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
       if (k % stride == 0 || k == n_steps) {
         integrator.current(state, forces);
         state.t = t;
-        observer.observe(state, forces);
+        observe();
       }
       if (k == n_steps) break;
     } else {
@@ -220,9 +225,23 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           evaluate(state, forces);
         }
         state.t = tau;
-        observer.observe(state, forces);
+        observe();
       }
       if (next_output == times.size()) break;
+    }
+    if (schedule.interrupt && *schedule.interrupt) {  // a signal: stop here, with this state
+      if (last_observed != t) {
+        integrator.current(state, forces);
+        state.t = t;
+        observe();
+      }
+      std::ostringstream why;
+      why.precision(10);
+      why << "interrupted by signal " << static_cast<int>(*schedule.interrupt) << " at t = " << t;
+      stop.reason = why.str();
+      stop.event = "interrupted";
+      stop.t = t;
+      return stop;
     }
   }
   stop.t = state.t;

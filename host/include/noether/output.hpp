@@ -19,6 +19,8 @@ namespace noether {
 struct OutputOptions {
   std::size_t block_frames = 256;  // write a block at least every this many frames
   double block_seconds = 1.0;      // and at least this often in wall time
+  bool overwrite = false;          // replace an existing file (--force); never a link or an input
+  std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
 };
 
 class H5Writer {

@@ -7,6 +7,7 @@
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 
+#include <csignal>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -15,7 +16,11 @@ namespace noether {
 
 struct RunOptions {
   std::optional<std::filesystem::path> output;  // HDF5 file, none if empty
+  bool overwrite = false;                       // replace an existing output file (--force)
   bool progress = false;                        // progress line on stderr for long runs
+  // Set asynchronously (a signal handler) to stop the run after the current step: the run
+  // then ends like an event, with the output complete and stop_reason "interrupted".
+  const volatile std::sig_atomic_t* interrupt = nullptr;
 };
 
 struct RunSummary {

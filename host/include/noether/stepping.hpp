@@ -9,6 +9,7 @@
 #include <noether/state.hpp>
 #include <noether/system.hpp>
 
+#include <csignal>
 #include <functional>
 #include <string>
 #include <vector>
@@ -37,12 +38,15 @@ struct Schedule {
   Events events;
   // Called after every step with the time reached (progress reports); may be empty.
   std::function<void(double)> on_step;
+  // When non-null and set (to a signal number, by a signal handler), the run stops after the
+  // current step: the state there is observed and the run ends as by an event, "interrupted".
+  const volatile std::sig_atomic_t* interrupt = nullptr;
 };
 
 // What ended the run.
 struct StopInfo {
   std::string reason;  // empty when t_end was reached, else the event, in words
-  std::string event;   // "", "close approach" or "collision"
+  std::string event;   // "", "close approach", "collision" or "interrupted"
   double t = 0.0;
   std::size_t body_a = 0, body_b = 0;  // the pair of an event
 };
