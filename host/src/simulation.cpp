@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <unistd.h>
@@ -54,6 +55,14 @@ class RunObserver final : public Observer {
 
   void observe(const State& state, const Forces& forces) override {
     const Diagnostics d = diagnose(system_, state, forces.U);
+    // A non-finite energy or state is a failure, never a number in the summary (std::max
+    // would drop a NaN silently).
+    if (!std::isfinite(d.energy) || !state.x.allFinite() || !state.p.allFinite() || !state.Pi.allFinite()) {
+      std::ostringstream msg;
+      msg << "the " << (std::isfinite(d.energy) ? "state" : "energy") << " became non-finite at t = " << state.t
+          << " (the integrator diverged: a smaller step or tolerance?)";
+      throw IntegrationError(msg.str(), state.t);
+    }
     if (s_.frames == 0) {
       s_.initial = d;
       // Scales for the relative momentum errors: the sum of the magnitudes of the parts.

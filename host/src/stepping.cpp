@@ -6,12 +6,21 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace noether {
 
 std::int64_t whole_steps(double interval, double h, const char* what) {
   const double n = std::round(interval / h);
+  // Step k is at t0 + k h: beyond 2^53 steps k is no longer exact in a double (and the count
+  // would soon overflow); such a run is refused rather than silently miscounted.
+  if (!std::isfinite(n) || n > 0x1p53) {
+    std::ostringstream msg;
+    msg << what << " = " << interval << " is " << interval / h << " steps of " << h
+        << ": more than 2^53 steps, which noether cannot count exactly; use a larger step or a shorter run";
+    throw SceneError(msg.str());
+  }
   if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
     std::ostringstream msg;
     msg << what << " = " << interval << " is not a whole number of steps of " << h << " ("
@@ -21,18 +30,41 @@ std::int64_t whole_steps(double interval, double h, const char* what) {
   return static_cast<std::int64_t>(n);
 }
 
-std::vector<double> output_times(double t0, double t_end, double output_every) {
-  if (!(output_every > 0.0) || !(t_end > t0))
-    throw SceneError("output times need t_end > t0 and output_every > 0");
-  std::vector<double> times{t0};
-  for (std::int64_t k = 1;; ++k) {
-    const double t = t0 + static_cast<double>(k) * output_every;
-    if (t >= t_end - 1e-12 * std::abs(t_end)) break;
-    times.push_back(t);
+namespace {
+
+// The output times t0 + kΔ (k ≥ 1) before t_end, then t_end itself, one at a time (a long run
+// holds none of them in memory).
+class OutputTimes {
+ public:
+  OutputTimes(double t0, double t_end, double every) : t0_(t0), t_end_(t_end), every_(every) {
+    if (!(every > 0.0) || !(t_end > t0)) throw SceneError("output times need t_end > t0 and output_every > 0");
+    if (!((t_end - t0) / every <= 0x1p53))
+      throw SceneError("run.output_every is more than 2^53 output frames before t_end, which noether cannot "
+                       "count exactly; raise run.output_every");
+    set();
   }
-  times.push_back(t_end);
-  return times;
-}
+  bool done() const { return done_; }
+  double next() const { return next_; }
+  void advance() {
+    if (next_ == t_end_) {
+      done_ = true;
+      return;
+    }
+    ++k_;
+    set();
+  }
+
+ private:
+  void set() {
+    const double t = t0_ + static_cast<double>(k_) * every_;
+    next_ = t >= t_end_ - 1e-12 * std::abs(t_end_) ? t_end_ : t;
+  }
+  double t0_, t_end_, every_, next_ = 0.0;
+  std::int64_t k_ = 1;
+  bool done_ = false;
+};
+
+}  // namespace
 
 namespace {
 
@@ -86,12 +118,12 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     throw SceneError("the run needs t_end > t0 and output_every > 0");
   const double h = integrator.fixed_step();
   std::int64_t n_steps = 0, stride = 0;
-  std::vector<double> times;
+  std::optional<OutputTimes> outputs;  // for methods that choose their steps
   if (h > 0) {
     n_steps = whole_steps(t_end - t0, h, "run.t_end − t0");
     stride = whole_steps(schedule.output_every, h, "run.output_every");
   } else {
-    times = output_times(t0, t_end, schedule.output_every);
+    outputs.emplace(t0, t_end, schedule.output_every);
   }
 
   Forces forces;
@@ -127,7 +159,6 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
   };
 
   StopInfo stop;
-  std::size_t next_output = 1;
   for (std::int64_t k = 1;; ++k) {
     const double t_prev = integrator.time();
     try {
@@ -144,6 +175,10 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     if (!watch.empty()) {
       integrator.current_state(reached);
       reached.t = t;
+      if (!reached.x.allFinite())  // not a collision: the method failed
+        throw IntegrationError("the state became non-finite (NaN or infinite positions) in the step to t = " +
+                                   std::to_string(t) + "; the last valid state is kept",
+                               t_prev);
       double t_event = std::numeric_limits<double>::infinity();
       const Watch* hit = nullptr;
       for (auto& w : watch) {
@@ -174,8 +209,8 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
       if (hit) {
         // Outputs before the event, then the state at the event itself.
         if (h <= 0)
-          for (; next_output < times.size() && times[next_output] < t_event; ++next_output) {
-            integrator.interpolate(times[next_output], state);
+          for (; !outputs->done() && outputs->next() < t_event; outputs->advance()) {
+            integrator.interpolate(outputs->next(), state);
             evaluate(state, forces);
             observe();
           }
@@ -214,8 +249,8 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
       if (k == n_steps) break;
     } else {
       const double tol = 1e-12 * std::max(1.0, std::abs(t));
-      for (; next_output < times.size() && times[next_output] <= t + tol; ++next_output) {
-        const double tau = times[next_output];
+      for (; !outputs->done() && outputs->next() <= t + tol; outputs->advance()) {
+        const double tau = outputs->next();
         if (std::abs(tau - t) <= tol) {
           integrator.current(state, forces);
         } else {
@@ -227,7 +262,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
         state.t = tau;
         observe();
       }
-      if (next_output == times.size()) break;
+      if (outputs->done()) break;
     }
     if (schedule.interrupt && *schedule.interrupt) {  // a signal: stop here, with this state
       if (last_observed != t) {

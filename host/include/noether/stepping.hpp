@@ -61,7 +61,5 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
 // (naming `what`) when the interval is not a whole number of steps.
 std::int64_t whole_steps(double interval, double h, const char* what);
 
-// Output times t0, t0 + Δ, t0 + 2Δ, ..., and t_end.
-std::vector<double> output_times(double t0, double t_end, double output_every);
 
 }  // namespace noether
