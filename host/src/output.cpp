@@ -89,6 +89,7 @@ struct Series {
 // dropped when HDF5 closes any descriptor of the file, so the lock is ours and HDF5's own is
 // switched off for the files noether writes: HDF5_USE_FILE_LOCKING=FALSE unless the user set
 // it.) Returns the descriptor that holds the lock.
+namespace {
 int claim_output(const std::filesystem::path& path, const OutputOptions& options) {
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -121,6 +122,8 @@ int claim_output(const std::filesystem::path& path, const OutputOptions& options
   }
   return fd;
 }
+
+}  // namespace
 
 struct H5Writer::Impl {
   int lock = -1;  // the descriptor holding the output's lock (claim_output)
