@@ -13,7 +13,8 @@
 // Potential::position_hessian added.
 // Version 4: a Potential is immutable and evaluates into a caller-owned Workspace
 // (make_workspace, evaluate(state, forces, workspace), pair_models(workspace));
-// Integrator::potential_evaluator; ContinuousEquations is an interface without data members. `api_version` stays the first member in every version, so a registry can
+// Integrator::potential_evaluator; ContinuousEquations is an interface without data members.
+// `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
 #include <noether/integrator.hpp>
 #include <noether/params.hpp>
