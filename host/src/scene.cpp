@@ -11,26 +11,36 @@ namespace noether {
 
 namespace {
 
-// YAML → Params, keeping "file:line" of every node.
-Params to_params(const YAML::Node& node, const std::string& file) {
+// The most values a document may expand to. YAML aliases are shared, not copied, by the
+// parser; expanding them here is where a few lines (an "alias bomb") could take gigabytes.
+constexpr std::size_t kMaxValues = 1'000'000;
+
+// YAML → Params, keeping "file:line" of every node; `budget` counts the values left.
+Params to_params(const YAML::Node& node, const std::string& file, std::size_t& budget) {
   const std::string where =
       node.Mark().line >= 0 ? file + ":" + std::to_string(node.Mark().line + 1) : file;
+  if (budget-- == 0)
+    throw SceneError(where + ": the document expands to more than " + std::to_string(kMaxValues) +
+                     " values (aliases repeated within aliases?); noether refuses it");
   switch (node.Type()) {
     case YAML::NodeType::Scalar: return Params::scalar(node.Scalar(), where);
     case YAML::NodeType::Sequence: {
       std::vector<Params> items;
-      for (const auto& item : node) items.push_back(to_params(item, file));
+      for (const auto& item : node) items.push_back(to_params(item, file, budget));
       return Params::sequence(std::move(items), where);
     }
     case YAML::NodeType::Map: {
       std::vector<std::pair<std::string, Params>> entries;
       for (const auto& kv : node) {
-        const std::string key = kv.first.as<std::string>();
+        if (!kv.first.IsScalar())
+          throw SceneError(file + ":" + std::to_string(kv.first.Mark().line + 1) +
+                           ": a key must be a plain name, not a list or a mapping");
+        const std::string key = kv.first.Scalar();
         for (const auto& e : entries)
           if (e.first == key)
             throw SceneError(file + ":" + std::to_string(kv.first.Mark().line + 1) +
                              ": key '" + key + "' appears twice");
-        entries.emplace_back(key, to_params(kv.second, file));
+        entries.emplace_back(key, to_params(kv.second, file, budget));
       }
       return Params::map(std::move(entries), where);
     }
@@ -40,8 +50,9 @@ Params to_params(const YAML::Node& node, const std::string& file) {
 
 Params parse_yaml(const std::string& text, const std::string& file) {
   try {
-    return to_params(YAML::Load(text), file);
-  } catch (const YAML::ParserException& e) {
+    std::size_t budget = kMaxValues;
+    return to_params(YAML::Load(text), file, budget);
+  } catch (const YAML::Exception& e) {  // a parse error, or anything else yaml-cpp refuses
     std::ostringstream msg;
     msg << file << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
         << ": malformed YAML: " << e.msg;
