@@ -105,6 +105,9 @@ int orbit_find(OrbitOptions o) {
       throw noether::SceneError("orbit find: --bodies and --masses do not go with --scene (the scene gives the bodies)");
     p.model = noether::OrbitModel::from_scene(noether::load_scene(o.scene, o.overrides), registry);
   } else {
+    if (o.masses.empty() && o.bodies < 2)
+      throw noether::SceneError("orbit find: --bodies must be at least 2, not " + std::to_string(o.bodies) +
+                                " (for one body in an external field, give a --scene)");
     for (std::size_t j = 0; j < o.masses.size(); ++j)
       if (!(o.masses[j] > 0))
         throw noether::SceneError("orbit find: --masses must be positive; body " + std::to_string(j + 1) + " has " +

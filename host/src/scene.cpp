@@ -81,7 +81,8 @@ void apply_override(Params& root, const std::string& assignment) {
       next = node->find(part);
     } else if (node->is_sequence()) {
       auto& items = node->mutable_items();
-      bool numeric = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+      // An index: digits only, and short enough to be one (longer ones are no element either).
+      const bool numeric = !part.empty() && part.size() <= 9 && part.find_first_not_of("0123456789") == std::string::npos;
       if (numeric && std::stoul(part) < items.size()) next = &items[std::stoul(part)];
       for (auto& item : items)  // bodies by name
         if (!next && item.is_map() && item.has("name") && item.at("name").is_scalar() &&
