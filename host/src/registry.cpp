@@ -143,18 +143,29 @@ const PluginRegistry::Loaded& PluginRegistry::load_kind(const std::string& name,
                                                         PluginKind kind) {
   const Loaded& l = load(name);
   if (l.info.kind != kind) {
-    std::vector<std::string> same_kind;
+    // Alternatives from what is already loaded and from file names: loading every library on
+    // the path to learn its kind would run the code of each (constructors included).
+    std::vector<std::string> same_kind, unloaded;
     for (const auto& n : names()) {
-      try {
-        if (load(n).info.kind == kind) same_kind.push_back(n);
-      } catch (const PluginError&) {
+      if (auto it = loaded_.find(n); it != loaded_.end()) {
+        if (it->second.info.kind == kind) same_kind.push_back(n);
+      } else {
+        unloaded.push_back(n);
       }
     }
     std::ostringstream msg;
     msg << "plugin '" << name << "' is " << (l.info.kind == PluginKind::Potential ? "a " : "an ")
         << to_string(l.info.kind) << ", not " << (kind == PluginKind::Potential ? "a " : "an ")
-        << to_string(kind) << "; " << to_string(kind) << " plugins found:";
-    for (const auto& n : same_kind) msg << ' ' << n;
+        << to_string(kind);
+    if (!same_kind.empty()) {
+      msg << "; " << to_string(kind) << " plugins loaded:";
+      for (const auto& n : same_kind) msg << ' ' << n;
+    }
+    if (!unloaded.empty()) {
+      msg << "; other plugins found:";
+      for (const auto& n : unloaded) msg << ' ' << n;
+      msg << " (`noether plugins` shows the kind of each)";
+    }
     throw PluginError(msg.str());
   }
   return l;
