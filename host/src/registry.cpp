@@ -5,8 +5,13 @@
 #include <boost/dll/shared_library.hpp>
 #include <spdlog/spdlog.h>
 
+#include <elf.h>
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <cstdlib>
 #include <sstream>
 #include <system_error>
@@ -71,6 +76,35 @@ std::vector<std::string> PluginRegistry::names() const {
   return out;
 }
 
+namespace {
+
+// Before dlopen: the file must be a complete 64-bit ELF shared object (its program and section
+// header tables inside the file; dlopen maps a truncated file and dies of SIGBUS), and neither
+// it nor its folder writable by others (anyone could then run code in noether). Returns an
+// empty string when it is fine, else what is wrong.
+std::string unsafe_plugin_file(const fs::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return std::string("cannot read it: ") + std::strerror(errno);
+  if (st.st_mode & S_IWOTH) return "it is writable by every user; chmod o-w it";
+  struct stat dir {};
+  if (::stat(path.parent_path().c_str(), &dir) == 0 && (dir.st_mode & S_IWOTH) && !(dir.st_mode & S_ISVTX))
+    return "its folder " + path.parent_path().string() + " is writable by every user; chmod o-w it";
+  Elf64_Ehdr h{};
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || std::memcmp(h.e_ident, ELFMAG, SELFMAG) != 0)
+    return "it is not an ELF shared library";
+  if (h.e_ident[EI_CLASS] != ELFCLASS64 || h.e_type != ET_DYN) return "it is not a 64-bit ELF shared library";
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  const std::uint64_t programs = h.e_phoff + std::uint64_t{h.e_phnum} * h.e_phentsize;
+  const std::uint64_t sections = h.e_shoff + std::uint64_t{h.e_shnum} * h.e_shentsize;
+  if (programs > size || sections > size)
+    return "it is truncated (" + std::to_string(size) + " bytes; its headers reach byte " +
+           std::to_string(std::max(programs, sections)) + "): rebuild or reinstall it";
+  return "";
+}
+
+}  // namespace
+
 const PluginRegistry::Loaded& PluginRegistry::load(const std::string& name) {
   if (auto it = loaded_.find(name); it != loaded_.end()) return it->second;
   auto file = files_.find(name);
@@ -88,6 +122,8 @@ const PluginRegistry::Loaded& PluginRegistry::load(const std::string& name) {
     throw PluginError(msg.str());
   }
   const fs::path& path = file->second;
+  if (const std::string wrong = unsafe_plugin_file(path); !wrong.empty())
+    throw PluginError("plugin '" + name + "' (" + path.string() + ") is not loaded: " + wrong);
   auto library = std::make_shared<boost::dll::shared_library>();
   try {
     library->load(path, boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
