@@ -15,9 +15,19 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace {
+
+// CVodeGetReturnFlagName returns a string the caller must free (24 bytes leaked per failure
+// otherwise).
+std::string flag_name(int flag) {
+  char* name = CVodeGetReturnFlagName(flag);
+  std::string out = name ? name : "unknown flag";
+  std::free(name);
+  return out;
+}
 
 using noether::IntegrationError;
 using noether::Params;
@@ -99,7 +109,7 @@ class Cvode final : public noether::Integrator {
       std::copy(y_prev_.begin(), y_prev_.end(), N_VGetArrayPointer(s.y));  // the last valid state
       std::ostringstream msg;
       msg << "cvode (" << method_ << ", rtol " << rtol_ << ", atol " << atol_ << ") stopped at t = "
-          << t_reached << ": " << CVodeGetReturnFlagName(flag) << ": " << last_error_ << hint(flag);
+          << t_reached << ": " << flag_name(flag) << ": " << last_error_ << hint(flag);
       throw IntegrationError(msg.str(), t_);
     }
     t_ = t_reached;
@@ -176,7 +186,7 @@ class Cvode final : public noether::Integrator {
   void check(int flag, const char* what, double t) const {
     if (flag < 0)
       throw IntegrationError(std::string("cvode: ") + what + " failed (" +
-                                 CVodeGetReturnFlagName(flag) + ") " + last_error_,
+                                 flag_name(flag) + ") " + last_error_,
                              t);
   }
 
