@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   CLI::App app{"noether: bodies under mutual gravity — the full body problem and point masses"};
   app.set_version_flag("--version", std::string("noether ") + NOETHER_VERSION);
   app.require_subcommand(1);
+  app.fallthrough();  // --log-level also after the subcommand
+  app.name("noether");
   std::string level = "warn";
   app.add_option("--log-level", level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
@@ -75,7 +77,8 @@ int main(int argc, char** argv) {
   find_cmd->add_option("--seed", orbit.seed, "random seed")->capture_default_str();
   find_cmd->add_option("--starts", orbit.starts, "random starts")->capture_default_str();
   find_cmd->add_option("--out-dir", orbit.out_dir, "folder for orbit-K.yaml, .csv and .png")->capture_default_str();
-  find_cmd->add_flag("!--no-refine", orbit.refine, "skip the Newton (shooting) refinement");
+  bool no_refine = false;
+  find_cmd->add_flag("--no-refine", no_refine, "skip the Newton (shooting) refinement");
   find_cmd->add_option("--max-residual", orbit.max_residual,
                        "largest equation-of-motion residual along the Fourier curve to try to refine")
       ->capture_default_str();
@@ -111,6 +114,10 @@ int main(int argc, char** argv) {
   check_cmd->add_flag("--no-third-law", no_third_law,
                       "skip the net force and torque rows (for external-field models)");
 
+  if (argc == 1) {  // bare `noether`: the help
+    std::cout << app.help();
+    return 0;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -118,6 +125,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;      // usage errors exit 2, as documented
   }
   orbit.bodies_given = bodies_opt->count() > 0;
+  orbit.refine = !no_refine;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
     if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force);
