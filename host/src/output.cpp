@@ -117,7 +117,8 @@ int claim_output(const std::filesystem::path& path, const OutputOptions& options
     ::close(fd);
     if (e == EWOULDBLOCK)
       throw OutputError("another process is writing " + path.string() +
-                        " (a second noether run on the same output?); its output is left untouched");
+                        " (a second noether run on the same output, or a reader holding HDF5's lock); "
+                        "the file is left untouched");
     throw OutputError("cannot lock the output file " + path.string() + ": " + std::strerror(e));
   }
   return fd;
