@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <limits>
 #include <cstring>
+#include <cstdio>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -18,7 +21,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace noether::h5;
 
-// An extendible dataset [frame][shape...], appended to in blocks.
+// A series [frame][shape...]: a chunked dataset whose chunks are all allocated (and filled
+// with `fill`) when it is created or grown, so that writing frames changes raw data only, never
+// the file's metadata (docs/user-guide.md, "Output files": a kill at any moment leaves a
+// consistent file).
 template <class T>
 struct Series {
   hid_t dataset = -1;
@@ -27,10 +33,11 @@ struct Series {
   std::size_t frame_size = 1;
   std::vector<T> buffer;
 
-  Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape)
+  Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape, hsize_t frames,
+         T fill)
       : type(h5type), frame_shape(std::move(shape)) {
     for (auto d : frame_shape) frame_size *= d;
-    std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk;
+    std::vector<hsize_t> dims{frames}, maxdims{H5S_UNLIMITED}, chunk;
     const hsize_t frames_per_chunk =
         std::max<hsize_t>(1, std::min<hsize_t>(1024, 8192 / std::max<std::size_t>(1, frame_size)));
     chunk.push_back(frames_per_chunk);
@@ -42,6 +49,9 @@ struct Series {
     hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
     hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+    H5Pset_fill_value(plist, type, &fill);
+    H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
     dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
                        name);
     H5Pclose(plist);
@@ -55,19 +65,25 @@ struct Series {
 
   void push(const T* values) { buffer.insert(buffer.end(), values, values + frame_size); }
 
+  // Sets the number of frames (growing allocates and fills the new chunks).
+  void resize(hsize_t frames) {
+    std::vector<hsize_t> dims{frames};
+    dims.insert(dims.end(), frame_shape.begin(), frame_shape.end());
+    check(H5Dset_extent(dataset, dims.data()), "resizing a dataset");
+  }
+
+  // Writes the buffered frames from `first_frame` on (inside the allocated frames).
   void write(hsize_t first_frame) {
     if (buffer.empty() || frame_size == 0) {
       buffer.clear();
       return;
     }
     const hsize_t frames = buffer.size() / frame_size;
-    std::vector<hsize_t> dims{first_frame + frames}, start{first_frame}, count{frames};
+    std::vector<hsize_t> start{first_frame}, count{frames};
     for (auto d : frame_shape) {
-      dims.push_back(d);
       start.push_back(0);
       count.push_back(d);
     }
-    check(H5Dset_extent(dataset, dims.data()), "extending a dataset");
     hid_t file_space = H5Dget_space(dataset);
     H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
     hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
@@ -81,17 +97,32 @@ struct Series {
 
 }  // namespace
 
-// Claims `path` for this run before anything is truncated (docs/user-guide.md, "Output
-// files"): refuses a symbolic link, anything but a regular file, one of the run's inputs, and
-// an existing file unless `overwrite`; then takes an exclusive lock (flock) on it, held until
-// the file is closed, so that a second run on the same path is refused before anything is
-// truncated. (HDF5 1.10 locks only after opening with O_TRUNC, and a record lock would be
-// dropped when HDF5 closes any descriptor of the file, so the lock is ours and HDF5's own is
-// switched off for the files noether writes: HDF5_USE_FILE_LOCKING=FALSE unless the user set
-// it.) Returns the descriptor that holds the lock.
+// Claiming and publishing an output file (docs/user-guide.md, "Output files"). The file is
+// built under a hidden name in the same folder and renamed into place once its layout is
+// complete and flushed, so the path holds either what was there before or a readable file; an
+// existing file is locked (flock) from the claim until it is replaced, and the new file from its
+// creation until it is closed, so a second run on the same path is refused and loses nothing.
+// (HDF5 1.10 locks only after opening with O_TRUNC, and a record lock would be dropped when
+// HDF5 closes any descriptor of the file, so the lock is ours and HDF5's own is switched off for
+// the files noether writes: HDF5_USE_FILE_LOCKING=FALSE unless the user set it.)
 namespace {
-int claim_output(const std::filesystem::path& path, const OutputOptions& options) {
-  namespace fs = std::filesystem;
+
+namespace fs = std::filesystem;
+
+int lock_or_refuse(int fd, const fs::path& path) {
+  if (::flock(fd, LOCK_EX | LOCK_NB) == 0) return fd;
+  const int e = errno;
+  ::close(fd);
+  if (e == EWOULDBLOCK)
+    throw OutputError("another process is writing " + path.string() +
+                      " (a second noether run on the same output, or a reader holding HDF5's lock); "
+                      "the file is left untouched");
+  throw OutputError("cannot lock the output file " + path.string() + ": " + std::strerror(e));
+}
+
+// Refuses a symbolic link, anything but a regular file, one of the run's inputs, and an
+// existing file unless `overwrite`; locks an existing file. Returns its descriptor, or −1.
+int claim_output(const fs::path& path, const OutputOptions& options) {
   std::error_code ec;
   const fs::file_status link = fs::symlink_status(path, ec);
   if (fs::is_symlink(link))
@@ -108,20 +139,50 @@ int claim_output(const std::filesystem::path& path, const OutputOptions& options
     throw OutputError(path.string() + " exists; noether does not overwrite output unless asked: pass --force, "
                       "or choose another output file");
   ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (!exists) return -1;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw OutputError("cannot open the existing output file " + path.string() + ": " + std::strerror(errno));
+  return lock_or_refuse(fd, path);
+}
+
+// The hidden name the file is built under: .<name>.partial-<pid>, next to it.
+fs::path partial_name(const fs::path& path) {
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".partial-";
+  name += std::to_string(::getpid());
+  return path.parent_path() / name;
+}
+
+int create_partial(const fs::path& partial, const fs::path& path) {
+  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0)
     throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(errno) +
                       " (does its folder exist, and is it writable?)");
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    const int e = errno;
-    ::close(fd);
-    if (e == EWOULDBLOCK)
-      throw OutputError("another process is writing " + path.string() +
-                        " (a second noether run on the same output, or a reader holding HDF5's lock); "
-                        "the file is left untouched");
-    throw OutputError("cannot lock the output file " + path.string() + ": " + std::strerror(e));
+  return lock_or_refuse(fd, path);
+}
+
+// Moves the finished layout to `path`: replacing the claimed file, or only if no other
+// process created `path` meanwhile.
+void publish(const fs::path& partial, const fs::path& path, bool replace) {
+  if (replace) {
+    if (::rename(partial.c_str(), path.c_str()) != 0)
+      throw OutputError("cannot replace " + path.string() + ": " + std::strerror(errno));
+    return;
   }
-  return fd;
+  if (::renameat2(AT_FDCWD, partial.c_str(), AT_FDCWD, path.c_str(), RENAME_NOREPLACE) == 0) return;
+  int e = errno;
+  if (e == EINVAL || e == ENOSYS) {  // a file system without RENAME_NOREPLACE: link, then unlink
+    if (::link(partial.c_str(), path.c_str()) == 0) {
+      ::unlink(partial.c_str());
+      return;
+    }
+    e = errno;
+  }
+  if (e == EEXIST)
+    throw OutputError("another process created " + path.string() +
+                      " while this run was starting; nothing was overwritten");
+  throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(e));
 }
 
 }  // namespace
@@ -142,11 +203,28 @@ struct H5Writer::Impl {
   *angular_momentum_total = nullptr, *orthogonality = nullptr;
   std::unique_ptr<Series<std::int64_t>> step_series;
   std::size_t buffered = 0;
+  hsize_t allocated = 0;   // frames allocated in every series
+  hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
 
   Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape) {
-    doubles.push_back(
-        std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape)));
+    doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
+                                                       allocated, std::numeric_limits<double>::quiet_NaN()));
     return doubles.back().get();
+  }
+  void resize_series(hsize_t frames) {
+    step_series->resize(frames);
+    for (auto& s : doubles) s->resize(frames);
+    allocated = frames;
+  }
+  void write_complete(std::int64_t frames) {
+    check(H5Dwrite(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames),
+          "writing /frames_complete");
+  }
+  void close_datasets() {
+    doubles.clear();
+    step_series.reset();
+    if (complete >= 0) H5Dclose(complete);
+    complete = -1;
   }
 
   // An H5MD time-series group: {step, time, value}; step and time are hard links to one pair.
@@ -167,18 +245,45 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become OutputError, not stderr noise
   Impl& m = *impl_;
   m.options = options;
-  m.lock = claim_output(path, options);
-  m.file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (m.file < 0) {
-    const std::string reason = system_reason();
-    ::close(m.lock);
-    m.lock = -1;
-    throw OutputError("cannot create the output file " + path.string() + reason +
-                      " (does its folder exist, and is it writable?)");
+  const int claimed = claim_output(path, options);
+  const fs::path partial = partial_name(path);
+  try {
+    m.lock = create_partial(partial, path);
+    m.file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (m.file < 0)
+      throw OutputError("cannot create the output file " + path.string() + system_reason() +
+                        " (does its folder exist, and is it writable?)");
+    create_layout(scene);
+    publish(partial, path, claimed >= 0);
+  } catch (...) {
+    if (m.file >= 0) {
+      m.close_datasets();
+      H5Fclose(m.file);
+      m.file = -1;
+    }
+    if (m.lock >= 0) {
+      ::unlink(partial.c_str());
+      ::close(m.lock);
+      m.lock = -1;
+    }
+    if (claimed >= 0) ::close(claimed);
+    throw;
   }
+  if (claimed >= 0) ::close(claimed);
+}
+
+void H5Writer::create_layout(const Scene& scene) {
+  Impl& m = *impl_;
+  const OutputOptions& options = m.options;
   const System& sys = scene.system;
   m.n_bodies = sys.size();
   m.n_rigid = sys.rigid_count();
+  // Every series is allocated for the frames the run will write, up to a budget; a run that
+  // writes more grows them (in doubling steps, each flushed at once).
+  const double frame_bytes = 8.0 * static_cast<double>(13 + 6 * m.n_bodies + 7 * m.n_rigid);
+  const double budget = std::max(1.0, std::floor(options.preallocate_bytes / frame_bytes));
+  m.allocated = static_cast<hsize_t>(
+      std::min(options.expected_frames > 0 ? static_cast<double>(options.expected_frames) : 1024.0, budget));
 
   hid_t h5md = make_group(m.file, "h5md");
   numeric_attribute<int>(h5md, "version", H5T_NATIVE_INT, {1, 1});
@@ -237,7 +342,7 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   const hsize_t nb = m.n_bodies, nr = m.n_rigid;
   hid_t pos = make_group(bodies, "position");
   m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,
-                                                         std::vector<hsize_t>{});
+                                                         std::vector<hsize_t>{}, m.allocated, -1);
   m.step = m.step_series.get();
   m.time = m.add(pos, "time", {});
   m.position = m.add(pos, "value", {nb, 3});
@@ -280,6 +385,23 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   m.angular_momentum_total = m.add(g, "value", {3});
   H5Gclose(g);
   H5Gclose(obs);
+
+  // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
+  // their allocated length, with fill (NaN, step −1) or an unfinished block after it.
+  {
+    hid_t space = H5Screate(H5S_SCALAR);
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_layout(plist, H5D_CONTIGUOUS);
+    H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+    m.complete = check_id(H5Dcreate2(m.file, "frames_complete", H5T_NATIVE_INT64, space, H5P_DEFAULT,
+                                     plist, H5P_DEFAULT), "frames_complete");
+    H5Pclose(plist);
+    H5Sclose(space);
+    string_attribute(m.complete, "description",
+                     "the number of complete frames: every series holds exactly this many after a "
+                     "run that ended; after a killed run, read series[:frames_complete]");
+    m.write_complete(0);
+  }
   check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing");
 }
 
@@ -289,8 +411,11 @@ H5Writer::~H5Writer() {
       flush();
     } catch (...) {
     }
-    impl_->doubles.clear();
-    impl_->step_series.reset();
+    try {
+      impl_->resize_series(frames_written_);
+    } catch (...) {
+    }
+    impl_->close_datasets();
     H5Fclose(impl_->file);
   }
   if (impl_ && impl_->lock >= 0) ::close(impl_->lock);
@@ -329,11 +454,20 @@ void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnost
 void H5Writer::flush() {
   Impl& m = *impl_;
   if (m.file < 0) return;
-  const hsize_t first = frames_written_;
+  if (m.buffered == 0) return;
+  const hsize_t first = frames_written_, needed = first + m.buffered;
+  if (needed > m.allocated) {  // grow: the only metadata change while frames are written
+    m.resize_series(std::max<hsize_t>(needed, 2 * m.allocated));
+    check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  }
+  // The frames first, then the counter that makes them part of the file: a kill before the
+  // second flush leaves the counter at the previous block.
   m.step->write(first);
   for (auto& s : m.doubles) s->write(first);
-  frames_written_ += m.buffered;
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  frames_written_ = needed;
   m.buffered = 0;
+  m.write_complete(static_cast<std::int64_t>(frames_written_));
   check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
   m.last_flush = Clock::now();
 }
@@ -396,8 +530,8 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
     }
     H5Gclose(ig);
   }
-  m.doubles.clear();
-  m.step_series.reset();
+  m.resize_series(frames_written_);
+  m.close_datasets();
   check(H5Fclose(m.file), "closing the output file");
   m.file = -1;
   ::close(m.lock);

@@ -133,6 +133,9 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   if (options.output) {
     OutputOptions output;
     output.overwrite = options.overwrite;
+    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
+    const double frames = 2.0 + std::ceil((scene.run.t_end - scene.initial.t) / scene.run.output_every);
+    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
     if (!scene.file.empty() && std::filesystem::exists(scene.file)) output.inputs.push_back(scene.file);
     writer = std::make_unique<H5Writer>(*options.output, scene, output);
   }

@@ -1,7 +1,8 @@
 #pragma once
 // Output: the HDF5 writer (layout after H5MD, docs/user-guide.md "Output"). Frames are buffered
-// and written in blocks; the file is flushed after every block, so a run killed at any moment
-// leaves a readable file with every frame up to its last block.
+// and written in blocks into series allocated up front; after each block the file is flushed and
+// then /frames_complete advanced, so a run killed at any moment leaves a readable file whose
+// series all have one length and whose first /frames_complete frames are complete.
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/potential.hpp>
@@ -19,6 +20,10 @@ namespace noether {
 struct OutputOptions {
   std::size_t block_frames = 256;  // write a block at least every this many frames
   double block_seconds = 1.0;      // and at least this often in wall time
+  // Frames the run will write at most (0: unknown); the series are allocated for them up front,
+  // within `preallocate_bytes`, so that a kill at any moment leaves a consistent file.
+  std::uint64_t expected_frames = 0;
+  double preallocate_bytes = 256.0 * 1024 * 1024;
   bool overwrite = false;          // replace an existing file (--force); never a link or an input
   std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
 };
@@ -43,6 +48,7 @@ class H5Writer {
 
  private:
   struct Impl;
+  void create_layout(const Scene& scene);  // every group, attribute and series, then a flush
   std::unique_ptr<Impl> impl_;
   std::size_t frames_written_ = 0;
   std::vector<double> frame_;  // scratch for one frame of a derived field

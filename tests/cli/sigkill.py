@@ -1,0 +1,100 @@
+"""sigkill.py NOETHER SOURCE_DIR WORK_DIR [KILLS]: a run killed with SIGKILL at any moment leaves
+its output path holding either the file that was there before, untouched, or a file that opens
+with every series of one length whose first /frames_complete frames are complete
+(docs/user-guide.md, "Output files").
+
+Each run writes a frame every step (the dumbbells, 50,000 frames in about 0.15 s) over an
+existing file with --force, and is killed at a random moment between its start and a little
+after its expected end, so kills land while the file is created, while blocks are flushed and
+while the run finishes. Fails on a writer that extends datasets one by one (unequal lengths
+after a kill) or truncates before the new file is ready.
+"""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
+kills = int(sys.argv[4]) if len(sys.argv) > 4 else 100
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+scene = os.path.join(src, "examples", "dumbbells.yaml")
+h = 0.0002  # the scene's step: a frame every step
+args = [noether, "run", scene, "--no-progress", "--force", "-o", "run.h5",
+        "--set", "run.t_end=10", "--set", f"run.output_every={h}"]
+env = dict(os.environ, HDF5_USE_FILE_LOCKING="FALSE")
+
+# How long a whole run takes here, to spread the kills over it.
+for name in os.listdir("."):
+    os.remove(name)
+t = time.monotonic()
+subprocess.run(args, check=True, stdout=subprocess.DEVNULL, env=env)
+duration = time.monotonic() - t
+with h5py.File("run.h5", "r", locking=False) as f:
+    E0 = float(f["observables/energy/value"][0])
+    frames_full = f["particles/bodies/position/time"].shape[0]
+with open("run.h5", "rb") as f:
+    previous = f.read()
+
+SERIES = ("step", "time", "value")
+
+
+def check(path):
+    """The series lengths and the number of complete frames of a killed run's file."""
+    with h5py.File(path, "r", locking=False) as f:
+        lengths = {}
+        f.visititems(lambda name, obj: lengths.__setitem__(name, obj.shape[0])
+                     if isinstance(obj, h5py.Dataset) and name.rsplit("/", 1)[-1] in SERIES
+                     and not name.startswith("integrator") else None)
+        assert len(lengths) >= 10, lengths  # step and time are hard links: visited once
+        assert len(set(lengths.values())) == 1, f"series of different lengths: {lengths}"
+        n = int(f["frames_complete"][()])
+        length = next(iter(lengths.values()))
+        assert 0 <= n <= length, (n, length)
+        step = f["particles/bodies/position/step"][:n]
+        tt = f["particles/bodies/position/time"][:n]
+        assert np.array_equal(step, np.arange(n)), "steps"
+        assert np.allclose(tt, h * np.arange(n), rtol=0, atol=1e-9), "times"
+        for name in lengths:
+            values = f[name][:n]
+            assert np.all(np.isfinite(values)), f"{name}: a non-finite value in a complete frame"
+        energy = f["observables/energy/value"][:n]
+        assert np.all(np.abs(energy - E0) < 1e-6), "energies of complete frames"
+        if "work" in f:  # the run reached its end: every frame is there
+            assert n == length == frames_full, (n, length, frames_full)
+        return length, n
+
+
+rng = random.Random(18)
+outcomes = {"previous file": 0, "killed mid-run": 0, "finished": 0}
+partial_left = 0
+for k in range(kills):
+    with open("run.h5", "wb") as f:  # the previous output, which --force may replace
+        f.write(previous)
+    run = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
+    time.sleep(rng.uniform(0.0, 1.2 * duration))
+    run.send_signal(signal.SIGKILL)
+    run.wait()
+    with open("run.h5", "rb") as f:
+        if f.read() == previous and run.returncode == -signal.SIGKILL:
+            outcomes["previous file"] += 1
+            continue
+    try:
+        length, n = check("run.h5")
+    except Exception as e:  # noqa: BLE001 - any failure to read is the failure under test
+        print(f"sigkill: FAIL after kill {k}: {type(e).__name__}: {e}")
+        sys.exit(1)
+    outcomes["finished" if n == frames_full else "killed mid-run"] += 1
+    for name in os.listdir("."):
+        if ".partial-" in name:  # a kill while the file was being created: the path untouched
+            partial_left += 1
+            os.remove(name)
+
+print(f"sigkill: {kills} kills over runs of {duration:.2f} s: {outcomes}; "
+      f"hidden partial files left by kills during creation: {partial_left}")
+sys.exit(0 if outcomes["killed mid-run"] >= kills // 4 else 1)
