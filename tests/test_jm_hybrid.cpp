@@ -6,8 +6,11 @@
 #include <noether/simulation.hpp>
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 
 using namespace noether;
@@ -56,7 +59,7 @@ KeplerRun kepler(const std::string& integrator, const std::vector<std::string>& 
   KeplerRun run;
   State s = scene.initial;
   integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, run.orbit);
-  run.steps = integ->step_series();
+  run.steps = integ->take_step_series();
   run.work = integ->work();
   return run;
 }
@@ -87,7 +90,8 @@ TEST(JmHybrid, KeplerOrbitStaysClosedWhereStormerVerletPrecesses) {
 // tolerance; entering and leaving, the variational discrete energy ½‖Δq/h‖² + ½(V(q_k) + V(q_{k+1}))
 // equals it too: the discrete energy is continuous across switches.
 TEST(JmHybrid, DiscreteEnergyIsExactInJmAndContinuousAcrossSwitches) {
-  const KeplerRun run = kepler("{plugin: jm-hybrid, step: 0.01, theta: 0.01, Kc: 0.75}", {"run.t_end=60"});
+  const KeplerRun run =
+      kepler("{plugin: jm-hybrid, step: 0.01, theta: 0.01, Kc: 0.75, record_steps: true}", {"run.t_end=60"});
   ASSERT_EQ(run.steps.size(), 1u);
   const auto& s = run.steps[0];
   ASSERT_EQ(s.width, 7u);  // t, Δt, phase, coordinate, q
@@ -162,4 +166,45 @@ run: {t_end: 3, output_every: 0.01}
   EXPECT_LT(hybrid.min_distance, 0.03);  // the encounter happened
   EXPECT_LT(hybrid.max_abs_energy_error / std::abs(hybrid.initial.energy), 1e-3);
   EXPECT_GT(sv.max_abs_energy_error / std::abs(sv.initial.energy), 0.1);
+}
+
+// Per-step records are streamed to /integrator/steps as the run goes (every 1024 steps): the
+// file holds exactly the rows the integrator keeps over an uninterrupted run, none lost or
+// repeated, and the default keeps none.
+TEST(JmHybrid, StepRecordsStreamedToTheOutputWhole) {
+  const std::string with = "{plugin: jm-hybrid, step: 0.01, theta: 0.01, Kc: 0.75, record_steps: true}";
+  const KeplerRun direct = kepler(with, {"run.t_end=100"});
+  ASSERT_EQ(direct.steps.size(), 1u);
+  const std::vector<double>& rows = direct.steps[0].values;
+  ASSERT_GT(rows.size() / 7, 5000u);  // several blocks of 1024
+
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("noether-jm-steps-" + std::to_string(::getpid()) + ".h5");
+  std::filesystem::remove(file);
+  auto registry = test::bundled_plugins();
+  RunOptions options;
+  options.output = file;
+  const RunSummary s = run_scene(
+      load_scene(test::source_path("examples/kepler-jm.yaml"), {"integrator=" + with, "run.t_end=100"}),
+      registry, options);
+  EXPECT_EQ(static_cast<std::size_t>(s.work.steps), rows.size() / 7);
+  hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  hid_t d = H5Dopen2(f, "/integrator/steps", H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  hid_t space = H5Dget_space(d);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  H5Sclose(space);
+  ASSERT_EQ(dims[1], 7u);
+  ASSERT_EQ(dims[0] * 7, rows.size());
+  std::vector<double> stored(rows.size());
+  H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, stored.data());
+  H5Dclose(d);
+  H5Fclose(f);
+  EXPECT_EQ(stored, rows);  // bit for bit, in order
+
+  const KeplerRun plain = kepler("{plugin: jm-hybrid, step: 0.01, theta: 0.01, Kc: 0.75}", {"run.t_end=1"});
+  EXPECT_TRUE(plain.steps.empty());
+  std::filesystem::remove(file);
 }

@@ -11,7 +11,7 @@ void Integrator::current_state(State& state) {
 }
 bool Integrator::interpolate(double, State&) { return false; }
 double Integrator::fixed_step() const { return 0.0; }
-std::vector<StepSeries> Integrator::step_series() const { return {}; }
+std::vector<StepSeries> Integrator::take_step_series() { return {}; }
 PotentialEvaluator* Integrator::potential_evaluator() { return nullptr; }
 
 }  // namespace noether

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <cstring>
 #include <cstdio>
 #include <fcntl.h>
@@ -205,6 +206,12 @@ struct H5Writer::Impl {
   std::size_t buffered = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
+  struct StepRecords {     // /integrator/<name>: an integrator's per-step records
+    hid_t dataset = -1;
+    hsize_t width = 1, rows = 0;
+  };
+  std::map<std::string, StepRecords> step_records;
+  hid_t integrator_group = -1;
 
   Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape) {
     doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
@@ -223,6 +230,10 @@ struct H5Writer::Impl {
   void close_datasets() {
     doubles.clear();
     step_series.reset();
+    for (auto& [name, records] : step_records) H5Dclose(records.dataset);
+    step_records.clear();
+    if (integrator_group >= 0) H5Gclose(integrator_group);
+    integrator_group = -1;
     if (complete >= 0) H5Dclose(complete);
     complete = -1;
   }
@@ -500,8 +511,43 @@ void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
   check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
 }
 
-void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
-                      const std::vector<StepSeries>& steps) {
+void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
+  Impl& m = *impl_;
+  for (const auto& series : records) {
+    const hsize_t width = std::max<std::size_t>(1, series.width), rows = series.values.size() / width;
+    auto found = m.step_records.find(series.name);
+    if (found == m.step_records.end()) {  // /integrator/<name> [row][width], extendible
+      if (m.integrator_group < 0) m.integrator_group = make_group(m.file, "integrator");
+      const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width},
+                    chunk[2] = {std::max<hsize_t>(1, 8192 / width), width};
+      hid_t space = H5Screate_simple(2, dims, maxdims);
+      hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+      H5Pset_chunk(plist, 2, chunk);
+      hid_t d = check_id(H5Dcreate2(m.integrator_group, series.name.c_str(), H5T_NATIVE_DOUBLE, space,
+                                    H5P_DEFAULT, plist, H5P_DEFAULT), series.name.c_str());
+      H5Pclose(plist);
+      H5Sclose(space);
+      string_attribute(d, "description", series.description);
+      found = m.step_records.emplace(series.name, Impl::StepRecords{d, width, 0}).first;
+    }
+    Impl::StepRecords& out = found->second;
+    if (out.width != width)
+      throw OutputError("the integrator's per-step series '" + series.name + "' changed its width");
+    if (rows == 0) continue;
+    const hsize_t dims[2] = {out.rows + rows, width}, start[2] = {out.rows, 0}, count[2] = {rows, width};
+    check(H5Dset_extent(out.dataset, dims), "extending /integrator");
+    hid_t file_space = H5Dget_space(out.dataset);
+    H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    hid_t mem_space = H5Screate_simple(2, count, nullptr);
+    check(H5Dwrite(out.dataset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, series.values.data()),
+          "writing /integrator");
+    H5Sclose(mem_space);
+    H5Sclose(file_space);
+    out.rows += rows;
+  }
+}
+
+void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome) {
   Impl& m = *impl_;
   flush();
   hid_t g = make_group(m.file, "work");
@@ -514,22 +560,6 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
   string_attribute(g, "outcome", outcome);
   H5Gclose(g);
-  if (!steps.empty()) {
-    hid_t ig = make_group(m.file, "integrator");
-    for (const auto& series : steps) {
-      const hsize_t dims[2] = {series.values.size() / std::max<std::size_t>(1, series.width), series.width};
-      hid_t space = H5Screate_simple(2, dims, nullptr);
-      hid_t d = check_id(H5Dcreate2(ig, series.name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT,
-                                    H5P_DEFAULT, H5P_DEFAULT), series.name.c_str());
-      if (dims[0] > 0)
-        check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, series.values.data()),
-              series.name.c_str());
-      string_attribute(d, "description", series.description);
-      H5Dclose(d);
-      H5Sclose(space);
-    }
-    H5Gclose(ig);
-  }
   m.resize_series(frames_written_);
   m.close_datasets();
   check(H5Fclose(m.file), "closing the output file");

@@ -148,10 +148,17 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   Schedule schedule{scene.run.t_end, scene.run.output_every,
                     Events{scene.run.close_approach, scene.run.collisions},
                     {}, options.interrupt};
-  if (options.progress)  // the clock read every 16 steps only
-    schedule.on_step = [&progress, n = 0u](double t) mutable {
-      if ((++n & 15u) == 0) progress.update(t);
-    };
+  // An integrator's per-step records go to the output every 1024 steps (and are dropped
+  // without one), so they never accumulate in memory.
+  auto stream_step_series = [&integrator, &writer] {
+    auto records = integrator->take_step_series();
+    if (writer && !records.empty()) writer->append_step_series(records);
+  };
+  schedule.on_step = [&, n = 0u](double t) mutable {
+    ++n;
+    if (options.progress && (n & 15u) == 0) progress.update(t);  // the clock read every 16 steps only
+    if ((n & 1023u) == 0) stream_step_series();
+  };
   const auto start = Clock::now();
   StopInfo stop;
   try {
@@ -160,9 +167,9 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
     summary.work = integrator->work();
     summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
     if (writer) {
+      stream_step_series();
       writer->write_pair_models(pair_models());
-      writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what(),
-                     integrator->step_series());
+      writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what());
     }
     throw;
   }
@@ -171,11 +178,12 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.stop_reason = stop.reason;
   summary.final_state = std::move(state);
   summary.pair_models = pair_models();  // now with what the run saw
-  if (writer) writer->write_pair_models(summary.pair_models);
-  if (writer)
+  if (writer) {
+    stream_step_series();
+    writer->write_pair_models(summary.pair_models);
     writer->finish(summary.work, summary.wall_seconds,
-                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason,
-                   integrator->step_series());
+                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason);
+  }
   return summary;
 }
 

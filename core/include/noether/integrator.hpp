@@ -64,8 +64,10 @@ class NOETHER_API Integrator {
   // The fixed step h of a fixed-step method (the loop then requires whole numbers of steps
   // between outputs and reports t0 + k h exactly); 0 for methods that choose their steps.
   virtual double fixed_step() const;
-  // Per-step records, if the integrator keeps any (none by default).
-  virtual std::vector<StepSeries> step_series() const;
+  // Per-step records, if the integrator keeps any (none by default): the rows kept since the
+  // last call, which the integrator then forgets (the host streams them to the output as the
+  // run goes, so a long run's records never accumulate in memory).
+  virtual std::vector<StepSeries> take_step_series();
   // The evaluator (the shared potential with this integrator's own workspace) the steps use:
   // the host evaluates output frames with it (the same model choices as the steps) and reports
   // what it saw (pair models). Null by default: the host then uses a workspace of its own.

@@ -14,6 +14,8 @@
 // Version 4: a Potential is immutable and evaluates into a caller-owned Workspace
 // (make_workspace, evaluate(state, forces, workspace), pair_models(workspace));
 // Integrator::potential_evaluator; ContinuousEquations is an interface without data members.
+// Version 5: Integrator::take_step_series (per-step records handed over and forgotten, streamed
+// to the output) replaces step_series.
 // `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
 #include <noether/integrator.hpp>
@@ -28,7 +30,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 4u
+#define NOETHER_PLUGIN_API_VERSION 5u
 
 namespace noether {
 

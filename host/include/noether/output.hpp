@@ -42,8 +42,9 @@ class H5Writer {
   // /parameters/pair_models/<a>–<b>: the model chosen for each pair (rewritten when called
   // again, e.g. at the end of the run with what the run saw).
   void write_pair_models(const std::vector<PairModel>& models);
-  void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome,
-              const std::vector<StepSeries>& steps = {});
+  void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome);
+  // Appends an integrator's per-step records to /integrator/<name> (created on first use).
+  void append_step_series(const std::vector<StepSeries>& records);
   std::size_t frames_written() const { return frames_written_; }
 
  private:

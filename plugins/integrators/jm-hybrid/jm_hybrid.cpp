@@ -60,7 +60,7 @@ class JmHybrid final : public noether::Integrator {
     tol_ = p.get("newton_tolerance", 1e-12);
     max_iter_ = static_cast<int>(p.get("newton_max_iterations", 25L));
     ratio_ = p.get("rechoose_ratio", 1.2);
-    record_ = p.get("record_steps", true);
+    record_ = p.get("record_steps", false);
     if (!(h_ > 0) || !(theta_ > 0) || !(tol_ > 0) || max_iter_ < 1 || !(ratio_ >= 1))
       throw SceneError(p.here() + "jm-hybrid: step, theta, newton_tolerance must be positive, "
                                   "rechoose_ratio ≥ 1");
@@ -154,9 +154,11 @@ class JmHybrid final : public noether::Integrator {
     return true;
   }
 
-  std::vector<noether::StepSeries> step_series() const override {
+  std::vector<noether::StepSeries> take_step_series() override {
     if (!record_) return {};
-    return {{"steps", 4 + n_, steps_,
+    std::vector<double> rows;
+    rows.swap(steps_);
+    return {{"steps", 4 + n_, std::move(rows),
              "per step: t at its end, its duration Δt, phase (0 = variational, 1 = "
              "Jacobi–Maupertuis), parameter coordinate index into q (−1 in the variational "
              "phase), then q at its end (3 per body)"}};
@@ -379,7 +381,7 @@ class JmHybrid final : public noether::Integrator {
   }
 
   void record(Phase phase, int c, double dt) {
-    if (!record_ || steps_.size() > 50'000'000) return;
+    if (!record_) return;
     steps_.push_back(t_);
     steps_.push_back(dt);
     steps_.push_back(phase);
@@ -391,7 +393,7 @@ class JmHybrid final : public noether::Integrator {
   noether::PotentialEvaluator evaluate_;
   double h_ = 0, theta_ = 0, Kc_ = 0, tol_ = 0, ratio_ = 1.2;
   int max_iter_ = 25;
-  bool record_ = true;
+  bool record_ = false;
   std::size_t n_ = 0;
   Vec mass_, minv_;
   noether::State state_;
@@ -416,8 +418,8 @@ const noether::ParamDoc params[] = {
     {"newton_max_iterations", "integer", "25", "JM Newton iterations before giving up"},
     {"rechoose_ratio", "number", "1.2",
      "re-choose the parameter coordinate when another |Δq_j| exceeds this × |Δq_c|"},
-    {"record_steps", "bool", "true",
-     "keep every step's t, phase, parameter coordinate and q for /integrator/steps"},
+    {"record_steps", "bool", "false",
+     "write every step's t, Δt, phase, parameter coordinate and q to /integrator/steps"},
 };
 
 std::unique_ptr<noether::Integrator> make(const noether::System& system,
