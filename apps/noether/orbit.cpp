@@ -125,7 +125,11 @@ int orbit_find(OrbitOptions o) {
     return m;
   }();
   p.validate();
-  std::filesystem::create_directories(o.out_dir);
+  std::error_code made;
+  std::filesystem::create_directories(o.out_dir, made);
+  if (made)
+    throw noether::OutputError("cannot create the --out-dir folder " + o.out_dir + ": " + made.message() +
+                               "; choose a folder you can write");
   const auto& model = p.model;
   std::vector<double> found_actions;
   int k = 0, failures = 0;
