@@ -33,5 +33,6 @@ function(noether_add_plugin name)
   if(DEFINED NOETHER_BUILD_PLUGIN_DIR AND NOT ARG_OUTPUT_DIRECTORY)  # bundled with noether
     set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/../..")
     install(TARGETS ${target} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/noether/plugins)
+    set_property(GLOBAL APPEND PROPERTY NOETHER_BUNDLED_PLUGINS ${target})
   endif()
 endfunction()

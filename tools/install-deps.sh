@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what noether needs to build and test, from Debian 12 packages only.
 # Called by both README command lines and by .ci/run; safe to run repeatedly:
-# it installs only what is missing.
+# it installs only what is missing. `--sanitize` adds clang and its sanitizer and libFuzzer
+# runtimes, for tools/sanitize.sh and tools/fuzz.sh.
 set -euo pipefail
 
 PACKAGES=(
@@ -18,6 +19,9 @@ PACKAGES=(
   libnlopt-dev
   python3 python3-numpy python3-matplotlib python3-h5py
 )
+if [ "${1:-}" = "--sanitize" ]; then
+  PACKAGES+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

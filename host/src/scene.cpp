@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <sstream>
 
 namespace noether {
@@ -13,7 +15,12 @@ namespace {
 
 // The most values a document may expand to. YAML aliases are shared, not copied, by the
 // parser; expanding them here is where a few lines (an "alias bomb") could take gigabytes.
+// Beyond kFreeExpansion values, a document may also expand to at most kMaxExpansionRatio
+// times the values it writes: aliases that repeat a body's inertia are fine, aliases repeated
+// within aliases are not.
 constexpr std::size_t kMaxValues = 1'000'000;
+constexpr std::size_t kFreeExpansion = 100'000;
+constexpr std::size_t kMaxExpansionRatio = 100;
 
 // YAML → Params, keeping "file:line" of every node; `budget` counts the values left.
 Params to_params(const YAML::Node& node, const std::string& file, std::size_t& budget) {
@@ -48,10 +55,70 @@ Params to_params(const YAML::Node& node, const std::string& file, std::size_t& b
   }
 }
 
+// The number of values `node` expands to, counted without expanding anything: an alias is the
+// anchored node itself (it carries the anchor's position), so each distinct node is counted
+// once and its count reused wherever it is repeated (`written` counts the values visited, not
+// repeated). Stops past `limit`; `line` is then the line of the first (innermost) node found to
+// exceed it. An alias inside the node it names (a
+// cycle, which yaml-cpp accepts) and nesting deeper than kMaxDepth are refused.
+constexpr int kMaxDepth = 200;
+constexpr std::size_t kCounting = std::numeric_limits<std::size_t>::max();
+using SizeMemo = std::map<std::pair<std::size_t, int>, std::size_t>;
+struct Expansion {
+  SizeMemo memo;
+  std::size_t written = 0;  // values visited once (not through a repeated alias)
+  int line = -1;
+};
+std::size_t expanded_size(const YAML::Node& node, const std::string& file, Expansion& e, std::size_t limit,
+                          int depth = 0) {
+  SizeMemo& memo = e.memo;
+  const YAML::Mark mark = node.Mark();
+  if (depth > kMaxDepth)
+    throw SceneError(file + ":" + std::to_string(mark.line + 1) + ": values nested deeper than " +
+                     std::to_string(kMaxDepth) + " levels; noether refuses the document");
+  if (!node.IsSequence() && !node.IsMap()) {
+    ++e.written;
+    return 1;
+  }
+  const std::pair<std::size_t, int> key{static_cast<std::size_t>(mark.pos), static_cast<int>(node.Type())};
+  if (mark.pos >= 0) {
+    if (const auto found = memo.find(key); found != memo.end()) {
+      if (found->second == kCounting)
+        throw SceneError(file + ":" + std::to_string(mark.line + 1) +
+                         ": an alias refers to a value that contains it (an endless document); noether refuses it");
+      return found->second;
+    }
+    memo[key] = kCounting;
+  }
+  ++e.written;
+  std::size_t n = 1;
+  if (node.IsSequence()) {
+    for (const auto& item : node)
+      if ((n += expanded_size(item, file, e, limit, depth + 1)) > limit) break;
+  } else {
+    for (const auto& kv : node)
+      if ((n += expanded_size(kv.second, file, e, limit, depth + 1)) > limit) break;
+  }
+  n = std::min(n, limit + 1);
+  if (n > limit && e.line < 0) e.line = mark.line;
+  if (mark.pos >= 0) memo[key] = n;
+  return n;
+}
+
 Params parse_yaml(const std::string& text, const std::string& file) {
   try {
-    std::size_t budget = kMaxValues;
-    return to_params(YAML::Load(text), file, budget);
+    const YAML::Node document = YAML::Load(text);
+    Expansion expansion;
+    const std::size_t values = expanded_size(document, file, expansion, kMaxValues);
+    if (values > kMaxValues)
+      throw SceneError(file + ":" + std::to_string(expansion.line + 1) + ": the document expands to more than " + std::to_string(kMaxValues) +
+                       " values (aliases repeated within aliases?); noether refuses it");
+    if (values > kFreeExpansion && values > kMaxExpansionRatio * expansion.written)
+      throw SceneError(file + ": aliases expand the document's " + std::to_string(expansion.written) +
+                       " values to " + std::to_string(values) + ", more than " + std::to_string(kMaxExpansionRatio) +
+                       " times (aliases repeated within aliases?); noether refuses it");
+    std::size_t budget = kMaxValues;  // the same bound, kept while expanding
+    return to_params(document, file, budget);
   } catch (const YAML::Exception& e) {  // a parse error, or anything else yaml-cpp refuses
     std::ostringstream msg;
     msg << file << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
