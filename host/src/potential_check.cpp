@@ -124,7 +124,10 @@ PotentialCheckReport check_potential(const System& system, const Potential& pote
     State s = state;
     for (Eigen::Index i = 0; i < s.x.cols(); ++i)  // move centres by ~5% of the closest distance
       for (int a = 0; a < 3; ++a) s.x(a, i) += 0.05 * L * normal(rng);
-    for (auto& R : s.R) R = R * exp_so3(0.5 * Vec3(normal(rng), normal(rng), normal(rng)));
+    for (auto& R : s.R) {  // drawn one by one (argument order is unspecified), in g++'s former order
+      const double wz = normal(rng), wy = normal(rng), wx = normal(rng);
+      R = R * exp_so3(0.5 * Vec3(wx, wy, wz));
+    }
     check_state(system, potential, s, "perturbed " + std::to_string(k), options, report.rows);
   }
   return report;
