@@ -65,6 +65,13 @@ int run(const std::string& scene_file, const std::string& output,
     print_shapes(scene, std::cout);
     std::cout << noether::format_summary(summary);
     if (!output.empty()) std::cout << "output                        " << output << "\n";
+    if (!summary.verdict.trustworthy) {
+      std::cout.flush();
+      std::cerr << "noether: UNTRUSTWORTHY RUN:";
+      for (const auto& r : summary.verdict.reasons) std::cerr << " " << r << ";";
+      std::cerr << " the run finished, but its numbers cannot be trusted (a smaller step or tolerance? "
+                   "thresholds: run.trust in the scene)\n";
+    }
     if (g_signal != 0) {
       std::cerr << "noether: " << (g_signal == SIGINT ? "SIGINT" : "SIGTERM") << ": stopped at t = "
                 << summary.final_state.t << " after a complete step"

@@ -212,6 +212,8 @@ struct H5Writer::Impl {
   };
   std::map<std::string, StepRecords> step_records;
   hid_t integrator_group = -1;
+  std::string verdict, verdict_reasons, energy_scale;  // set_verdict
+  double relative_energy_error = 0.0;
 
   Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape) {
     doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
@@ -547,6 +549,15 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
   }
 }
 
+void H5Writer::set_verdict(const std::string& verdict, const std::string& reasons,
+                           double relative_energy_error, const std::string& energy_scale) {
+  Impl& m = *impl_;
+  m.verdict = verdict;
+  m.verdict_reasons = reasons;
+  m.relative_energy_error = relative_energy_error;
+  m.energy_scale = energy_scale;
+}
+
 void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome) {
   Impl& m = *impl_;
   flush();
@@ -559,6 +570,12 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   numeric_attribute<std::int64_t>(g, "rejected_steps", H5T_NATIVE_INT64, {work.rejected_steps});
   numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
   string_attribute(g, "outcome", outcome);
+  if (!m.verdict.empty()) {
+    string_attribute(g, "verdict", m.verdict);
+    string_attribute(g, "verdict_reasons", m.verdict_reasons);
+    numeric_attribute<double>(g, "relative_energy_error", H5T_NATIVE_DOUBLE, {m.relative_energy_error});
+    string_attribute(g, "energy_scale", m.energy_scale);
+  }
   H5Gclose(g);
   m.resize_series(frames_written_);
   m.close_datasets();

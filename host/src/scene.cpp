@@ -146,6 +146,11 @@ void apply_override(Params& root, const std::string& assignment) {
     Params* next = nullptr;
     if (node->is_map()) {
       next = node->find(part);
+      if (!next) {  // an optional mapping the scene leaves out (run.trust): made here; a
+                    // misspelt key is refused by the scene's key checks
+        node->set(part, Params::map({}, where));
+        next = node->find(part);
+      }
     } else if (node->is_sequence()) {
       auto& items = node->mutable_items();
       // An index: digits only, and short enough to be one (longer ones are no element either).
@@ -426,7 +431,18 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every", "close_approach", "collisions"}, "'run'");
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "trust"}, "'run'");
+  if (run.has("trust")) {
+    const Params& trust = run.at("trust");
+    trust.check_keys({"energy", "momentum", "orthogonality"}, "'run.trust'");
+    TrustThresholds& t = scene.run.trust;
+    for (auto [key, value] : {std::pair<const char*, double*>{"energy", &t.energy}, {"momentum", &t.momentum},
+                              {"orthogonality", &t.orthogonality}}) {
+      *value = trust.get(key, *value);
+      if (!(*value > 0.0))
+        throw SceneError(trust.at(key).here() + "'run.trust." + key + "' must be a positive number");
+    }
+  }
   scene.run.close_approach = run.get("close_approach", 0.0);
   scene.run.collisions = run.get("collisions", true);
   if (!std::isfinite(scene.run.close_approach) || scene.run.close_approach < 0.0)

@@ -72,6 +72,7 @@ class RunObserver final : public Observer {
       }
       for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
       s_.min_distance = std::numeric_limits<double>::infinity();
+      detect_conservation(state, forces);
     }
     s_.final = d;
     s_.max_abs_energy_error = std::max(s_.max_abs_energy_error, std::abs(d.energy - s_.initial.energy));
@@ -91,12 +92,36 @@ class RunObserver final : public Observer {
             s_.min_distance = r;
             s_.t_of_min_distance = state.t;
           }
+          const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(j));
+          if (a.radius + b.radius > 0 && r - (a.radius + b.radius) < s_.min_gap) {
+            s_.min_gap = r - (a.radius + b.radius);
+            s_.min_gap_reach = a.radius + b.radius;
+            s_.min_gap_pair = a.name + "–" + b.name;
+          }
         }
     ++s_.frames;
     if (writer_) writer_->write_frame(integrator_ ? integrator_->work().steps : 0, state, d);
   }
 
  private:
+  // The forces at t0 tell what the scene conserves: a net force or a net torque about the
+  // origin larger than 10⁻⁶ of the sum of their parts is an external field.
+  void detect_conservation(const State& state, const Forces& forces) {
+    Vec3 F = Vec3::Zero(), T = Vec3::Zero();
+    double F_parts = 0.0, T_parts = 0.0;
+    for (Eigen::Index i = 0; i < forces.f.cols(); ++i) {
+      const Vec3 f = forces.f.col(i), torque = Vec3(state.x.col(i)).cross(f);
+      F += f, F_parts += f.norm();
+      T += torque, T_parts += torque.norm();
+    }
+    for (Eigen::Index k = 0; k < forces.M.cols(); ++k) {
+      T += state.R[static_cast<std::size_t>(k)] * Vec3(forces.M.col(k));  // d(R Π)/dt = R M
+      T_parts += forces.M.col(k).norm();
+    }
+    s_.conserves_linear_momentum = F.norm() <= 1e-6 * F_parts;
+    s_.conserves_angular_momentum = T.norm() <= 1e-6 * T_parts;
+  }
+
   const System& system_;
   RunSummary& s_;
   H5Writer* writer_;
@@ -178,13 +203,58 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.stop_reason = stop.reason;
   summary.final_state = std::move(state);
   summary.pair_models = pair_models();  // now with what the run saw
+  judge(summary, scene);
   if (writer) {
     stream_step_series();
     writer->write_pair_models(summary.pair_models);
+    std::string reasons;
+    for (const auto& r : summary.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
+    writer->set_verdict(summary.verdict.trustworthy ? "trustworthy" : "untrustworthy", reasons,
+                        summary.max_rel_energy_error, summary.energy_scale);
     writer->finish(summary.work, summary.wall_seconds,
                    summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason);
   }
   return summary;
+}
+
+void judge(RunSummary& s, const Scene& scene) {
+  const TrustThresholds& limit = scene.run.trust;
+  const double T0 = s.initial.kinetic_translational + s.initial.kinetic_rotational;
+  const double E0 = std::abs(s.initial.energy);
+  s.energy_scale = E0 >= 1e-3 * T0 ? "|E0|" : "T0";
+  const double scale = E0 >= 1e-3 * T0 ? E0 : T0;
+  s.max_rel_energy_error = scale > 0 ? s.max_abs_energy_error / scale : s.max_abs_energy_error;
+  Verdict& v = s.verdict;
+  v = {};
+  char why[256];
+  if (s.max_rel_energy_error > limit.energy) {
+    std::snprintf(why, sizeof why, "relative energy error %.2e (of %s) > %.0e", s.max_rel_energy_error,
+                  s.energy_scale.c_str(), limit.energy);
+    v.reasons.push_back(why);
+  }
+  if (s.conserves_linear_momentum && s.max_rel_linear_momentum_error > limit.momentum) {
+    std::snprintf(why, sizeof why, "relative linear momentum error %.2e > %.0e", s.max_rel_linear_momentum_error,
+                  limit.momentum);
+    v.reasons.push_back(why);
+  }
+  if (s.conserves_angular_momentum && s.max_rel_angular_momentum_error > limit.momentum) {
+    std::snprintf(why, sizeof why, "relative angular momentum error %.2e > %.0e", s.max_rel_angular_momentum_error,
+                  limit.momentum);
+    v.reasons.push_back(why);
+  }
+  if (s.max_orthogonality_error > limit.orthogonality) {
+    std::snprintf(why, sizeof why, "attitudes left SO(3): ||I - R^T R|| = %.2e > %.0e", s.max_orthogonality_error,
+                  limit.orthogonality);
+    v.reasons.push_back(why);
+  }
+  // Bounding spheres inside each other by more than the event's root tolerance (a run stopped
+  // by a collision ends at contact, to ~1e-10).
+  if (s.min_gap < -1e-6 * s.min_gap_reach) {
+    std::snprintf(why, sizeof why, "bodies %s overlapped (bounding spheres %.3g inside each other)",
+                  s.min_gap_pair.c_str(), -s.min_gap);
+    v.reasons.push_back(why);
+  }
+  v.trustworthy = v.reasons.empty();
 }
 
 std::string format_pair_models(const std::vector<PairModel>& models) {
@@ -208,16 +278,33 @@ std::string format_pair_models(const std::vector<PairModel>& models) {
 std::string format_summary(const RunSummary& s) {
   char buf[2048];
   const double steps = static_cast<double>(std::max<std::int64_t>(1, s.work.steps));
+  // Only what the scene conserves, and a closest approach only where there are two bodies.
+  std::string optional;
+  char line[256];
+  if (s.conserves_linear_momentum) {
+    std::snprintf(line, sizeof line, "max rel. linear momentum err  %.3e\n", s.max_rel_linear_momentum_error);
+    optional += line;
+  }
+  if (s.conserves_angular_momentum) {
+    std::snprintf(line, sizeof line, "max rel. angular momentum err %.3e\n", s.max_rel_angular_momentum_error);
+    optional += line;
+  }
+  if (s.final_state.R.size() > 0) {
+    std::snprintf(line, sizeof line, "max ||I - R^T R||_F           %.4e\n", s.max_orthogonality_error);
+    optional += line;
+  }
+  if (std::isfinite(s.min_distance)) {
+    std::snprintf(line, sizeof line, "closest approach              %.6f at t = %.4f\n", s.min_distance,
+                  s.t_of_min_distance);
+    optional += line;
+  }
   std::snprintf(
       buf, sizeof buf,
       "potential                     %s\n"
       "integrator                    %s\n"
       "E0                            %.10f\n"
-      "max |E - E0|                  %.4e\n"
-      "max rel. linear momentum err  %.3e\n"
-      "max rel. angular momentum err %.3e\n"
-      "max ||I - R^T R||_F           %.4e\n"
-      "closest approach              %.6f at t = %.4f\n"
+      "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames)\n"
+      "%s"
       "output frames                 %zu\n"
       "steps                         %lld\n"
       "potential evaluations         %lld\n"
@@ -225,8 +312,7 @@ std::string format_summary(const RunSummary& s) {
       "rejected steps                %s\n"
       "wall time                     %.3f s\n",
       s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
-      s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
-      s.max_orthogonality_error, s.min_distance, s.t_of_min_distance, s.frames,
+      s.energy_scale.c_str(), s.max_rel_energy_error, optional.c_str(), s.frames,
       static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
       static_cast<double>(s.work.newton_iterations) / steps,
       s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
@@ -234,6 +320,11 @@ std::string format_summary(const RunSummary& s) {
   std::string out = buf;
   if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
   out += format_pair_models(s.pair_models);
+  if (s.verdict.trustworthy) {
+    out += "verdict                       trustworthy\n";
+  } else {
+    for (const auto& r : s.verdict.reasons) out += "verdict                       UNTRUSTWORTHY: " + r + "\n";
+  }
   return out;
 }
 

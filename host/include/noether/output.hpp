@@ -43,6 +43,9 @@ class H5Writer {
   // again, e.g. at the end of the run with what the run saw).
   void write_pair_models(const std::vector<PairModel>& models);
   void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome);
+  // The run's verdict, written with /work by finish().
+  void set_verdict(const std::string& verdict, const std::string& reasons, double relative_energy_error,
+                   const std::string& energy_scale);
   // Appends an integrator's per-step records to /integrator/<name> (created on first use).
   void append_step_series(const std::vector<StepSeries>& records);
   std::size_t frames_written() const { return frames_written_; }

@@ -16,11 +16,20 @@ struct PluginConfig {
   Params params;       // the whole mapping, including "plugin"
 };
 
+// When a finished run is called untrustworthy (docs/user-guide.md, "Verdict"): scene key
+// run.trust.
+struct TrustThresholds {
+  double energy = 1e-2;         // max |E − E0| / energy scale
+  double momentum = 1e-6;       // relative linear and angular momentum errors, where conserved
+  double orthogonality = 1e-6;  // max ‖I − RᵀR‖_F
+};
+
 struct RunSettings {
   double t_end = 0.0;
   double output_every = 0.0;
   double close_approach = 0.0;  // stop when two centres come closer (0: off)
   bool collisions = true;       // stop when two bodies' bounding spheres touch
+  TrustThresholds trust;
 };
 
 struct Scene {

@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -23,6 +24,13 @@ struct RunOptions {
   const volatile std::sig_atomic_t* interrupt = nullptr;
 };
 
+// Whether a finished run can be trusted (docs/user-guide.md, "Verdict"): each check that
+// failed, in words; none when the run is trustworthy.
+struct Verdict {
+  bool trustworthy = true;
+  std::vector<std::string> reasons;
+};
+
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
   std::string integrator;
@@ -32,6 +40,17 @@ struct RunSummary {
   double max_rel_linear_momentum_error = 0.0;   // max ‖P − P0‖ / Σ‖γ_i(0)‖
   double max_rel_angular_momentum_error = 0.0;  // max ‖L − L0‖ / Σ(‖x_i×γ_i‖ + ‖Π_k‖) at t0
   double max_orthogonality_error = 0.0;         // max ‖I − RᵀR‖_F over frames and bodies
+  // max |E − E0| / energy_scale: |E0|, or the initial kinetic energy T0 when |E0| < 10⁻³ T0
+  double max_rel_energy_error = 0.0;
+  std::string energy_scale = "|E0|";
+  // What the scene conserves, read off the forces at t0: Σ f_i = 0 (no external force) and
+  // Σ x_i × f_i + Σ R_k M_k = 0 (no external torque about the origin).
+  bool conserves_linear_momentum = true, conserves_angular_momentum = true;
+  // The smallest gap ‖x_a − x_b‖ − (r_a + r_b) between bounding spheres seen (pairs with radii).
+  double min_gap = std::numeric_limits<double>::infinity();
+  double min_gap_reach = 0.0;  // r_a + r_b of that pair
+  std::string min_gap_pair;
+  Verdict verdict;
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::size_t frames = 0;
@@ -48,6 +67,10 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene, Plugin
 // Runs the scene. On an IntegrationError the output written so far is finalized (readable,
 // with the error recorded) and the error is rethrown.
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options);
+
+// The verdict on a finished run against the scene's run.trust thresholds (also fills
+// max_rel_energy_error and energy_scale).
+void judge(RunSummary& summary, const Scene& scene);
 
 // One line per pair model (and one more where the run left the range it was chosen for).
 std::string format_pair_models(const std::vector<PairModel>& models);
