@@ -88,3 +88,24 @@ TEST(Scene, ImpossiblePhysicsIsRefusedWithFileLineAndField) {
   EXPECT_NE(with("position: [1, 0, 0]", "position: [1, 0]").find("must have 3 components"),
             std::string::npos);
 }
+
+// The scene as run (stored in the output as /parameters/scene_as_run) is YAML that reads back
+// into the same scene, overrides included.
+TEST(Scene, AsRunReadsBackIntoTheSameScene) {
+  const Scene scene = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
+                                 {"bodies.beta.mass=1.4e11", "integrator.step=30"});
+  const std::string text = scene_as_run(scene);
+  const Scene again = parse_scene(text, "as-run");
+  ASSERT_EQ(again.system.size(), scene.system.size());
+  for (std::size_t i = 0; i < scene.system.size(); ++i) {
+    EXPECT_EQ(again.system.body(i).name, scene.system.body(i).name);
+    EXPECT_EQ(again.system.body(i).mass, scene.system.body(i).mass);
+    EXPECT_EQ(again.system.body(i).inertia, scene.system.body(i).inertia);
+  }
+  EXPECT_EQ(again.system.body(1).mass, 1.4e11);
+  EXPECT_EQ(again.initial.x, scene.initial.x);
+  EXPECT_EQ(again.initial.p, scene.initial.p);
+  EXPECT_EQ(again.initial.R[0], scene.initial.R[0]);
+  EXPECT_EQ(again.integrator.params.at("step").as_double(), 30.0);
+  EXPECT_EQ(again.system.G(), scene.system.G());
+}

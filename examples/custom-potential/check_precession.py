@@ -24,7 +24,7 @@ def main():
         t = f["particles/bodies/position/time"][:]
         x = f["particles/bodies/position/value"][:]
         v = f["particles/bodies/velocity/value"][:]
-        G = f["parameters"].attrs["G"][0]
+        G = float(f["parameters"].attrs["G"])
         q = f["particles/bodies/orientation/value"][:, 0, :]  # the planet's attitude
     mass_planet = 1.0  # as in j2-orbit.yaml
     mu = G * mass_planet

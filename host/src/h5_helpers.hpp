@@ -83,4 +83,27 @@ inline void double_dataset(hid_t parent, const char* name, const std::vector<dou
   H5Sclose(space);
 }
 
+// A scalar UTF-8 string dataset (no 64 KiB limit, unlike an attribute), with a description.
+inline void string_dataset(hid_t parent, const char* name, const std::string& value, const std::string& description) {
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, std::max<std::size_t>(1, value.size()));
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t d = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
+  check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value.empty() ? "" : value.data()), name);
+  string_attribute(d, "description", description);
+  H5Dclose(d);
+  H5Sclose(space);
+  H5Tclose(type);
+}
+
+// A scalar double attribute.
+inline void scalar_attribute(hid_t obj, const char* name, double value) {
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t attr = check_id(H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), name);
+  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), name);
+  H5Aclose(attr);
+  H5Sclose(space);
+}
+
 }  // namespace noether::h5

@@ -308,7 +308,9 @@ void H5Writer::create_layout(const Scene& scene) {
 
   hid_t parameters = make_group(m.file, "parameters");
   string_attribute(parameters, "scene_file", scene.file);
-  string_attribute(parameters, "scene", scene.text);
+  string_dataset(parameters, "scene", scene.text, "the scene file's text, as given");
+  string_dataset(parameters, "scene_as_run", scene_as_run(scene),
+                 "the scene as run: after the --set overrides (YAML)");
   std::string overrides;
   for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
   string_attribute(parameters, "overrides", overrides);
@@ -316,10 +318,9 @@ void H5Writer::create_layout(const Scene& scene) {
   for (const auto& p : scene.potentials) potentials += (potentials.empty() ? "" : "+") + p.plugin;
   string_attribute(parameters, "potential", potentials);
   string_attribute(parameters, "integrator", scene.integrator.plugin);
-  numeric_attribute<double>(parameters, "G", H5T_NATIVE_DOUBLE, {sys.G()});
-  numeric_attribute<double>(parameters, "t_end", H5T_NATIVE_DOUBLE, {scene.run.t_end});
-  numeric_attribute<double>(parameters, "output_every", H5T_NATIVE_DOUBLE,
-                            {scene.run.output_every});
+  scalar_attribute(parameters, "G", sys.G());
+  scalar_attribute(parameters, "t_end", scene.run.t_end);
+  scalar_attribute(parameters, "output_every", scene.run.output_every);
   // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
   // (x_file = offset + rotation · x_body).
   hid_t shapes = -1;
@@ -352,6 +353,26 @@ void H5Writer::create_layout(const Scene& scene) {
     m.masses.push_back(b.mass);
   }
   string_list_dataset(bodies, "name", names);
+  double_dataset(bodies, "mass", m.masses);
+  if (m.n_rigid > 0) {  // J_k, principal-axes body frame, [rigid body][3][3]
+    std::vector<double> inertia;
+    std::vector<int> rigid_index;
+    for (std::size_t k = 0; k < sys.rigid_count(); ++k) {
+      const Body& b = sys.body(sys.body_of_rigid(k));
+      rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) inertia.push_back(b.inertia(r, c));
+    }
+    const hsize_t dims[3] = {m.n_rigid, 3, 3};
+    hid_t space = H5Screate_simple(3, dims, nullptr);
+    hid_t d = check_id(H5Dcreate2(bodies, "inertia", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                  H5P_DEFAULT), "inertia");
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, inertia.data()), "inertia");
+    numeric_attribute<int>(d, "body_index", H5T_NATIVE_INT, rigid_index);
+    string_attribute(d, "description", "inertia tensor J of each rigid body in its body frame");
+    H5Dclose(d);
+    H5Sclose(space);
+  }
   const hsize_t nb = m.n_bodies, nr = m.n_rigid;
   hid_t pos = make_group(bodies, "position");
   m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,

@@ -482,4 +482,36 @@ Params load_params_file(const std::filesystem::path& file) {
   return parse_params(read_file(file, "file"), file.string());
 }
 
+namespace {
+
+void emit(YAML::Emitter& out, const Params& p) {
+  if (p.is_scalar()) {
+    out << p.as_string();
+  } else if (p.is_sequence()) {  // [x, y, z] on one line; a list of mappings (bodies) in blocks
+    bool mappings = false;
+    for (const auto& item : p.items()) mappings = mappings || item.is_map();
+    if (!mappings) out << YAML::Flow;
+    out << YAML::BeginSeq;
+    for (const auto& item : p.items()) emit(out, item);
+    out << YAML::EndSeq;
+  } else if (p.is_map()) {
+    out << YAML::BeginMap;
+    for (const auto& [key, value] : p.entries()) {
+      out << YAML::Key << key << YAML::Value;
+      emit(out, value);
+    }
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Null;
+  }
+}
+
+}  // namespace
+
+std::string scene_as_run(const Scene& scene) {
+  YAML::Emitter out;
+  emit(out, scene.root);
+  return std::string(out.c_str()) + "\n";
+}
+
 }  // namespace noether

@@ -44,6 +44,10 @@ struct Scene {
   RunSettings run;
 };
 
+// The scene as run (its resolved tree, after the overrides) as YAML text: load_scene on it
+// gives the same scene.
+std::string scene_as_run(const Scene& scene);
+
 // YAML text or file → Params (for compare specs and other YAML inputs), with file:line.
 Params parse_params(const std::string& text, const std::string& file);
 Params load_params_file(const std::filesystem::path& file);
