@@ -5,10 +5,15 @@ final position error, max energy error and max ‖I − RᵀR‖, one line per i
     tools/plot_compare.py COMPARE.csv OUT.png [--title TITLE]
 """
 import argparse
+import sys
 import csv
 from collections import defaultdict
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
+    sys.stderr.write(f"{__file__}: matplotlib is not available to {sys.executable}\n")
+    sys.exit(3)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

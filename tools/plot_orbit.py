@@ -4,9 +4,14 @@
     tools/plot_orbit.py ORBIT.csv ORBIT.png [--title TITLE]
 """
 import argparse
+import sys
 import csv
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
+    sys.stderr.write(f"{__file__}: matplotlib is not available to {sys.executable}\n")
+    sys.exit(3)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

@@ -24,8 +24,11 @@ int list_plugins();
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether
 // when installed, the source tree's tools/ in a build.
 std::string script_dir();
-// /usr/bin/python3 (Debian's, with matplotlib) when present, else python3 on the PATH.
-std::string python();
+// Runs a helper script with the python3 on the PATH (a user's virtual environment wins; Debian's
+// /usr/bin/python3 when that one has no matplotlib) and an argument vector (no shell); false
+// when it cannot be run or fails. `shown` is the command,
+// for messages.
+bool run_plot_script(const std::string& script, const std::vector<std::string>& args, std::string& shown);
 
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,

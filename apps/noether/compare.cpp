@@ -13,18 +13,6 @@
 
 namespace noether::app {
 
-std::string script_dir() {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  for (const fs::path& candidate : {exe.parent_path() / ".." / "share" / "noether",
-                                    fs::path(NOETHER_SOURCE_DIR) / "tools"})
-    if (fs::exists(candidate / "plot_compare.py", ec)) return candidate.string();
-  return {};
-}
-
-std::string python() { return access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3"; }
-
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,
             const std::string& reference_model, const std::string& spec_file, int repeats,
@@ -66,10 +54,9 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
   noether::write_compare_h5(result, scene, h5);
   std::cout << "table: " << csv << ", " << h5 << "\n";
   if (plot) {
-    const std::string dir = script_dir();
-    const std::string command = python() + " '" + dir + "/plot_compare.py' '" + csv + "' '" + png +
-                                "' --title '" + scene_file + "'";
-    if (dir.empty() || std::system(command.c_str()) != 0)
+    std::string command;
+    if (!run_plot_script("plot_compare.py", {csv, png, "--title", std::filesystem::path(scene_file).filename().string()},
+                         command))
       std::cerr << "noether: could not draw the plot (needs python3-matplotlib; command: "
                 << command << "); the table is written\n";
     else

@@ -183,9 +183,10 @@ int orbit_find(OrbitOptions o) {
     }
     curve.close();  // complete on disk before the plotting script reads it
     std::printf("  -> %s.yaml (period %.12f, closure %.2e after refinement)\n", stem.c_str(), T, closure);
-    const std::string cmd = python() + " '" + script_dir() + "/plot_orbit.py' '" + stem + ".csv' '" + stem +
-                            ".png' --title '" + desc + "'";
-    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "noether: could not draw %s.png\n", stem.c_str());
+    std::string command;
+    if (!run_plot_script("plot_orbit.py", {stem + ".csv", stem + ".png", "--title", desc}, command))
+      std::fprintf(stderr, "noether: could not draw %s.png (needs matplotlib for the python3 on the PATH; "
+                   "command: %s)\n", stem.c_str(), command.c_str());
   }
   std::printf("%d distinct orbits from %d starts (%d starts rejected)\n", k, o.starts, failures);
   return k > 0 ? 0 : 1;
