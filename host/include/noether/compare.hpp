@@ -58,6 +58,7 @@ struct CompareRow {
 struct CompareResult {
   std::string reference;         // description of the reference run
   double reference_error = 0.0;  // estimate: its final-state difference to the looser check
+  std::string reference_error_note;  // why there is no estimate (reference_error = 0)
   double reference_seconds = 0.0;
   std::vector<CompareRow> rows;
 };
