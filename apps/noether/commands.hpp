@@ -18,7 +18,7 @@ void print_shapes(const noether::Scene& scene, std::ostream& out);
 // SIGINT/SIGTERM stop the run after the current step: summary printed, output complete,
 // exit 128 + the signal (130, 143).
 int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress, bool force);
+        const std::vector<std::string>& overrides, bool progress, bool force, bool json = false);
 int list_plugins();
 
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether

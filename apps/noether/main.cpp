@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-progress", no_progress, "no progress line on stderr");
   bool force = false;
   run_cmd->add_flag("--force", force, "overwrite an existing output file (never a link or the scene)");
+  std::string summary_format = "text";
+  run_cmd->add_option("--summary", summary_format, "the summary on stdout: text, or json (one object)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
 
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin found");
 
@@ -128,7 +132,7 @@ int main(int argc, char** argv) {
   orbit.refine = !no_refine;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
-    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force);
+    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force, summary_format == "json");
     if (*plugins_cmd) return noether::app::list_plugins();
     if (*find_cmd) return noether::app::orbit_find(orbit);
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);

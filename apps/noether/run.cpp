@@ -50,7 +50,7 @@ void install_stop_handlers() {
 }  // namespace
 
 int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress, bool force) {
+        const std::vector<std::string>& overrides, bool progress, bool force, bool json) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   noether::RunOptions options;
@@ -61,10 +61,14 @@ int run(const std::string& scene_file, const std::string& output,
   install_stop_handlers();
   try {
     const auto summary = noether::run_scene(scene, registry, options);
-    std::cout << "scene                         " << scene_file << "\n";
-    print_shapes(scene, std::cout);
-    std::cout << noether::format_summary(summary);
-    if (!output.empty()) std::cout << "output                        " << output << "\n";
+    if (json) {
+      std::cout << noether::format_summary_json(summary);
+    } else {
+      std::cout << "scene                         " << scene_file << "\n";
+      print_shapes(scene, std::cout);
+      std::cout << noether::format_summary(summary);
+      if (!output.empty()) std::cout << "output                        " << output << "\n";
+    }
     if (!summary.verdict.trustworthy) {
       std::cout.flush();
       std::cerr << "noether: UNTRUSTWORTHY RUN:";

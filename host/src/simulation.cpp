@@ -328,4 +328,74 @@ std::string format_summary(const RunSummary& s) {
   return out;
 }
 
+namespace {
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+}  // namespace
+
+std::string format_summary_json(const RunSummary& s) {
+  std::ostringstream out;
+  auto field = [&out, first = true](const char* name, const std::string& value) mutable {
+    out << (first ? "{\n  " : ",\n  ") << json_string(name) << ": " << value;
+    first = false;
+  };
+  field("potential", json_string(s.potential));
+  field("integrator", json_string(s.integrator));
+  field("E0", json_number(s.initial.energy));
+  field("max_abs_energy_error", json_number(s.max_abs_energy_error));
+  field("max_rel_energy_error", json_number(s.max_rel_energy_error));
+  field("energy_scale", json_string(s.energy_scale));
+  field("max_rel_linear_momentum_error",
+        s.conserves_linear_momentum ? json_number(s.max_rel_linear_momentum_error) : "null");
+  field("max_rel_angular_momentum_error",
+        s.conserves_angular_momentum ? json_number(s.max_rel_angular_momentum_error) : "null");
+  field("max_orthogonality_error", s.final_state.R.empty() ? "null" : json_number(s.max_orthogonality_error));
+  field("closest_approach", json_number(s.min_distance));
+  field("t_of_closest_approach", std::isfinite(s.min_distance) ? json_number(s.t_of_min_distance) : "null");
+  field("output_frames", std::to_string(s.frames));
+  field("final_time", json_number(s.final_state.t));
+  field("stop_reason", s.stop_reason.empty() ? "null" : json_string(s.stop_reason));
+  field("steps", std::to_string(s.work.steps));
+  field("potential_evaluations", std::to_string(s.work.potential_evaluations));
+  field("newton_iterations", std::to_string(s.work.newton_iterations));
+  field("rejected_steps", s.work.rejected_steps < 0 ? "null" : std::to_string(s.work.rejected_steps));
+  field("wall_seconds", json_number(s.wall_seconds));
+  std::string models = "[";
+  for (const auto& m : s.pair_models)
+    models += std::string(models.size() > 1 ? ", " : "") + "{\"body_a\": " + json_string(m.body_a) +
+              ", \"body_b\": " + json_string(m.body_b) + ", \"model\": " + json_string(m.model) +
+              ", \"order\": " + std::to_string(m.order) + ", \"estimated_error\": " + json_number(m.estimated_error) +
+              ", \"exceeded\": " + (m.exceeded ? "true" : "false") + "}";
+  field("pair_models", models + "]");
+  std::string reasons = "[";
+  for (const auto& r : s.verdict.reasons) reasons += std::string(reasons.size() > 1 ? ", " : "") + json_string(r);
+  field("verdict", std::string("{\"trustworthy\": ") + (s.verdict.trustworthy ? "true" : "false") +
+                       ", \"reasons\": " + reasons + "]}");
+  out << "\n}\n";
+  return out.str();
+}
+
 }  // namespace noether

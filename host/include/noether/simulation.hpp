@@ -77,5 +77,8 @@ std::string format_pair_models(const std::vector<PairModel>& models);
 
 // The summary as printed by `noether run`.
 std::string format_summary(const RunSummary& summary);
+// The same as one JSON object (`noether run --summary json`): quantities a scene does not
+// conserve or have are null.
+std::string format_summary_json(const RunSummary& summary);
 
 }  // namespace noether
