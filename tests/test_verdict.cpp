@@ -22,8 +22,16 @@ RunSummary run(const std::string& file, std::vector<std::string> overrides, cons
 std::string string_attribute(hid_t obj, const char* name) {
   hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
   hid_t type = H5Aget_type(a);
-  std::string value(H5Tget_size(type), '\0');
-  H5Aread(a, type, value.data());
+  std::string value;
+  if (H5Tis_variable_str(type) > 0) {
+    char* text = nullptr;
+    H5Aread(a, type, &text);
+    value = text ? text : "";
+    H5free_memory(text);
+  } else {
+    value.resize(H5Tget_size(type));
+    H5Aread(a, type, value.data());
+  }
   H5Tclose(type);
   H5Aclose(a);
   return value;

@@ -34,13 +34,15 @@ inline hid_t make_group(hid_t parent, const char* name) {
   return check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
 }
 
+// A variable-length UTF-8 string attribute (h5py reads it as str, not bytes).
 inline void string_attribute(hid_t obj, const char* name, const std::string& value) {
   hid_t type = H5Tcopy(H5T_C_S1);
-  H5Tset_size(type, std::max<std::size_t>(1, value.size()));
+  H5Tset_size(type, H5T_VARIABLE);
   H5Tset_cset(type, H5T_CSET_UTF8);
   hid_t space = H5Screate(H5S_SCALAR);
   hid_t attr = check_id(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), name);
-  check(H5Awrite(attr, type, value.empty() ? "" : value.data()), name);
+  const char* text = value.c_str();
+  check(H5Awrite(attr, type, &text), name);
   H5Aclose(attr);
   H5Sclose(space);
   H5Tclose(type);

@@ -215,9 +215,13 @@ struct H5Writer::Impl {
   std::string verdict, verdict_reasons, energy_scale;  // set_verdict
   double relative_energy_error = 0.0;
 
-  Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape) {
+  // A series of doubles, described, with its unit (the scene's, docs/user-guide.md "Units").
+  Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape, const std::string& unit,
+                      const std::string& description) {
     doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
                                                        allocated, std::numeric_limits<double>::quiet_NaN()));
+    string_attribute(doubles.back()->dataset, "unit", unit);
+    string_attribute(doubles.back()->dataset, "description", description);
     return doubles.back().get();
   }
   void resize_series(hsize_t frames) {
@@ -319,6 +323,11 @@ void H5Writer::create_layout(const Scene& scene) {
   string_attribute(parameters, "potential", potentials);
   string_attribute(parameters, "integrator", scene.integrator.plugin);
   scalar_attribute(parameters, "G", sys.G());
+  string_attribute(parameters, "units", scene.units.describe());
+  string_attribute(parameters, "unit_length", scene.units.of_length());
+  string_attribute(parameters, "unit_mass", scene.units.of_mass());
+  string_attribute(parameters, "unit_time", scene.units.of_time());
+  string_attribute(parameters, "unit_G", scene.units.of_G());
   scalar_attribute(parameters, "t_end", scene.run.t_end);
   scalar_attribute(parameters, "output_every", scene.run.output_every);
   // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
@@ -354,6 +363,15 @@ void H5Writer::create_layout(const Scene& scene) {
   }
   string_list_dataset(bodies, "name", names);
   double_dataset(bodies, "mass", m.masses);
+  {
+    hid_t d = H5Dopen2(bodies, "mass", H5P_DEFAULT);
+    string_attribute(d, "unit", scene.units.of_mass());
+    string_attribute(d, "description", "mass of each body");
+    H5Dclose(d);
+    d = H5Dopen2(bodies, "name", H5P_DEFAULT);
+    string_attribute(d, "description", "the bodies' names, in the order of every [body] axis");
+    H5Dclose(d);
+  }
   if (m.n_rigid > 0) {  // J_k, principal-axes body frame, [rigid body][3][3]
     std::vector<double> inertia;
     std::vector<int> rigid_index;
@@ -370,6 +388,7 @@ void H5Writer::create_layout(const Scene& scene) {
     check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, inertia.data()), "inertia");
     numeric_attribute<int>(d, "body_index", H5T_NATIVE_INT, rigid_index);
     string_attribute(d, "description", "inertia tensor J of each rigid body in its body frame");
+    string_attribute(d, "unit", scene.units.of_inertia());
     H5Dclose(d);
     H5Sclose(space);
   }
@@ -378,11 +397,15 @@ void H5Writer::create_layout(const Scene& scene) {
   m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,
                                                          std::vector<hsize_t>{}, m.allocated, -1);
   m.step = m.step_series.get();
-  m.time = m.add(pos, "time", {});
-  m.position = m.add(pos, "value", {nb, 3});
+  string_attribute(m.step->dataset, "description", "the integrator's step count at each frame");
+  const Units& u = scene.units;
+  m.time = m.add(pos, "time", {}, u.of_time(), "time of each frame");
+  m.position = m.add(pos, "value", {nb, 3}, u.of_length(),
+                     "position x of each body's centre of mass, inertial frame [frame][body][xyz]");
   H5Gclose(pos);
   hid_t g = m.element(bodies, "velocity");
-  m.velocity = m.add(g, "value", {nb, 3});
+  m.velocity = m.add(g, "value", {nb, 3}, u.of_velocity(),
+                     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]");
   H5Gclose(g);
   if (m.n_rigid > 0) {
     std::vector<int> rigid_index;
@@ -390,33 +413,43 @@ void H5Writer::create_layout(const Scene& scene) {
       rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
     g = m.element(bodies, "orientation");  // quaternion (w, x, y, z), rigid bodies only
     numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
-    m.orientation = m.add(g, "value", {nr, 4});
+    m.orientation = m.add(g, "value", {nr, 4}, "1",
+                          "attitude R (body to inertial frame) of each rigid body as a unit quaternion "
+                          "(w, x, y, z) [frame][rigid body][wxyz]; body_index names the bodies");
     H5Gclose(g);
     g = m.element(bodies, "angular_momentum");  // Π, body frame, rigid bodies only
     numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
-    m.angular_momentum = m.add(g, "value", {nr, 3});
+    m.angular_momentum = m.add(g, "value", {nr, 3}, u.of_angular_momentum(),
+                               "spin angular momentum Π = J Ω of each rigid body, body frame "
+                               "[frame][rigid body][xyz]");
     H5Gclose(g);
   }
   H5Gclose(bodies);
   H5Gclose(particles);
 
   hid_t obs = make_group(m.file, "observables");
-  const std::pair<const char*, Series<double>**> scalars[] = {
-      {"energy", &m.energy},
-      {"kinetic_energy_translational", &m.kinetic_translational},
-      {"kinetic_energy_rotational", &m.kinetic_rotational},
-      {"potential_energy", &m.potential_energy},
-      {"orthogonality_error", &m.orthogonality}};
-  for (const auto& [name, target] : scalars) {
-    g = m.element(obs, name);
-    *target = m.add(g, "value", {});
+  const std::string energy_unit = u.of_energy();
+  const struct {
+    const char* name;
+    Series<double>** target;
+    std::string unit, description;
+  } scalars[] = {
+      {"energy", &m.energy, energy_unit, "total energy E = T + U at each frame"},
+      {"kinetic_energy_translational", &m.kinetic_translational, energy_unit, "Σ |γ|²/(2m)"},
+      {"kinetic_energy_rotational", &m.kinetic_rotational, energy_unit, "Σ Π·J⁻¹Π/2"},
+      {"potential_energy", &m.potential_energy, energy_unit, "the mutual potential U"},
+      {"orthogonality_error", &m.orthogonality, "1", "max over rigid bodies of ‖I − RᵀR‖_F"}};
+  for (const auto& scalar : scalars) {
+    g = m.element(obs, scalar.name);
+    *scalar.target = m.add(g, "value", {}, scalar.unit, scalar.description);
     H5Gclose(g);
   }
   g = m.element(obs, "linear_momentum");
-  m.linear_momentum_total = m.add(g, "value", {3});
+  m.linear_momentum_total = m.add(g, "value", {3}, u.of_momentum(), "total linear momentum Σ γ, inertial frame");
   H5Gclose(g);
   g = m.element(obs, "angular_momentum");
-  m.angular_momentum_total = m.add(g, "value", {3});
+  m.angular_momentum_total = m.add(g, "value", {3}, u.of_angular_momentum(),
+                                   "total angular momentum about the origin, Σ x × γ + R Π, inertial frame");
   H5Gclose(g);
   H5Gclose(obs);
 

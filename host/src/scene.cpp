@@ -1,10 +1,13 @@
 #include <noether/error.hpp>
+#include <noether/orbital_elements.hpp>
 #include <noether/scene.hpp>
+#include <noether/units.hpp>
 
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -229,7 +232,7 @@ Mat3 attitude(const Params& p, const std::string& body) {
 // shape: {ellipsoid: {semi_axes: [a, b, c]}} or {polyhedron: {file | vertices + facets,
 // units: m | km, frame: principal | mesh}}, density 1 (scaled by the caller).
 std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string& body,
-                                         const std::filesystem::path& folder) {
+                                         const std::filesystem::path& folder, const Units& scene_units) {
   const std::string who = "body '" + body + "'";
   if (shape.has("ellipsoid")) {
     const Params& e = shape.at("ellipsoid");
@@ -245,10 +248,12 @@ std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string&
     throw SceneError(p.here() + who + ": the polyhedron needs 'units: m' or 'units: km' (a "
                      "shape file does not say its units)");
   const std::string units = p.at("units").as_string();
-  if (units != "m" && units != "km")
+  const double file_unit = length_unit_in_metres(units);
+  if (file_unit == 0.0)
     throw SceneError(p.at("units").here() + who + ": unknown units '" + units +
-                     "'; use m or km");
-  const double scale = units == "km" ? 1000.0 : 1.0;
+                     "'; use m, km or au");
+  // Into the scene's length unit; metres when the scene declares none.
+  const double scale = file_unit / scene_units.length_si;
   const std::string frame = p.get("frame", std::string("principal"));
   if (frame != "principal" && frame != "mesh")
     throw SceneError(p.at("frame").here() + who + ": frame must be 'principal' (rotate the "
@@ -310,6 +315,117 @@ std::shared_ptr<const Solid> scale_solid(const Solid& unit, const Params& b, con
   return s;
 }
 
+// G: as given, or from the declared units (eq. 17.1), or 1. A G that contradicts the declared
+// units by more than 1 % is a unit mistake, not a choice of constant.
+double scene_gravitational_constant(const Params& root, const Units& units) {
+  if (!root.has("G")) return units.declared ? units.gravitational_constant() : 1.0;
+  const double G = root.at("G").as_double();
+  if (units.declared && std::isfinite(G) && G > 0.0) {
+    const double expected = units.gravitational_constant();
+    if (std::abs(G - expected) > 0.01 * expected) {
+      std::ostringstream msg;
+      msg.precision(6);
+      msg << root.at("G").here() << "G = " << G << " contradicts the declared units ("
+          << units.describe() << "), in which G = " << expected << " " << units.of_G()
+          << "; omit G to use that value, or fix 'units'";
+      throw SceneError(msg.str());
+    }
+  }
+  return G;
+}
+
+// Each body's initial position and velocity (docs/user-guide.md, "Initial states"): absolute,
+// relative to another body (`relative_to`), or osculating elements about another body
+// (`orbit`, eqs. 17.2–17.4, angles in degrees); then, with `barycentric: true`, shifted so
+// that the barycentre rests at the origin.
+std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params& bodies, const System& sys,
+                                                                    bool barycentric) {
+  const std::size_t n = sys.size();
+  std::vector<Vec3> x(n, Vec3::Zero()), v(n, Vec3::Zero());
+  std::vector<int> mark(n, 0);  // 0 open, 1 resolving, 2 done
+  auto index_of = [&](const Params& name_node, const std::string& who) {
+    const std::string name = name_node.as_string();
+    for (std::size_t j = 0; j < n; ++j)
+      if (sys.body(j).name == name) return j;
+    std::string known;
+    for (const auto& b : sys.bodies()) known += (known.empty() ? "" : ", ") + b.name;
+    throw SceneError(name_node.here() + who + " refers to body '" + name + "', which the scene does not "
+                     "have (bodies: " + known + ")");
+  };
+  const double deg = M_PI / 180.0;
+  std::function<void(std::size_t)> resolve = [&](std::size_t i) {
+    if (mark[i] == 2) return;
+    const Params& b = bodies.items()[i];
+    const std::string who = "body '" + sys.body(i).name + "'";
+    if (mark[i] == 1)
+      throw SceneError(b.here() + who + ": its initial state refers, through relative_to / orbit.around, "
+                       "back to itself");
+    mark[i] = 1;
+    if (b.has("orbit")) {
+      for (const char* key : {"position", "velocity", "relative_to"})
+        if (b.has(key))
+          throw SceneError(b.at(key).here() + who + ": 'orbit' gives the position and velocity; remove '" +
+                           key + "'");
+      const Params& o = b.at("orbit");
+      o.check_keys({"around", "a", "e", "i", "Omega", "omega", "nu", "M"}, "the orbit of " + who);
+      const std::size_t c = index_of(o.at("around"), "the orbit of " + who);
+      if (c == i) throw SceneError(o.at("around").here() + who + " cannot orbit itself");
+      resolve(c);
+      OrbitalElements el;
+      el.a = o.at("a").as_double();
+      el.e = o.get("e", 0.0);
+      el.i = o.get("i", 0.0) * deg;
+      el.Omega = o.get("Omega", 0.0) * deg;
+      el.omega = o.get("omega", 0.0) * deg;
+      if (!(std::isfinite(el.a) && el.a > 0.0))
+        throw SceneError(o.at("a").here() + "the orbit of " + who + ": 'a' must be positive (bound orbits only; "
+                         "give position and velocity for others)");
+      if (!(el.e >= 0.0 && el.e < 1.0))
+        throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
+                         "only; give position and velocity for others)");
+      if (o.has("nu") == o.has("M"))
+        throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
+                         "'M' (degrees), one of them");
+      el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.at("M").as_double() * deg, el.e);
+      if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
+        throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
+      const double mu = sys.G() * (sys.body(i).mass + sys.body(c).mass);
+      const RelativeState rel = state_from_elements(el, mu);
+      x[i] = x[c] + rel.r;
+      v[i] = v[c] + rel.v;
+    } else {
+      if (!b.has("position"))
+        throw SceneError(b.here() + who + " needs 'position' (or 'orbit': osculating elements about "
+                         "another body)");
+      x[i] = vec3(b.at("position"));
+      if (b.has("velocity")) v[i] = vec3(b.at("velocity"));
+      if (b.has("relative_to")) {
+        const std::size_t c = index_of(b.at("relative_to"), who + "'s 'relative_to'");
+        if (c == i) throw SceneError(b.at("relative_to").here() + who + " cannot be relative to itself");
+        resolve(c);
+        x[i] += x[c];
+        v[i] += v[c];
+      }
+    }
+    mark[i] = 2;
+  };
+  for (std::size_t i = 0; i < n; ++i) resolve(i);
+  if (barycentric) {
+    Vec3 mx = Vec3::Zero(), mv = Vec3::Zero();
+    double m = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      mx += sys.body(i).mass * x[i];
+      mv += sys.body(i).mass * v[i];
+      m += sys.body(i).mass;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] -= mx / m;
+      v[i] -= mv / m;
+    }
+  }
+  return {x, v};
+}
+
 PluginConfig plugin_config(const Params& p, const std::string& what) {
   if (!p.is_map() || !p.has("plugin"))
     throw SceneError(p.here() + "'" + p.path() + "' must be a mapping naming a plugin, e.g. " +
@@ -329,8 +445,10 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (!root.is_map()) throw SceneError(file + ": a scene must be a YAML mapping (G, bodies, ...)");
   for (const auto& o : overrides) apply_override(root, o);
   root.set_path("");
-  root.check_keys({"description", "G", "bodies", "potential", "integrator", "run"}, "the scene");
-  const double G = root.get("G", 1.0);
+  root.check_keys({"description", "units", "G", "bodies", "potential", "integrator", "run", "barycentric"},
+                  "the scene");
+  if (root.has("units")) scene.units = parse_units(root.at("units"));
+  const double G = scene_gravitational_constant(root, scene.units);
 
   // Bodies: constants into System, initial values into State.
   const Params& bodies = root.at("bodies");
@@ -339,8 +457,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
   std::vector<Body> list;
   for (const auto& b : bodies.items()) {
     if (!b.is_map()) throw SceneError(b.here() + "each body must be a mapping");
-    b.check_keys({"name", "mass", "density", "inertia", "position", "velocity", "attitude",
-                  "angular_velocity", "angular_momentum", "shape", "radius"},
+    b.check_keys({"name", "mass", "density", "inertia", "position", "velocity", "relative_to", "orbit",
+                  "attitude", "angular_velocity", "angular_momentum", "shape", "radius"},
                  "body '" + b.get("name", std::string("?")) + "'");
     Body body;
     body.name = b.at("name").as_string();
@@ -351,8 +469,9 @@ Scene parse_scene(const std::string& text, const std::string& file,
                          "ellipsoid, polyhedron, dumbbell or spheres");
       shape.check_keys({"ellipsoid", "polyhedron", "dumbbell", "spheres"}, "the shape of body '" + body.name + "'");
       if (shape.has("ellipsoid") || shape.has("polyhedron"))
-        body.solid = scale_solid(*parse_solid(shape, body.name, std::filesystem::path(file).parent_path()), b,
-                                 body.name);
+        body.solid = scale_solid(*parse_solid(shape, body.name, std::filesystem::path(file).parent_path(),
+                                              scene.units),
+                                 b, body.name);
     }
     if (b.has("radius")) {
       if (body.solid)
@@ -398,12 +517,13 @@ Scene parse_scene(const std::string& text, const std::string& file,
 
   const System& sys = scene.system;
   State s = State::zeros(sys);
+  const auto [positions, velocities] = initial_translation(bodies, sys, root.get("barycentric", false));
   for (std::size_t i = 0; i < sys.size(); ++i) {
     const Params& b = bodies.items()[i];
     const Body& body = sys.body(i);
     const auto col = static_cast<Eigen::Index>(i);
-    s.x.col(col) = vec3(b.at("position"));
-    if (b.has("velocity")) s.p.col(col) = body.mass * vec3(b.at("velocity"));
+    s.x.col(col) = positions[i];
+    s.p.col(col) = body.mass * velocities[i];
     if (const int k = sys.rigid_index(i); k >= 0) {
       if (b.has("attitude")) s.R[static_cast<std::size_t>(k)] = attitude(b.at("attitude"), body.name);
       if (b.has("angular_velocity"))

@@ -147,6 +147,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, potential,
                                              scene.integrator.params);
   summary.integrator = scene.integrator.plugin;
+  if (scene.units.declared) summary.units = scene.units.describe();
 
   // What the potential chose per pair, as the integrator's evaluations saw it.
   auto pair_models = [&integrator] {
@@ -318,6 +319,7 @@ std::string format_summary(const RunSummary& s) {
       s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
       s.wall_seconds);
   std::string out = buf;
+  if (!s.units.empty()) out.insert(out.find("E0 "), "units                         " + s.units + "\n");
   if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
   out += format_pair_models(s.pair_models);
   if (s.verdict.trustworthy) {
@@ -364,6 +366,7 @@ std::string format_summary_json(const RunSummary& s) {
   };
   field("potential", json_string(s.potential));
   field("integrator", json_string(s.integrator));
+  field("units", s.units.empty() ? "null" : json_string(s.units));
   field("E0", json_number(s.initial.energy));
   field("max_abs_energy_error", json_number(s.max_abs_energy_error));
   field("max_rel_energy_error", json_number(s.max_rel_energy_error));

@@ -4,6 +4,7 @@
 #include <noether/params.hpp>
 #include <noether/state.hpp>
 #include <noether/system.hpp>
+#include <noether/units.hpp>
 
 #include <filesystem>
 #include <string>
@@ -37,6 +38,7 @@ struct Scene {
   std::string text;                      // the scene text as read (before overrides)
   std::vector<std::string> overrides;    // "key=value" as given
   Params root;                           // the resolved tree (after overrides)
+  Units units;                           // as declared (`units:`), or the scene's own
   System system;
   State initial;
   std::vector<PluginConfig> potentials;  // summed when more than one

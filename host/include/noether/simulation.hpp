@@ -34,6 +34,7 @@ struct Verdict {
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
   std::string integrator;
+  std::string units;                // the scene's units (Units::describe), when declared
   Diagnostics initial;
   Diagnostics final;
   double max_abs_energy_error = 0.0;            // max |E − E0| over output frames
