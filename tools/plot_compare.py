@@ -1,12 +1,17 @@
 #!/usr/bin/python3
 """Draws the work–precision diagram of a `noether compare` table (CSV): wall time against
-final position error, max energy error and max ‖I − RᵀR‖, one line per integrator family.
+final position error, max energy error and max ‖I − RᵀR‖ (rigid bodies only), one line per
+integrator family. From the compare file next to the CSV (same name, .h5) it takes the units
+and the reference's estimated error, drawn as the floor below which position errors are not
+measured.
 
     tools/plot_compare.py COMPARE.csv OUT.png [--title TITLE]
 """
 import argparse
-import sys
 import csv
+import math
+import os
+import sys
 from collections import defaultdict
 
 try:
@@ -30,10 +35,25 @@ def main():
         for row in csv.DictReader(f):
             if row["ok"] == "1":
                 families[row["family"]].append(row)
-    panels = [("final_position_error", "final position error  max‖x − x_ref‖"),
-              ("max_abs_energy_error", "max |E − E0|"),
-              ("max_orthogonality_error", "max ‖I − RᵀR‖_F")]
-    fig, axes = plt.subplots(1, 3, figsize=(15, 4.8))
+    length, energy, floor = "", "", float("nan")
+    h5 = os.path.splitext(args.csv)[0] + ".h5"
+    try:
+        import h5py
+        with h5py.File(h5, "r") as f:
+            attrs = f["compare"].attrs
+            floor = float(attrs["reference_error"])
+            length, energy = attrs.get("unit_length", ""), attrs.get("unit_energy", "")
+    except Exception:  # no compare file or no h5py: no floor and no units, still a plot
+        pass
+    unit = lambda u: f" [{u}]" if u and u != "1" else ""  # noqa: E731
+    panels = [("final_position_error", "final position error  max‖x − x_ref‖" + unit(length)),
+              ("max_abs_energy_error", "max |E − E0|" + unit(energy))]
+    if any(float(r["max_orthogonality_error"]) > 0 for rows in families.values() for r in rows):
+        panels.append(("max_orthogonality_error", "max ‖I − RᵀR‖_F"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(5 * len(panels), 4.8))
+    if math.isfinite(floor) and floor > 0:
+        axes[0].axvspan(1e-17, floor, color="0.85", zorder=0)
+        axes[0].axvline(floor, color="0.4", ls="--", lw=1, label=f"reference error {floor:.1e}")
     for ax, (key, label) in zip(axes, panels):
         for name, rows in sorted(families.items()):
             pts = sorted((float(r[key]), float(r["wall_seconds"])) for r in rows)
@@ -43,7 +63,7 @@ def main():
         ax.set_ylabel("wall time [s] (median)")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
-    fig.suptitle(f"work–precision: {args.title}")
+    fig.suptitle(f"work–precision: {os.path.basename(args.title)}")
     fig.tight_layout()
     fig.savefig(args.png, dpi=90)
 

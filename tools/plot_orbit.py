@@ -33,6 +33,8 @@ def main():
         ax.plot(x, y, lw=1)
         ax.plot(x[0], y[0], "o", ms=5)
     ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
     ax.set_title(a.title, fontsize=7)
     fig.tight_layout()
     fig.savefig(a.png, dpi=90)

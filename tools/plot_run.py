@@ -1,11 +1,13 @@
 #!/usr/bin/python3
-"""Plots a noether run (HDF5): energy exchange, energy error and ‖I − RᵀR‖ against time.
+"""Plots a noether run (HDF5): energy exchange, energy error and, with rigid bodies, ‖I − RᵀR‖
+against time, in the run's units.
 
     tools/plot_run.py RUN.h5 OUT.png [--title TITLE]
 
 Uses Debian's python3-matplotlib and python3-h5py (installed by tools/install-deps.sh).
 """
 import argparse
+import os
 
 import h5py
 import matplotlib
@@ -28,20 +30,24 @@ def main():
         T_rot = obs["kinetic_energy_rotational/value"][:]
         U = obs["potential_energy/value"][:]
         orth = obs["orthogonality_error/value"][:]
-        integrator = f["parameters"].attrs["integrator"]
-        integrator = integrator.decode() if isinstance(integrator, bytes) else integrator
-    fig, ax = plt.subplots(3, 1, figsize=(7, 8), sharex=True)
+        rigid = "orientation" in f["particles/bodies"]
+        text = lambda v: v.decode() if isinstance(v, bytes) else str(v)  # noqa: E731
+        integrator = text(f["parameters"].attrs["integrator"])
+        e_unit = text(obs["energy/value"].attrs.get("unit", ""))
+        t_unit = text(obs["energy/time"].attrs.get("unit", ""))
+    fig, ax = plt.subplots(3 if rigid else 2, 1, figsize=(7, 8 if rigid else 5.5), sharex=True)
     ax[0].plot(t, T_tr, label="translational kinetic")
     ax[0].plot(t, T_rot, label="rotational kinetic")
     ax[0].plot(t, U, label="potential")
-    ax[0].set_ylabel("energy")
+    ax[0].set_ylabel(f"energy [{e_unit}]" if e_unit else "energy")
     ax[0].legend(fontsize=8)
     ax[1].plot(t, E - E[0])
-    ax[1].set_ylabel("E − E0")
-    ax[2].semilogy(t, orth + 1e-18)
-    ax[2].set_ylabel("‖I − RᵀR‖_F")
-    ax[2].set_xlabel("t")
-    fig.suptitle(args.title or f"{args.run} ({integrator})")
+    ax[1].set_ylabel(f"E − E0 [{e_unit}]" if e_unit else "E − E0")
+    if rigid:
+        ax[2].semilogy(t, orth + 1e-18)
+        ax[2].set_ylabel("‖I − RᵀR‖_F")
+    ax[-1].set_xlabel(f"t [{t_unit}]" if t_unit else "t")
+    fig.suptitle(args.title or f"{os.path.basename(args.run)} ({integrator})")
     fig.tight_layout()
     fig.savefig(args.png, dpi=90)
 

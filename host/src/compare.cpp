@@ -302,6 +302,9 @@ void write_compare_h5(const CompareResult& r, const Scene& scene, const std::fil
   string_attribute(g, "scene", scene.text);
   string_attribute(g, "reference", r.reference);
   numeric_attribute<double>(g, "reference_error", H5T_NATIVE_DOUBLE, {r.reference_error});
+  string_attribute(g, "unit_length", scene.units.of_length());
+  string_attribute(g, "unit_energy", scene.units.of_energy());
+  string_attribute(g, "unit_time", scene.units.of_time());
   std::vector<std::string> family, label, error;
   std::vector<double> ok;
   for (const auto& row : r.rows) {
