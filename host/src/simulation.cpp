@@ -202,6 +202,7 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.work = integrator->work();
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.stop_reason = stop.reason;
+  summary.interpolated_frames = stop.interpolated_frames;
   summary.final_state = std::move(state);
   summary.pair_models = pair_models();  // now with what the run saw
   judge(summary, scene);
@@ -299,12 +300,17 @@ std::string format_summary(const RunSummary& s) {
                   s.t_of_min_distance);
     optional += line;
   }
+  // Frames between the method's steps are interpolated states, not the method's own: say so.
+  const std::string where_energy =
+      s.interpolated_frames > 0 ? ", " + std::to_string(s.interpolated_frames) + " of " + std::to_string(s.frames) +
+                                      " interpolated between the method's steps"
+                                : "";
   std::snprintf(
       buf, sizeof buf,
       "potential                     %s\n"
       "integrator                    %s\n"
       "E0                            %.10f\n"
-      "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames)\n"
+      "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames%s)\n"
       "%s"
       "output frames                 %zu\n"
       "steps                         %lld\n"
@@ -313,7 +319,7 @@ std::string format_summary(const RunSummary& s) {
       "rejected steps                %s\n"
       "wall time                     %.3f s\n",
       s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
-      s.energy_scale.c_str(), s.max_rel_energy_error, optional.c_str(), s.frames,
+      s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
       static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
       static_cast<double>(s.work.newton_iterations) / steps,
       s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
@@ -379,6 +385,7 @@ std::string format_summary_json(const RunSummary& s) {
   field("closest_approach", json_number(s.min_distance));
   field("t_of_closest_approach", std::isfinite(s.min_distance) ? json_number(s.t_of_min_distance) : "null");
   field("output_frames", std::to_string(s.frames));
+  field("interpolated_frames", std::to_string(s.interpolated_frames));
   field("final_time", json_number(s.final_state.t));
   field("stop_reason", s.stop_reason.empty() ? "null" : json_string(s.stop_reason));
   field("steps", std::to_string(s.work.steps));

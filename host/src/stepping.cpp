@@ -213,6 +213,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
             integrator.interpolate(outputs->next(), state);
             evaluate(state, forces);
             observe();
+            ++stop.interpolated_frames;
           }
         if (h > 0 || !integrator.interpolate(t_event, state)) {
           // No dense output: one shortened step of the method from the step's start.
@@ -221,6 +222,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           integrator.current(state, forces);
         } else {
           evaluate(state, forces);
+          ++stop.interpolated_frames;
         }
         state.t = t_event;
         observe();
@@ -258,6 +260,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
             throw Error("the integrator chooses its own steps but has no dense output to reach t = " +
                         std::to_string(tau));
           evaluate(state, forces);
+          ++stop.interpolated_frames;
         }
         state.t = tau;
         observe();

@@ -55,6 +55,7 @@ struct RunSummary {
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::size_t frames = 0;
+  std::int64_t interpolated_frames = 0;  // frames interpolated between the method's steps
   std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it
   State final_state;        // the state at the end of the run
   std::vector<PairModel> pair_models;  // what a tolerance-driven potential chose, per pair

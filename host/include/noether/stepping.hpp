@@ -49,6 +49,9 @@ struct StopInfo {
   std::string event;   // "", "close approach", "collision" or "interrupted"
   double t = 0.0;
   std::size_t body_a = 0, body_b = 0;  // the pair of an event
+  // Output frames that were interpolated between the method's steps (dense output), not states
+  // the method itself reached.
+  std::int64_t interpolated_frames = 0;
 };
 
 // Runs `integrator` from `state` (at state.t) to schedule.t_end. On return `state` is the
