@@ -5,10 +5,11 @@
 namespace noether {
 
 RodriguesCoefficients rodrigues_coefficients(double x) {
-  if (x < 1e-4) {
-    // Taylor series; the first omitted terms are O(x⁶) relative to 1, below round-off here.
-    const double x2 = x * x;
-    return {1.0 - x2 / 6.0 + x2 * x2 / 120.0, 0.5 - x2 / 24.0 + x2 * x2 / 720.0};
+  if (x < 1e-2) {
+    // Taylor series (no sine or cosine for the small rotations of a step); the first omitted
+    // terms are O(x⁸)/9! relative to 1, below 1e-21 here.
+    const double x2 = x * x, x4 = x2 * x2;
+    return {1.0 - x2 / 6.0 + x4 / 120.0 - x4 * x2 / 5040.0, 0.5 - x2 / 24.0 + x4 / 720.0 - x4 * x2 / 40320.0};
   }
   const double s = std::sin(0.5 * x);
   return {std::sin(x) / x, 2.0 * s * s / (x * x)};  // 1 − cos x = 2 sin²(x/2)

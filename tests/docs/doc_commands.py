@@ -84,6 +84,8 @@ def blocks(path):
                     j += 1
                 if not output and text.strip() == DEMO:  # README: "The demo prints" and a block
                     j = i + 1
+                    while j < len(lines) and "The demo prints" not in lines[j]:
+                        j += 1
                     while j < len(lines) and not lines[j].startswith("    "):
                         j += 1
                     while j < len(lines) and lines[j].startswith("    "):

@@ -31,6 +31,9 @@ struct DiscreteAttitude {
 // for the spin: no F near the identity solves (128)). The caller adds body and step.
 DiscreteAttitude solve_discrete_attitude(const Vec3& g, const Mat3& J,
                                          const DiscreteAttitudeOptions& options = {});
+// The same with J⁻¹ given (an integrator keeps it per body: no inversion per step).
+DiscreteAttitude solve_discrete_attitude(const Vec3& g, const Mat3& J, const Mat3& J_inverse,
+                                         const DiscreteAttitudeOptions& options = {});
 
 }  // namespace noether
 

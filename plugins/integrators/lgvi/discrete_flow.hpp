@@ -40,9 +40,11 @@ class DiscreteFlow {
 };
 
 // Solves (93)/(123)/(124)-type equations S(g) = F Jd − Jd Fᵀ for F = exp(S(f)), turning a
-// failure into an IntegrationError that names the body, the time and the step.
-noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Settings& settings, const std::string& body,
-                    double t, double h, const Vec3& omega, noether::WorkCounters& work);
+// failure into an IntegrationError that names the body, the time, the step and the spin
+// |Ω| h (Ω = J⁻¹ Π from the body's angular momentum Π, computed only then).
+noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Mat3& J_inverse, const Settings& settings,
+                                         const std::string& body, double t, double h, const Vec3& angular_momentum,
+                                         noether::WorkCounters& work);
 
 // vee(Jd F − Fᵀ Jd) for F = exp(S(f)), the left side of (79) and (114) at step k − 1,
 // evaluated from f as a J f − b f × J f (= Fᵀ G(f)) instead of from the matrices, whose I

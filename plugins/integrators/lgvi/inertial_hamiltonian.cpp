@@ -7,14 +7,16 @@
 
 namespace lgvi {
 
-noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Settings& settings, const std::string& body,
-                    double t, double h, const Vec3& omega, noether::WorkCounters& work) {
+noether::DiscreteAttitude solve_attitude(const Vec3& g, const Mat3& J, const Mat3& J_inverse, const Settings& settings,
+                                         const std::string& body, double t, double h,
+                                         const Vec3& angular_momentum, noether::WorkCounters& work) {
   try {
-    const auto solved = noether::solve_discrete_attitude(g, J, settings.newton);
+    const auto solved = noether::solve_discrete_attitude(g, J, J_inverse, settings.newton);
     work.newton_iterations += solved.iterations;
     return solved;
   } catch (const noether::Error& e) {
     std::ostringstream msg;
+    const Vec3 omega = J_inverse * angular_momentum;
     msg << "lgvi: step too large for the spin of body '" << body << "' at t = " << t
         << " with step h = " << h << " (|Ω| h = " << omega.norm() * std::abs(h) << " rad): " << e.what()
         << ". Reduce integrator.step (|Ω| h well below 1 is safe)";
@@ -52,8 +54,8 @@ class InertialHamiltonian final : public DiscreteFlow {
       const auto k = static_cast<Eigen::Index>(r);
       const auto& body = system_.body(system_.body_of_rigid(r));
       const Vec3 g = h * (Vec3(s_.Pi.col(k)) + 0.5 * h * Vec3(fk.M.col(k)));
-      F_[r] = solve_attitude(g, body.inertia, settings_, body.name, s_.t, h,
-                             body.inertia_inverse * Vec3(s_.Pi.col(k)), work).F;
+      F_[r] = solve_attitude(g, body.inertia, body.inertia_inverse, settings_, body.name, s_.t, h,
+                             Vec3(s_.Pi.col(k)), work).F;
     }
     x_prev_ = s_.x;
     R_prev_ = s_.R;

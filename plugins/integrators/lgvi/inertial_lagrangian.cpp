@@ -54,7 +54,7 @@ class InertialLagrangian final : public DiscreteFlow {
     for (std::size_t r = 0; r < nr; ++r) {
       const auto& b = system_.body(system_.body_of_rigid(r));
       const Vec3 g = L_[r] + h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
-      F.push_back(solve_attitude(g, b.inertia, settings_, b.name, s_.t, h, b.inertia_inverse * g / h, work));
+      F.push_back(solve_attitude(g, b.inertia, b.inertia_inverse, settings_, b.name, s_.t, h, g / h, work));
     }
     // (78): D_{k+1} = D_k + (h²/m) f_k,  x_{k+1} = x_k + D_{k+1}
     for (std::size_t i = 0; i < n; ++i) {

@@ -33,11 +33,13 @@ class RelativeHamiltonian final : public DiscreteFlow {
 
   void advance(double h) override {
     const ReducedForces& fk = current_;
-    const Mat3 F2 = solve_attitude(h * (r_.Pi2 + 0.5 * h * fk.M2), frame_.J2, settings_, frame_.name2,
-                                   r_.t, h, frame_.J2.inverse() * r_.Pi2, work).F;        // (124)
+    const Mat3 J2_inverse = frame_.J2.inverse();
+    const Mat3 F2 = solve_attitude(h * (r_.Pi2 + 0.5 * h * fk.M2), frame_.J2, J2_inverse, settings_, frame_.name2,
+                                   r_.t, h, r_.Pi2, work).F;                 // (124)
     const Mat3 JR = r_.R * frame_.J1 * r_.R.transpose();
-    const Mat3 F = solve_attitude(h * (r_.Pi + 0.5 * h * fk.M), JR, settings_, frame_.name1, r_.t, h,
-                                  JR.inverse() * r_.Pi, work).F;                          // (123)
+    const Mat3 JR_inverse = JR.inverse();
+    const Mat3 F = solve_attitude(h * (r_.Pi + 0.5 * h * fk.M), JR, JR_inverse, settings_, frame_.name1, r_.t, h,
+                                  r_.Pi, work).F;                            // (123)
     Reduced next = r_;
     next.t = r_.t + h;
     next.X = F2.transpose() * (r_.X + (h / frame_.m) * r_.Gamma - (0.5 * h * h / frame_.m) * fk.dU_dX);  // (118)

@@ -50,10 +50,12 @@ class RelativeLagrangian final : public DiscreteFlow {
     }
     if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
     const Vec3 g2 = L2_ + h * h * fk.M2;                                                  // (114)
-    const auto F2 = solve_attitude(g2, frame_.J2, settings_, frame_.name2, r_.t, h, frame_.J2.inverse() * g2 / h, work);
+    const Mat3 J2_inverse = frame_.J2.inverse();
+    const auto F2 = solve_attitude(g2, frame_.J2, J2_inverse, settings_, frame_.name2, r_.t, h, g2 / h, work);
     const Mat3 JR = r_.R * frame_.J1 * r_.R.transpose();
+    const Mat3 JR_inverse = JR.inverse();
     const Vec3 g = A_ + h * h * fk.M;                                                     // (113)
-    const auto F = solve_attitude(g, JR, settings_, frame_.name1, r_.t, h, JR.inverse() * g / h, work);
+    const auto F = solve_attitude(g, JR, JR_inverse, settings_, frame_.name1, r_.t, h, g / h, work);
     const Mat3 F2t = F2.F.transpose();
     const Vec3 D = F2t * (D_ - (h * h / frame_.m) * fk.dU_dX);                            // (112)
     const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX);                  // (117)
