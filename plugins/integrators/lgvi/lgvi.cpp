@@ -1,8 +1,9 @@
 // lgvi: the Lie group variational integrator of the full body problem (Lee, Leok & McClamroch 2007; docs/equations.md §4–5).
 // Four discrete forms — inertial or relative frame, Hamiltonian or Lagrangian — chosen by the
-// scene (`frame`, `form`); order 4 by Yoshida's symmetric composition of the one-step
+// scene (`frame`, `form`); orders 4 and 6 by symmetric compositions (compositions.hpp) of the one-step
 // (Hamiltonian) forms. Every form is symmetric and symplectic, conserves total linear and
 // angular momentum to round-off and keeps every R on SO(3) to round-off.
+#include "compositions.hpp"
 #include "discrete_flow.hpp"
 
 #include <noether/error.hpp>
@@ -30,15 +31,24 @@ class Lgvi final : public noether::Integrator {
     const std::string frame = params.get("frame", std::string("inertial"));
     const std::string form = params.get("form", std::string("hamiltonian"));
     order_ = static_cast<int>(params.get("order", 2L));
+    const std::string composition = params.get("composition", std::string(order_ == 6 ? "kahan-li" : "yoshida"));
     if (frame != "inertial" && frame != "relative")
       throw SceneError(params.at("frame").here() + "lgvi: frame must be inertial or relative, not '" + frame + "'");
     if (form != "hamiltonian" && form != "lagrangian")
       throw SceneError(params.at("form").here() + "lgvi: form must be hamiltonian or lagrangian, not '" + form + "'");
-    if (order_ != 2 && order_ != 4)
-      throw SceneError(params.at("order").here() + "lgvi: order must be 2 or 4");
-    if (order_ == 4 && form == "lagrangian")
+    if (order_ != 2 && order_ != 4 && order_ != 6)
+      throw SceneError(params.at("order").here() + "lgvi: order must be 2, 4 or 6");
+    if (order_ > 2 && form == "lagrangian")
       throw SceneError(params.at("order").here() +
-                       "lgvi: order 4 (Yoshida composition) needs a one-step map: use form: hamiltonian");
+                       "lgvi: orders 4 and 6 (compositions) need a one-step map: use form: hamiltonian");
+    if (order_ > 2) {
+      gamma_ = lgvi::composition_coefficients(order_, composition);
+      if (gamma_.empty())
+        throw SceneError(params.at("composition").here() + "lgvi: no composition '" + composition + "' of order " +
+                         std::to_string(order_) + "; " + lgvi::compositions_of_order(order_));
+    } else if (params.has("composition")) {
+      throw SceneError(params.at("composition").here() + "lgvi: 'composition' needs order 4 or 6");
+    }
     if (frame == "inertial")
       flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, evaluator_, settings)
                                     : lgvi::make_inertial_lagrangian(system, evaluator_, settings);
@@ -79,21 +89,17 @@ class Lgvi final : public noether::Integrator {
   }
 
  private:
-  // One step of size dt: the base map, or Yoshida's composition λ1 dt, λ2 dt, λ1 dt with
-  // λ1 = 1/(2 − 2^{1/3}), λ2 = −2^{1/3}/(2 − 2^{1/3}) (docs/equations.md §4), which is of
-  // order 4. A failure inside the composition restarts from the step's start, so the
-  // integrator stays at the last valid state.
+  // One step of size dt: the base map, or its symmetric composition γ_1 dt, …, γ_s dt
+  // (docs/equations.md §4, compositions.hpp), of order 4 or 6. A failure inside the composition
+  // restarts from the step's start, so the integrator stays at the last valid state.
   void advance(double dt) {
-    if (order_ == 2) {
+    if (gamma_.empty()) {
       flow_->advance(dt);
     } else {
-      const double c = std::cbrt(2.0), l1 = 1.0 / (2.0 - c), l2 = -c / (2.0 - c);
       noether::Forces unused;
       flow_->current(before_, unused);
       try {
-        flow_->advance(l1 * dt);
-        flow_->advance(l2 * dt);
-        flow_->advance(l1 * dt);
+        for (const double g : gamma_) flow_->advance(g * dt);
       } catch (const noether::Error&) {
         flow_->start(before_);
         collect();
@@ -104,13 +110,14 @@ class Lgvi final : public noether::Integrator {
   }
   void collect() {
     work_ = flow_->work;
-    if (order_ == 4) work_.steps /= 3;  // steps of size h, each of three substeps
+    if (!gamma_.empty()) work_.steps /= static_cast<std::int64_t>(gamma_.size());  // steps of size h
   }
 
   noether::PotentialEvaluator evaluator_;  // declared before flow_, which keeps a reference
   std::unique_ptr<lgvi::DiscreteFlow> flow_;
   double h_ = 0.0;
   int order_ = 2;
+  std::vector<double> gamma_;  // composition coefficients (empty: the base map, order 2)
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;
@@ -122,7 +129,9 @@ const noether::ParamDoc params[] = {
     {"frame", "string", "inertial",
      "inertial (93)–(97) / (78)–(80), or relative (118)–(127) / (112)–(117): two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (one-step) or lagrangian (two-step)"},
-    {"order", "integer", "2", "2, or 4 by Yoshida's symmetric composition (hamiltonian form)"},
+    {"order", "integer", "2", "2, or 4 or 6 by a symmetric composition of the order-2 map (hamiltonian form)"},
+    {"composition", "string", "yoshida (order 4), kahan-li (order 6)",
+     "order 4: yoshida (3 stages), suzuki or mclachlan (5 stages); order 6: yoshida (7), kahan-li (9)"},
     {"newton_tolerance", "number", "1e-15",
      "relative tolerance ‖Δf‖/‖f‖ of the Newton solve for F_k (128)"},
     {"newton_max_iterations", "integer", "30",
@@ -142,7 +151,7 @@ NOETHER_PLUGIN_DESCRIPTOR = {
     noether::PluginKind::Integrator,
     "lgvi",
     "Lie group variational integrator: inertial or relative frame, Hamiltonian or Lagrangian "
-    "form, order 2 or 4",
+    "form, order 2, 4 or 6",
     params,
     std::size(params),
     nullptr,
