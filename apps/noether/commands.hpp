@@ -17,8 +17,11 @@ void print_shapes(const noether::Scene& scene, std::ostream& out);
 
 // SIGINT/SIGTERM stop the run after the current step: summary printed, output complete,
 // exit 128 + the signal (130, 143).
+// A wall-time budget (seconds, 0: none) stops the run like an event: exit 0, stop reason in the
+// summary and the output, a note on stderr.
 int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress, bool force, bool json = false);
+        const std::vector<std::string>& overrides, bool progress, bool force, bool json = false,
+        double max_wall_time = 0.0);
 int list_plugins();
 
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether
@@ -33,7 +36,7 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,
             const std::string& reference_model, const std::string& spec_file, int repeats,
-            std::string csv, std::string h5, std::string png, bool plot);
+            std::string csv, std::string h5, std::string png, bool plot, double max_wall_time = 0.0);
 
 struct OrbitOptions {
   std::string scene;

@@ -16,7 +16,7 @@ namespace noether::app {
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,
             const std::string& reference_model, const std::string& spec_file, int repeats,
-            std::string csv, std::string h5, std::string png, bool plot) {
+            std::string csv, std::string h5, std::string png, bool plot, double max_wall_time) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   noether::CompareSpec spec = spec_file.empty() ? noether::default_compare_spec(scene)
@@ -42,6 +42,7 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
         noether::parse_params(reference_model.empty() ? "{plugin: mutual-exact}" : reference_model, "--reference-model");
   }
   if (repeats > 0) spec.repeats = repeats;
+  if (max_wall_time > 0) spec.max_wall_seconds = max_wall_time;
   const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";
   if (csv.empty()) csv = stem + ".csv";
   if (h5.empty()) h5 = stem + ".h5";

@@ -37,6 +37,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"text", "json"}))
       ->capture_default_str();
 
+  double max_wall_time = 0.0;
+  run_cmd->add_option("--max-wall-time", max_wall_time,
+                      "stop after this many seconds of wall time, like an event (output complete up to there)")
+      ->check(CLI::NonNegativeNumber);
+
   auto* plugins_cmd = app.add_subcommand("plugins", "list every plugin found");
 
   auto* compare_cmd = app.add_subcommand(
@@ -63,6 +68,9 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--h5", h5, "HDF5 table (default SCENE-compare.h5)");
   compare_cmd->add_option("--plot", png, "work–precision plot (default SCENE-compare.png)");
   compare_cmd->add_flag("--no-plot", no_plot, "do not draw the plot");
+  compare_cmd->add_option("--max-wall-time", max_wall_time,
+                          "wall-time budget of each run in seconds; a run that exhausts it is listed as stopped")
+      ->check(CLI::NonNegativeNumber);
 
   auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine");
   orbit_cmd->require_subcommand(1);
@@ -132,13 +140,15 @@ int main(int argc, char** argv) {
   orbit.refine = !no_refine;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
-    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force, summary_format == "json");
+    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force, summary_format == "json",
+                                            max_wall_time);
     if (*plugins_cmd) return noether::app::list_plugins();
     if (*find_cmd) return noether::app::orbit_find(orbit);
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);
     if (*orbit_scene_cmds[1]) return noether::app::orbit_stability(orbit);
     if (*orbit_scene_cmds[2]) return noether::app::orbit_refine(orbit);
-    if (*compare_cmd) return noether::app::compare(scene, overrides, runs, models, reference_model, spec_file, repeats, csv, h5, png, !no_plot);
+    if (*compare_cmd) return noether::app::compare(scene, overrides, runs, models, reference_model, spec_file, repeats, csv, h5, png,
+                                     !no_plot, max_wall_time);
     if (*check_cmd) {
       check_options.third_law = !no_third_law;
       return noether::app::check_potential(scene, overrides, check_options);

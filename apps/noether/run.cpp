@@ -50,7 +50,7 @@ void install_stop_handlers() {
 }  // namespace
 
 int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress, bool force, bool json) {
+        const std::vector<std::string>& overrides, bool progress, bool force, bool json, double max_wall_time) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   noether::RunOptions options;
@@ -58,6 +58,7 @@ int run(const std::string& scene_file, const std::string& output,
   options.overwrite = force;
   options.progress = progress;
   options.interrupt = &g_signal;
+  options.max_wall_seconds = max_wall_time;
   install_stop_handlers();
   try {
     const auto summary = noether::run_scene(scene, registry, options);
@@ -75,6 +76,11 @@ int run(const std::string& scene_file, const std::string& output,
       for (const auto& r : summary.verdict.reasons) std::cerr << " " << r << ";";
       std::cerr << " the run finished, but its numbers cannot be trusted (a smaller step or tolerance? "
                    "thresholds: run.trust in the scene)\n";
+    }
+    if (summary.stop_reason.rfind("wall-time budget", 0) == 0) {
+      std::cout.flush();
+      std::cerr << "noether: " << summary.stop_reason << " (--max-wall-time); the run did not reach t_end"
+                << (output.empty() ? std::string() : "; the output up to there is in " + output) << "\n";
     }
     if (g_signal != 0) {
       std::cerr << "noether: " << (g_signal == SIGINT ? "SIGINT" : "SIGTERM") << ": stopped at t = "

@@ -114,10 +114,13 @@ CompareSpec default_compare_spec(const Scene& scene) {
 CompareSpec load_compare_spec(const std::filesystem::path& file, const Scene& scene) {
   const Params p = load_params_file(file);
   if (!p.is_map()) throw SceneError(file.string() + ": a compare file must be a mapping");
-  p.check_keys({"repeats", "reference", "reference_check", "runs"}, "the compare file");
+  p.check_keys({"repeats", "reference", "reference_check", "runs", "max_wall_time"}, "the compare file");
   CompareSpec spec = default_compare_spec(scene);
   spec.runs.clear();
   spec.repeats = static_cast<int>(p.get("repeats", 3L));
+  spec.max_wall_seconds = p.get("max_wall_time", 0.0);
+  if (!(spec.max_wall_seconds >= 0.0))
+    throw SceneError(p.at("max_wall_time").here() + "max_wall_time must be a non-negative number of seconds");
   if (p.has("reference")) {  // the default check belongs to the default reference only
     spec.reference = p.at("reference");
     spec.reference_check = Params();
@@ -172,13 +175,15 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
   result.reference = spec.reference.is_null() ? "the scene's integrator" : describe(spec.reference);
   if (!spec.reference_potential.is_null()) result.reference += " with " + describe(spec.reference_potential);
   say("reference " + result.reference);
-  const RunSummary ref = run_scene(with_plugins(scene, spec.reference, spec.reference_potential), registry, {});
+  RunOptions budget;
+  budget.max_wall_seconds = spec.max_wall_seconds;
+  const RunSummary ref = run_scene(with_plugins(scene, spec.reference, spec.reference_potential), registry, budget);
   result.reference_seconds = ref.wall_seconds;
   if (!ref.stop_reason.empty())
     throw Error("compare: the reference run stopped early (" + ref.stop_reason + ")");
   if (!spec.reference_check.is_null()) {
     const RunSummary check =
-        run_scene(with_plugins(scene, spec.reference_check, spec.reference_potential), registry, {});
+        run_scene(with_plugins(scene, spec.reference_check, spec.reference_potential), registry, budget);
     const auto [dx, dR] = state_difference(ref.final_state, check.final_state);
     result.reference_error = std::max(dx, dR);
     if (result.reference_error == 0.0)
@@ -196,11 +201,11 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
     try {
       const Scene s = with_plugins(scene, run.integrator, run.potential);
       std::vector<double> seconds;
-      RunSummary summary = run_scene(s, registry, {});
+      RunSummary summary = run_scene(s, registry, budget);
       seconds.push_back(summary.wall_seconds);
       // Repeat for a stable median, but not runs that take more than two seconds.
       for (int k = 1; k < spec.repeats && summary.wall_seconds < 2.0; ++k)
-        seconds.push_back(run_scene(s, registry, {}).wall_seconds);
+        seconds.push_back(run_scene(s, registry, budget).wall_seconds);
       std::sort(seconds.begin(), seconds.end());
       row.wall_seconds = seconds[seconds.size() / 2];
       row.potential_evaluations = summary.work.potential_evaluations;

@@ -171,9 +171,13 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   Progress progress(options.progress, state.t, scene.run.t_end);
   RunObserver observer(scene.system, summary, writer.get(), current);
 
+  // The loop stops on one flag: the caller's (a signal) or the wall-time budget's.
+  volatile std::sig_atomic_t stop_flag = 0;
+  bool budget_exhausted = false;
   Schedule schedule{scene.run.t_end, scene.run.output_every,
                     Events{scene.run.close_approach, scene.run.collisions},
-                    {}, options.interrupt};
+                    {}, (options.interrupt || options.max_wall_seconds > 0.0) ? &stop_flag : nullptr};
+  const auto start = Clock::now();
   // An integrator's per-step records go to the output every 1024 steps (and are dropped
   // without one), so they never accumulate in memory.
   auto stream_step_series = [&integrator, &writer] {
@@ -184,8 +188,13 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
     ++n;
     if (options.progress && (n & 15u) == 0) progress.update(t);  // the clock read every 16 steps only
     if ((n & 1023u) == 0) stream_step_series();
+    if (options.interrupt && *options.interrupt) stop_flag = *options.interrupt;
+    if (options.max_wall_seconds > 0.0 && (n & 15u) == 0 &&
+        std::chrono::duration<double>(Clock::now() - start).count() > options.max_wall_seconds) {
+      budget_exhausted = true;
+      stop_flag = -1;
+    }
   };
-  const auto start = Clock::now();
   StopInfo stop;
   try {
     stop = integrate(*integrator, *potential, scene.system, state, schedule, observer);
@@ -202,6 +211,12 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   summary.work = integrator->work();
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   summary.stop_reason = stop.reason;
+  if (budget_exhausted && stop.event == "interrupted") {
+    std::ostringstream why;
+    why.precision(10);
+    why << "wall-time budget of " << options.max_wall_seconds << " s exhausted at t = " << stop.t;
+    summary.stop_reason = why.str();
+  }
   summary.interpolated_frames = stop.interpolated_frames;
   summary.final_state = std::move(state);
   summary.pair_models = pair_models();  // now with what the run saw

@@ -22,6 +22,9 @@ struct RunOptions {
   // Set asynchronously (a signal handler) to stop the run after the current step: the run
   // then ends like an event, with the output complete and stop_reason "interrupted".
   const volatile std::sig_atomic_t* interrupt = nullptr;
+  // A wall-time budget in seconds (0: none): the run stops after the step that exhausts it,
+  // like an event ("wall-time budget"), with the output complete up to there.
+  double max_wall_seconds = 0.0;
 };
 
 // Whether a finished run can be trusted (docs/user-guide.md, "Verdict"): each check that

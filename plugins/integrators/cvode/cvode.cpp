@@ -65,9 +65,9 @@ class Cvode final : public noether::Integrator {
                        method_ + "'");
     rtol_ = p.get("rtol", 1e-8);
     atol_ = p.get("atol", 1e-10);
-    max_steps_ = p.get("max_steps", 10000000L);
-    if (rtol_ <= 0 || atol_ < 0 || max_steps_ < 1)
-      throw SceneError(p.here() + "cvode: rtol and max_steps must be positive, atol non-negative");
+    max_steps_ = p.get("max_steps", 0L);  // 0: no cap
+    if (rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
+      throw SceneError(p.here() + "cvode: rtol must be positive, atol and max_steps non-negative");
   }
 
   void start(const noether::State& state) override {
@@ -113,7 +113,7 @@ class Cvode final : public noether::Integrator {
       throw IntegrationError(msg.str(), t_);
     }
     t_ = t_reached;
-    if (work_.steps > max_steps_) {
+    if (max_steps_ > 0 && work_.steps > max_steps_) {
       std::ostringstream msg;
       msg << "cvode (" << method_ << ", rtol " << rtol_ << ", atol " << atol_ << "): more than max_steps = "
           << max_steps_ << " steps (CV_TOO_MUCH_WORK) at t = " << t_ << hint(CV_TOO_MUCH_WORK);
@@ -206,7 +206,7 @@ const noether::ParamDoc params[] = {
      "adams (Adams–Moulton, fixed-point iteration; non-stiff) or bdf (BDF, Newton + dense LU)"},
     {"rtol", "number", "1e-8", "relative tolerance"},
     {"atol", "number", "1e-10", "absolute tolerance"},
-    {"max_steps", "integer", "10000000", "internal steps allowed in the whole run"},
+    {"max_steps", "integer", "0", "internal steps allowed in the whole run; 0: no cap (bound long runs with --max-wall-time)"},
     {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };

@@ -44,11 +44,11 @@ class Rk final : public noether::Integrator {
     rtol_ = p.get("rtol", 1e-8);
     atol_ = p.get("atol", 1e-10);
     renormalize_ = p.get("renormalize", false);
-    max_steps_ = p.get("max_steps", 10000000L);
+    max_steps_ = p.get("max_steps", 0L);  // 0: no cap (a run is bounded by t_end, events, signals, run budgets)
     dopri5_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>());
     rkf78_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>());
-    if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 1)
-      throw SceneError(p.here() + "rk: step, rtol, max_steps must be positive, atol non-negative");
+    if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
+      throw SceneError(p.here() + "rk: step and rtol must be positive, atol and max_steps non-negative");
   }
 
   void start(const noether::State& state) override {
@@ -157,7 +157,7 @@ class Rk final : public noether::Integrator {
       if (!std::isfinite(v)) fail("the solution became non-finite", t_);
     if (dense_->current_time_step() < 1e-14 * std::max(1.0, std::abs(t_)))
       fail("the step size fell below 1e-14 |t| (the error control cannot be met)", t_);
-    if (work_.steps > max_steps_) fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
+    if (max_steps_ > 0 && work_.steps > max_steps_) fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
   }
 
   // Controlled steps chosen by the error control, never past t_max.
@@ -182,10 +182,10 @@ class Rk final : public noether::Integrator {
       dt_ = h;
       if (h < 1e-14 * std::max(1.0, std::abs(t_)) || h >= h_tried)
         fail("the step size fell below 1e-14 |t| (the error control cannot be met)", t_);
-      if (work_.steps + work_.rejected_steps > max_steps_)
+      if (max_steps_ > 0 && work_.steps + work_.rejected_steps > max_steps_)
         fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
     }
-    if (work_.steps + work_.rejected_steps > max_steps_)
+    if (max_steps_ > 0 && work_.steps + work_.rejected_steps > max_steps_)
       fail("more than max_steps = " + std::to_string(max_steps_) + " steps", t_);
   }
 
@@ -254,7 +254,7 @@ const noether::ParamDoc params[] = {
     {"atol", "number", "1e-10", "absolute tolerance (adaptive methods)"},
     {"renormalize", "bool", "false",
      "project every R onto SO(3) after each step (opt-in; the drift is reported otherwise)"},
-    {"max_steps", "integer", "10000000", "steps (accepted + rejected) before giving up"},
+    {"max_steps", "integer", "0", "steps (accepted + rejected) before giving up; 0: no cap (bound long runs with --max-wall-time)"},
     {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };
