@@ -5,12 +5,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
+#include <unordered_map>
 
 namespace noether {
 
@@ -343,10 +346,11 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
   const std::size_t n = sys.size();
   std::vector<Vec3> x(n, Vec3::Zero()), v(n, Vec3::Zero());
   std::vector<int> mark(n, 0);  // 0 open, 1 resolving, 2 done
+  std::unordered_map<std::string, std::size_t> index;  // name → body (O(1) per reference)
+  for (std::size_t j = 0; j < n; ++j) index.emplace(sys.body(j).name, j);
   auto index_of = [&](const Params& name_node, const std::string& who) {
     const std::string name = name_node.as_string();
-    for (std::size_t j = 0; j < n; ++j)
-      if (sys.body(j).name == name) return j;
+    if (const auto found = index.find(name); found != index.end()) return found->second;
     std::string known;
     for (const auto& b : sys.bodies()) known += (known.empty() ? "" : ", ") + b.name;
     throw SceneError(name_node.here() + who + " refers to body '" + name + "', which the scene does not "
@@ -531,12 +535,21 @@ Scene parse_scene(const std::string& text, const std::string& file,
       if (b.has("angular_momentum")) s.Pi.col(k) = vec3(b.at("angular_momentum"));
     }
   }
-  for (std::size_t i = 0; i < sys.size(); ++i)
-    for (std::size_t j = i + 1; j < sys.size(); ++j)
-      if ((s.x.col(static_cast<Eigen::Index>(i)) - s.x.col(static_cast<Eigen::Index>(j)))
-              .norm() == 0.0)
+  {  // coincident bodies: equal positions are neighbours in lexicographic order (O(N log N))
+    std::vector<std::size_t> order(sys.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto key = [&](std::size_t i) {
+      const auto c = s.x.col(static_cast<Eigen::Index>(i));
+      return std::array<double, 3>{c.x(), c.y(), c.z()};
+    };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+    for (std::size_t k = 1; k < order.size(); ++k) {
+      const std::size_t i = std::min(order[k - 1], order[k]), j = std::max(order[k - 1], order[k]);
+      if (key(i) == key(j))
         throw SceneError(bodies.items()[j].here() + "bodies '" + sys.body(i).name + "' and '" +
                          sys.body(j).name + "' start at the same position");
+    }
+  }
   scene.initial = std::move(s);
 
   // Models, integrator, run.

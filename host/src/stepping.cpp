@@ -100,6 +100,7 @@ void hermite_positions(const System& system, const State& s0, const State& s1, d
 
 std::vector<Watch> watches(const System& system, const Events& events) {
   std::vector<Watch> out;
+  if (!(events.close_approach > 0) && !events.collisions) return out;
   for (std::size_t a = 0; a < system.size(); ++a)
     for (std::size_t b = a + 1; b < system.size(); ++b) {
       if (events.close_approach > 0) out.push_back({a, b, events.close_approach, "close approach"});

@@ -76,6 +76,9 @@ class Cvode final : public noether::Integrator {
     check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create", state.t);
     const auto n = static_cast<sunindextype>(equations_->size());
     s.y = N_VNew_Serial(n, s.context);
+    // Fused vector operations (one pass, one call, for CVODE's linear combinations of the
+    // Nordsieck history); CVODE's internal vectors are cloned from y and inherit them.
+    check(N_VEnableFusedOps_Serial(s.y, SUNTRUE), "N_VEnableFusedOps_Serial", state.t);
     s.dky = N_VNew_Serial(n, s.context);
     equations_->pack(state, N_VGetArrayPointer(s.y));
     s.memory = CVodeCreate(method_ == "adams" ? CV_ADAMS : CV_BDF, s.context);
