@@ -1,0 +1,98 @@
+#!/usr/bin/python3
+"""The long-run trade between a symplectic method and adaptive baselines: for each run length T,
+every integrator's max |E − E0| and wall time, and for each LGVI setting the cheapest baseline
+that reaches the same energy error (log-log interpolation along each baseline's tolerance
+sweep), so the crossover T — where the LGVI becomes the cheaper way to a given energy error — can
+be read off.
+
+    tools/long_run_trade.py SCENE --t-end T1,T2,... [--noether PATH] [--frames N] [--budget S]
+                            [--json OUT.json]
+
+Each run is `noether run SCENE --set run.t_end=T --set run.output_every=T/N --summary json`
+(N = 2000 frames by default) with a wall-time budget of S seconds (default 600); a run that
+exhausts it is reported as such. The integrators are the LGVI at order 2 and 4 (Suzuki's
+composition) at the scene's step, and dopri5 and CVODE Adams over a tolerance sweep.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+SYMPLECTIC = [("lgvi", "{plugin: lgvi, step: %(h)s}"),
+              ("lgvi suzuki-4", "{plugin: lgvi, order: 4, composition: suzuki, step: %(h4)s}")]
+BASELINES = [("dopri5", "{plugin: rk, method: dopri5, rtol: %(r)g, atol: %(a)g}", [1e-7, 1e-8, 1e-9, 1e-10, 1e-11]),
+             ("cvode adams", "{plugin: cvode, method: adams, rtol: %(r)g, atol: %(a)g}", [1e-8, 1e-9, 1e-10, 1e-11])]
+
+
+def run(noether, scene, t_end, frames, integrator, budget):
+    cmd = [noether, "run", scene, "--no-progress", "--summary", "json", "--max-wall-time", str(budget),
+           "--set", f"run.t_end={t_end!r}", "--set", f"run.output_every={t_end / frames!r}",
+           "--set", "integrator=" + integrator]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        return {"failed": (p.stderr.strip().splitlines() or ["exit %d" % p.returncode])[-1]}
+    s = json.loads(p.stdout)
+    return {"energy": s["max_abs_energy_error"], "wall": s["wall_seconds"], "evals": s["potential_evaluations"],
+            "stopped": s["stop_reason"]}
+
+
+def interpolate_cost(points, target):
+    """Wall time at which a sweep [(error, wall)] reaches `target` (log-log between neighbours);
+    None when no run of the sweep is that accurate."""
+    pts = sorted((e, w) for e, w in points if e > 0 and w > 0)
+    if not pts or pts[0][0] > target:
+        return None
+    for (e0, w0), (e1, w1) in zip(pts, pts[1:]):
+        if e0 <= target <= e1:
+            f = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
+            return math.exp(math.log(w0) + f * (math.log(w1) - math.log(w0)))
+    return min(w for e, w in pts if e <= target)  # every run more accurate: the cheapest
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("scene")
+    ap.add_argument("--t-end", required=True, help="comma-separated run lengths")
+    ap.add_argument("--noether", default=os.path.join(os.path.dirname(__file__), "..", "build", "release", "bin", "noether"))
+    ap.add_argument("--frames", type=int, default=2000)
+    ap.add_argument("--budget", type=float, default=600.0)
+    ap.add_argument("--step", type=float, default=2e-3, help="LGVI order-2 step (order 4 uses 5x)")
+    ap.add_argument("--json", help="write every measurement here")
+    a = ap.parse_args()
+    results = {}
+    for t_end in [float(t) for t in a.t_end.split(",")]:
+        print(f"T = {t_end:g}", flush=True)
+        rows = {}
+        for name, spec in SYMPLECTIC:
+            rows[name] = run(a.noether, a.scene, t_end, a.frames, spec % {"h": repr(a.step), "h4": repr(5 * a.step)}, a.budget)
+        for family, spec, rtols in BASELINES:
+            for r in rtols:
+                rows[f"{family} rtol {r:g}"] = run(a.noether, a.scene, t_end, a.frames, spec % {"r": r, "a": r * 1e-2}, a.budget)
+        for name, m in rows.items():
+            if "failed" in m:
+                print(f"  {name:24s} failed: {m['failed']}")
+            else:
+                note = f"  stopped: {m['stopped']}" if m["stopped"] else ""
+                print(f"  {name:24s} max|dE| {m['energy']:.2e}  wall {m['wall']:8.3f} s  evals {m['evals']:>11}{note}")
+        for name, _ in SYMPLECTIC:
+            m = rows[name]
+            if "failed" in m or m["stopped"]:
+                continue
+            for family, _, rtols in BASELINES:
+                sweep = [(rows[f"{family} rtol {r:g}"]["energy"], rows[f"{family} rtol {r:g}"]["wall"]) for r in rtols
+                         if "failed" not in rows[f"{family} rtol {r:g}"] and not rows[f"{family} rtol {r:g}"]["stopped"]]
+                cost = interpolate_cost(sweep, m["energy"])
+                verdict = "no run of the sweep is that accurate" if cost is None else \
+                    f"{cost:.3f} s: the {'baseline' if cost < m['wall'] else 'LGVI'} is cheaper by {max(cost, m['wall']) / min(cost, m['wall']):.2f}x"
+                print(f"  equal max|dE| {m['energy']:.2e}: {name} {m['wall']:.3f} s, {family} {verdict}")
+        results[t_end] = rows
+    if a.json:
+        with open(a.json, "w") as f:
+            json.dump(results, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
