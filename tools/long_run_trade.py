@@ -6,7 +6,8 @@ sweep), so the crossover T — where the LGVI becomes the cheaper way to a given
 be read off.
 
     tools/long_run_trade.py SCENE --t-end T1,T2,... [--noether PATH] [--frames N] [--budget S]
-                            [--json OUT.json]
+                            [--json OUT.json] [--plot OUT.png]
+    tools/long_run_trade.py --replot IN.json --plot OUT.png   (a plot from saved measurements)
 
 Each run is `noether run SCENE --set run.t_end=T --set run.output_every=T/N --summary json`
 (N = 2000 frames by default) with a wall-time budget of S seconds (default 600); a run that
@@ -53,14 +54,25 @@ def interpolate_cost(points, target):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("scene")
-    ap.add_argument("--t-end", required=True, help="comma-separated run lengths")
+    ap.add_argument("scene", nargs="?")
+    ap.add_argument("--t-end", help="comma-separated run lengths")
     ap.add_argument("--noether", default=os.path.join(os.path.dirname(__file__), "..", "build", "release", "bin", "noether"))
     ap.add_argument("--frames", type=int, default=2000)
     ap.add_argument("--budget", type=float, default=600.0)
     ap.add_argument("--step", type=float, default=2e-3, help="LGVI order-2 step (order 4 uses 5x)")
     ap.add_argument("--json", help="write every measurement here")
+    ap.add_argument("--plot", help="draw the cost of each method at the LGVI's energy error against T")
+    ap.add_argument("--replot", nargs="+", help="saved --json files to plot (no runs)")
     a = ap.parse_args()
+    if a.replot:
+        results = {}
+        for path in a.replot:
+            with open(path) as f:
+                results.update({float(t): rows for t, rows in json.load(f).items()})
+        plot(results, a.plot)
+        return 0
+    if not a.scene or not a.t_end:
+        ap.error("SCENE and --t-end are required (or --replot)")
     results = {}
     for t_end in [float(t) for t in a.t_end.split(",")]:
         print(f"T = {t_end:g}", flush=True)
@@ -91,7 +103,40 @@ def main():
     if a.json:
         with open(a.json, "w") as f:
             json.dump(results, f, indent=1)
+    if a.plot:
+        plot(results, a.plot)
     return 0
+
+
+def plot(results, png):
+    """Wall time against T: each LGVI setting, and each baseline at that setting's max |dE|."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 5))
+    ts = sorted(results)
+    for (name, _), colour in zip(SYMPLECTIC, ["C0", "C1"]):
+        own = [(t, results[t][name]) for t in ts if name in results[t] and "failed" not in results[t][name]]
+        ax.loglog([t for t, _ in own], [m["wall"] for _, m in own], "o-", color=colour,
+                  label=f"{name} (|dE| ~ {own[-1][1]['energy']:.0e})" if own else name)
+        for (family, _, rtols), style in zip(BASELINES, ["s--", "^:"]):
+            pts = []
+            for t, m in own:
+                sweep = [(results[t][k]["energy"], results[t][k]["wall"]) for k in (f"{family} rtol {r:g}" for r in rtols)
+                         if k in results[t] and "failed" not in results[t][k] and not results[t][k]["stopped"]]
+                cost = interpolate_cost(sweep, m["energy"])
+                if cost is not None:
+                    pts.append((t, cost))
+            if pts:
+                ax.loglog([t for t, _ in pts], [c for _, c in pts], style, color=colour, alpha=0.7,
+                          label=f"{family} at the {name}'s |dE|")
+    ax.set_xlabel("run length T [scene time units]")
+    ax.set_ylabel("wall time [s]")
+    ax.set_title("equal energy error: cost against run length", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=90)
 
 
 if __name__ == "__main__":

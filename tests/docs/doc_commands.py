@@ -47,6 +47,17 @@ COVERED_ELSEWHERE = {
 DEMO = "./tools/demo.sh"
 
 
+def next_block(lines, j):
+    """The lines of the first indented block at or after line j, unindented."""
+    while j < len(lines) and not lines[j].startswith("    "):
+        j += 1
+    block = []
+    while j < len(lines) and lines[j].startswith("    "):
+        block.append(lines[j][4:])
+        j += 1
+    return block
+
+
 def blocks(path):
     """(line number, text, following output lines) of every command in a Markdown file."""
     lines = open(path, encoding="utf-8").read().split("\n")
@@ -86,24 +97,14 @@ def blocks(path):
                     j = i + 1
                     while j < len(lines) and "The demo prints" not in lines[j]:
                         j += 1
-                    while j < len(lines) and not lines[j].startswith("    "):
-                        j += 1
-                    while j < len(lines) and lines[j].startswith("    "):
-                        output.append(lines[j][4:])
-                        j += 1
+                    output = next_block(lines, j)
                 found.append((start + 1, text.strip(), output))
         elif not in_fence:
             for span in re.findall(r"`([^`]+)`", line):
                 # an inline command names a file (a bare `noether run` is the command's name)
                 if STARTS.match(span + " ") and len(span.split()) > 1 and (span.startswith("tools/") or re.search(r"/|\.ya?ml\b", span.split(None, 1)[1])):
-                    output = []
-                    if line.startswith("Command:"):  # its output is the next indented block
-                        j = i + 1
-                        while j < len(lines) and not lines[j].startswith("    "):
-                            j += 1
-                        while j < len(lines) and lines[j].startswith("    "):
-                            output.append(lines[j][4:])
-                            j += 1
+                    # after "Command:", its output is the next indented block
+                    output = next_block(lines, i + 1) if line.startswith("Command:") else []
                     found.append((i + 1, span.strip(), output))
         i += 1
     return found
