@@ -109,3 +109,19 @@ TEST(Scene, AsRunReadsBackIntoTheSameScene) {
   EXPECT_EQ(again.integrator.params.at("step").as_double(), 30.0);
   EXPECT_EQ(again.system.G(), scene.system.G());
 }
+
+// Relative initial states are resolved along chains without recursion: a scene where each of
+// 20,000 bodies is placed relative to the previous one loads, and the last sits where the sum
+// of the offsets puts it.
+TEST(Scene, LongRelativeChainsLoad) {
+  std::string text = "G: 1.0e-9\nbodies:\n  - {name: b0, mass: 1.0, position: [0, 0, 0], velocity: [0, 0.5, 0]}\n";
+  const int n = 20000;
+  for (int i = 1; i < n; ++i)
+    text += "  - {name: b" + std::to_string(i) + ", mass: 1.0, relative_to: b" + std::to_string(i - 1) +
+            ", position: [1, 0, 0]}\n";
+  text += "potential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 0.01}\n"
+          "run: {t_end: 0.01, output_every: 0.01}\n";
+  const Scene s = parse_scene(text, "chain.yaml");
+  EXPECT_EQ(s.initial.x(0, n - 1), n - 1.0);
+  EXPECT_EQ(s.initial.p(1, n - 1), 0.5);  // velocities add too (mass 1)
+}

@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
-#include <functional>
+#include <optional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -357,14 +357,10 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
                      "have (bodies: " + known + ")");
   };
   const double deg = M_PI / 180.0;
-  std::function<void(std::size_t)> resolve = [&](std::size_t i) {
-    if (mark[i] == 2) return;
+  // The body whose state body i's is given relative to, if any (keys checked here).
+  auto reference_of = [&](std::size_t i) -> std::optional<std::size_t> {
     const Params& b = bodies.items()[i];
     const std::string who = "body '" + sys.body(i).name + "'";
-    if (mark[i] == 1)
-      throw SceneError(b.here() + who + ": its initial state refers, through relative_to / orbit.around, "
-                       "back to itself");
-    mark[i] = 1;
     if (b.has("orbit")) {
       for (const char* key : {"position", "velocity", "relative_to"})
         if (b.has(key))
@@ -374,46 +370,69 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
       o.check_keys({"around", "a", "e", "i", "Omega", "omega", "nu", "M"}, "the orbit of " + who);
       const std::size_t c = index_of(o.at("around"), "the orbit of " + who);
       if (c == i) throw SceneError(o.at("around").here() + who + " cannot orbit itself");
-      resolve(c);
-      OrbitalElements el;
-      el.a = o.at("a").as_double();
-      el.e = o.get("e", 0.0);
-      el.i = o.get("i", 0.0) * deg;
-      el.Omega = o.get("Omega", 0.0) * deg;
-      el.omega = o.get("omega", 0.0) * deg;
-      if (!(std::isfinite(el.a) && el.a > 0.0))
-        throw SceneError(o.at("a").here() + "the orbit of " + who + ": 'a' must be positive (bound orbits only; "
-                         "give position and velocity for others)");
-      if (!(el.e >= 0.0 && el.e < 1.0))
-        throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
-                         "only; give position and velocity for others)");
-      if (o.has("nu") == o.has("M"))
-        throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
-                         "'M' (degrees), one of them");
-      el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.at("M").as_double() * deg, el.e);
-      if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
-        throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
-      const double mu = sys.G() * (sys.body(i).mass + sys.body(c).mass);
-      const RelativeState rel = state_from_elements(el, mu);
-      x[i] = x[c] + rel.r;
-      v[i] = v[c] + rel.v;
-    } else {
-      if (!b.has("position"))
-        throw SceneError(b.here() + who + " needs 'position' (or 'orbit': osculating elements about "
-                         "another body)");
+      return c;
+    }
+    if (!b.has("position"))
+      throw SceneError(b.here() + who + " needs 'position' (or 'orbit': osculating elements about another body)");
+    if (!b.has("relative_to")) return std::nullopt;
+    const std::size_t c = index_of(b.at("relative_to"), who + "'s 'relative_to'");
+    if (c == i) throw SceneError(b.at("relative_to").here() + who + " cannot be relative to itself");
+    return c;
+  };
+  // Body i's state once its reference body's (if any) is known.
+  auto place = [&](std::size_t i, std::optional<std::size_t> c) {
+    const Params& b = bodies.items()[i];
+    const std::string who = "body '" + sys.body(i).name + "'";
+    if (!b.has("orbit")) {
       x[i] = vec3(b.at("position"));
       if (b.has("velocity")) v[i] = vec3(b.at("velocity"));
-      if (b.has("relative_to")) {
-        const std::size_t c = index_of(b.at("relative_to"), who + "'s 'relative_to'");
-        if (c == i) throw SceneError(b.at("relative_to").here() + who + " cannot be relative to itself");
-        resolve(c);
-        x[i] += x[c];
-        v[i] += v[c];
-      }
+      if (c) x[i] += x[*c], v[i] += v[*c];
+      return;
     }
-    mark[i] = 2;
+    const Params& o = b.at("orbit");
+    OrbitalElements el;
+    el.a = o.at("a").as_double();
+    el.e = o.get("e", 0.0);
+    el.i = o.get("i", 0.0) * deg;
+    el.Omega = o.get("Omega", 0.0) * deg;
+    el.omega = o.get("omega", 0.0) * deg;
+    if (!(std::isfinite(el.a) && el.a > 0.0))
+      throw SceneError(o.at("a").here() + "the orbit of " + who + ": 'a' must be positive (bound orbits only; "
+                       "give position and velocity for others)");
+    if (!(el.e >= 0.0 && el.e < 1.0))
+      throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
+                       "only; give position and velocity for others)");
+    if (o.has("nu") == o.has("M"))
+      throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
+                       "'M' (degrees), one of them");
+    el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.at("M").as_double() * deg, el.e);
+    if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
+      throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
+    const double mu = sys.G() * (sys.body(i).mass + sys.body(*c).mass);
+    const RelativeState rel = state_from_elements(el, mu);  // (17.2)–(17.4)
+    x[i] = x[*c] + rel.r;
+    v[i] = v[*c] + rel.v;
   };
-  for (std::size_t i = 0; i < n; ++i) resolve(i);
+  // Follow each chain of references up to a placed body (iteratively: a chain may be as long as
+  // the scene), then place it from the top down.
+  std::vector<std::size_t> chain;
+  for (std::size_t i = 0; i < n; ++i) {
+    chain.clear();
+    for (std::size_t j = i; mark[j] != 2;) {
+      if (mark[j] == 1)
+        throw SceneError(bodies.items()[j].here() + "body '" + sys.body(j).name + "': its initial state refers, "
+                         "through relative_to / orbit.around, back to itself");
+      mark[j] = 1;
+      chain.push_back(j);
+      const auto c = reference_of(j);
+      if (!c) break;
+      j = *c;
+    }
+    for (auto k = chain.rbegin(); k != chain.rend(); ++k) {
+      place(*k, reference_of(*k));
+      mark[*k] = 2;
+    }
+  }
   if (barycentric) {
     Vec3 mx = Vec3::Zero(), mv = Vec3::Zero();
     double m = 0.0;
