@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("--plot", png, "work–precision plot (default SCENE-compare.png)");
   compare_cmd->add_flag("--no-plot", no_plot, "do not draw the plot");
   compare_cmd->add_option("--max-wall-time", max_wall_time,
-                          "wall-time budget of each run in seconds; a run that exhausts it is listed as stopped")
+                          "wall-time budget of each compared run in seconds (not the reference); a run that exhausts it is listed as stopped")
       ->check(CLI::NonNegativeNumber);
 
   auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine");

@@ -25,7 +25,7 @@ struct CompareSpec {
   Params reference_potential;  // its potential (null: the scene's), e.g. {plugin: mutual-exact}
   Params reference_check;  // a looser reference, to estimate the reference's own error
   int repeats = 3;         // wall time is the median of this many runs
-  double max_wall_seconds = 0.0;  // each run's wall-time budget (0: none); compare file key max_wall_time
+  double max_wall_seconds = 0.0;  // each compared run's wall-time budget (0: none; not the reference); key max_wall_time
 };
 
 // Expands `{plugin: cvode, method: adams, rtol: [1e-6, 1e-8]}`: every key whose value is a
