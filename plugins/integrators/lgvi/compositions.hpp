@@ -9,11 +9,12 @@ namespace lgvi {
 
 // γ_1 … γ_s of the named composition of `order`, or empty when there is none:
 //   order 4  yoshida    3 stages  γ1 = 1/(2 − 2^{1/3}), γ2 = 1 − 2γ1          (Yoshida 1990)
-//            suzuki     5 stages  p, p, 1 − 4p, p, p, p = 1/(4 − 4^{1/3})      (Suzuki 1990)
+//            suzuki     5 stages  p, p, 1 − 4p, p, p with p = 1/(4 − 4^{1/3})  (Suzuki 1990)
 //            mclachlan  5 stages  0.28, 0.6254664…, γ3 = 1 − 2(γ1 + γ2)         (McLachlan 1995)
 //   order 6  yoshida    7 stages  Yoshida 1990, solution A
-//            kahan-li   9 stages  Kahan & Li 1997 (HLW 2006 eq. V.3.12), the smallest error
-//                                 constant of the three-parameter families
+//            kahan-li   9 stages  Kahan & Li 1997 (HLW 2006 §V.3.2); its error constant is
+//                                 25× smaller than yoshida's at order 6 (measured,
+//                                 docs/numerical-results.md "Compositions")
 std::vector<double> composition_coefficients(int order, const std::string& name);
 
 // "known: …" for an error message.
