@@ -108,4 +108,72 @@ inline void scalar_attribute(hid_t obj, const char* name, double value) {
   H5Sclose(space);
 }
 
+// Deletes an attribute if there is one (before writing it again).
+inline void remove_attribute(hid_t obj, const char* name) {
+  if (H5Aexists(obj, name) > 0) H5Adelete(obj, name);
+}
+
+// A string attribute or a scalar string dataset, variable- or fixed-length; "" when absent.
+inline std::string read_string(hid_t obj, const char* name, bool dataset) {
+  if (dataset ? H5Lexists(obj, name, H5P_DEFAULT) <= 0 : H5Aexists(obj, name) <= 0) return {};
+  const hid_t id = dataset ? H5Dopen2(obj, name, H5P_DEFAULT) : H5Aopen(obj, name, H5P_DEFAULT);
+  const hid_t type = dataset ? H5Dget_type(id) : H5Aget_type(id);
+  std::string out;
+  if (H5Tis_variable_str(type) > 0) {
+    char* text = nullptr;
+    hid_t mem = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mem, H5T_VARIABLE);
+    H5Tset_cset(mem, H5Tget_cset(type));
+    const herr_t status = dataset ? H5Dread(id, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, &text) : H5Aread(id, mem, &text);
+    if (status >= 0 && text) out = text;
+    if (text) H5free_memory(text);
+    H5Tclose(mem);
+  } else {
+    out.resize(H5Tget_size(type));
+    if (!out.empty()) {
+      if (dataset) H5Dread(id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+      else H5Aread(id, type, out.data());
+    }
+    out = out.c_str();  // up to a terminating NUL, if any
+  }
+  H5Tclose(type);
+  if (dataset) H5Dclose(id);
+  else H5Aclose(id);
+  return out;
+}
+
+// The first `frames` frames of a [frame][...] dataset, as `mem_type`.
+template <class T>
+std::vector<T> read_frames(hid_t file, const char* path, hid_t mem_type, hsize_t frames) {
+  hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+  if (d < 0) throw OutputError(std::string("the output has no ") + path);
+  hid_t space = H5Dget_space(d);
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(static_cast<std::size_t>(rank)), start(dims.size(), 0);
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  if (rank < 1 || dims[0] < frames) {
+    H5Sclose(space);
+    H5Dclose(d);
+    throw OutputError(std::string("the output's ") + path + " holds fewer frames than /frames_complete");
+  }
+  dims[0] = frames;
+  std::size_t n = 1;
+  for (auto x : dims) n *= x;
+  std::vector<T> out(n);
+  if (n > 0) {
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, dims.data(), nullptr);
+    hid_t mem = H5Screate_simple(rank, dims.data(), nullptr);
+    const herr_t status = H5Dread(d, mem_type, mem, space, H5P_DEFAULT, out.data());
+    H5Sclose(mem);
+    if (status < 0) {
+      H5Sclose(space);
+      H5Dclose(d);
+      throw OutputError(std::string("cannot read ") + path + " of the output");
+    }
+  }
+  H5Sclose(space);
+  H5Dclose(d);
+  return out;
+}
+
 }  // namespace noether::h5

@@ -58,6 +58,23 @@ struct Series {
     H5Pclose(plist);
     H5Sclose(space);
   }
+  // An existing series (a continued run's file).
+  Series(hid_t file, const char* path, hid_t h5type) : type(h5type) {
+    dataset = check_id(H5Dopen2(file, path, H5P_DEFAULT), path);
+    hid_t space = H5Dget_space(dataset);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    H5Sclose(space);
+    frame_shape.assign(dims.begin() + 1, dims.end());
+    for (auto d : frame_shape) frame_size *= d;
+  }
+  hsize_t frames() const {
+    hid_t space = H5Dget_space(dataset);
+    hsize_t dims[8] = {0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    H5Sclose(space);
+    return dims[0];
+  }
   ~Series() {
     if (dataset >= 0) H5Dclose(dataset);
   }
@@ -202,7 +219,9 @@ struct H5Writer::Impl {
   *angular_momentum = nullptr, *energy = nullptr, *kinetic_translational = nullptr,
   *kinetic_rotational = nullptr, *potential_energy = nullptr, *linear_momentum_total = nullptr,
   *angular_momentum_total = nullptr, *orthogonality = nullptr;
-  std::unique_ptr<Series<std::int64_t>> step_series;
+  // /checkpoint: the exact state (γ, R) and the work and wall time at each frame (--resume).
+  Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr;
+  std::unique_ptr<Series<std::int64_t>> step_series, work_series;
   std::size_t buffered = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
@@ -226,6 +245,7 @@ struct H5Writer::Impl {
   }
   void resize_series(hsize_t frames) {
     step_series->resize(frames);
+    work_series->resize(frames);
     for (auto& s : doubles) s->resize(frames);
     allocated = frames;
   }
@@ -236,6 +256,7 @@ struct H5Writer::Impl {
   void close_datasets() {
     doubles.clear();
     step_series.reset();
+    work_series.reset();
     for (auto& [name, records] : step_records) H5Dclose(records.dataset);
     step_records.clear();
     if (integrator_group >= 0) H5Gclose(integrator_group);
@@ -297,7 +318,7 @@ void H5Writer::create_layout(const Scene& scene) {
   m.n_rigid = sys.rigid_count();
   // Every series is allocated for the frames the run will write, up to a budget; a run that
   // writes more grows them (in doubling steps, each flushed at once).
-  const double frame_bytes = 8.0 * static_cast<double>(13 + 6 * m.n_bodies + 7 * m.n_rigid);
+  const double frame_bytes = 8.0 * static_cast<double>(18 + 9 * m.n_bodies + 16 * m.n_rigid);
   const double budget = std::max(1.0, std::floor(options.preallocate_bytes / frame_bytes));
   m.allocated = static_cast<hsize_t>(
       std::min(options.expected_frames > 0 ? static_cast<double>(options.expected_frames) : 1024.0, budget));
@@ -312,6 +333,11 @@ void H5Writer::create_layout(const Scene& scene) {
 
   hid_t parameters = make_group(m.file, "parameters");
   string_attribute(parameters, "scene_file", scene.file);
+  {  // where the scene was, so that a continued run finds its shape files from any folder
+    std::error_code ec;
+    const fs::path absolute = scene.file.empty() ? fs::path() : fs::absolute(scene.file, ec);
+    string_attribute(parameters, "scene_path", ec ? scene.file : absolute.string());
+  }
   string_dataset(parameters, "scene", scene.text, "the scene file's text, as given");
   string_dataset(parameters, "scene_as_run", scene_as_run(scene),
                  "the scene as run: after the --set overrides (YAML)");
@@ -453,6 +479,25 @@ void H5Writer::create_layout(const Scene& scene) {
   H5Gclose(g);
   H5Gclose(obs);
 
+  // The checkpoint of every frame: what the derived series lose (γ, not v = γ/m; R, not its
+  // quaternion) and the work done, so that a continued run starts exactly where this one was.
+  hid_t checkpoint = make_group(m.file, "checkpoint");
+  string_attribute(checkpoint, "description",
+                   "the exact state and the work at every frame, from which `noether run --resume` "
+                   "continues a run");
+  m.exact_momentum = m.add(checkpoint, "linear_momentum", {nb, 3}, u.of_momentum(),
+                           "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact");
+  if (m.n_rigid > 0)
+    m.exact_attitude = m.add(checkpoint, "attitude", {nr, 3, 3}, "1",
+                             "attitude matrix R (body to inertial) of each rigid body [frame][rigid body][row][column], "
+                             "exact");
+  m.wall_time = m.add(checkpoint, "wall_time", {}, "s", "wall time spent by the run up to each frame");
+  m.work_series = std::make_unique<Series<std::int64_t>>(checkpoint, "work", H5T_NATIVE_INT64,
+                                                         std::vector<hsize_t>{4}, m.allocated, -1);
+  string_attribute(m.work_series->dataset, "description",
+                   "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps");
+  H5Gclose(checkpoint);
+
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
   // their allocated length, with fill (NaN, step −1) or an unfinished block after it.
   {
@@ -488,12 +533,18 @@ H5Writer::~H5Writer() {
   if (impl_ && impl_->lock >= 0) ::close(impl_->lock);
 }
 
-void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnostics& d) {
+void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
+                           double wall_seconds) {
   Impl& m = *impl_;
-  m.step->push(&step);
+  m.step->push(&work.steps);
+  const std::int64_t counters[4] = {work.steps, work.potential_evaluations, work.newton_iterations,
+                                    work.rejected_steps};
+  m.work_series->push(counters);
+  m.wall_time->push(&wall_seconds);
+  m.exact_momentum->push(state.p.data());
   m.time->push(&state.t);
   m.position->push(state.x.data());
-  frame_.resize(3 * std::max(m.n_bodies, m.n_rigid) + 4 * m.n_rigid);
+  frame_.resize(3 * m.n_bodies + 9 * m.n_rigid);
   for (std::size_t i = 0; i < m.n_bodies; ++i)  // v = γ/m
     for (int a = 0; a < 3; ++a)
       frame_[3 * i + a] = state.p(a, static_cast<Eigen::Index>(i)) / m.masses[i];
@@ -505,6 +556,10 @@ void H5Writer::write_frame(std::int64_t step, const State& state, const Diagnost
     }
     m.orientation->push(frame_.data());
     m.angular_momentum->push(state.Pi.data());
+    for (std::size_t k = 0; k < m.n_rigid; ++k)  // row-major, as the file's [row][column]
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) frame_[9 * k + static_cast<std::size_t>(3 * r + c)] = state.R[k](r, c);
+    m.exact_attitude->push(frame_.data());
   }
   m.energy->push(&d.energy);
   m.kinetic_translational->push(&d.kinetic_translational);
@@ -572,6 +627,18 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
   for (const auto& series : records) {
     const hsize_t width = std::max<std::size_t>(1, series.width), rows = series.values.size() / width;
     auto found = m.step_records.find(series.name);
+    if (found == m.step_records.end() && m.integrator_group < 0 &&
+        H5Lexists(m.file, "integrator", H5P_DEFAULT) > 0)  // a continued run's file
+      m.integrator_group = H5Gopen2(m.file, "integrator", H5P_DEFAULT);
+    if (found == m.step_records.end() && m.integrator_group >= 0 &&
+        H5Lexists(m.integrator_group, series.name.c_str(), H5P_DEFAULT) > 0) {
+      hid_t d = H5Dopen2(m.integrator_group, series.name.c_str(), H5P_DEFAULT);
+      hid_t space = H5Dget_space(d);
+      hsize_t dims[2] = {0, 0};
+      H5Sget_simple_extent_dims(space, dims, nullptr);
+      H5Sclose(space);
+      found = m.step_records.emplace(series.name, Impl::StepRecords{d, dims[1], dims[0]}).first;
+    }
     if (found == m.step_records.end()) {  // /integrator/<name> [row][width], extendible
       if (m.integrator_group < 0) m.integrator_group = make_group(m.file, "integrator");
       const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width},
@@ -637,6 +704,173 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   m.file = -1;
   ::close(m.lock);
   m.lock = -1;
+}
+
+// Continuing a run -------------------------------------------------------------------------
+
+H5Writer::H5Writer(const RecordedRun& run, const Scene& scene, OutputOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  Impl& m = *impl_;
+  m.options = options;
+  const fs::path& path = run.file;
+  if (fs::is_symlink(fs::symlink_status(path)))
+    throw OutputError(path.string() + " is a symbolic link; noether does not write through links");
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+  const int fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) throw OutputError("cannot open " + path.string() + " to continue it: " + std::strerror(errno));
+  m.lock = lock_or_refuse(fd, path);
+  m.file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (m.file < 0) {
+    ::close(m.lock);
+    m.lock = -1;
+    throw OutputError("cannot open " + path.string() + " as HDF5 to continue it" + system_reason());
+  }
+  try {
+    open_layout(run, scene);
+  } catch (...) {
+    m.close_datasets();
+    H5Fclose(m.file);
+    m.file = -1;
+    ::close(m.lock);
+    m.lock = -1;
+    throw;
+  }
+}
+
+void H5Writer::open_layout(const RecordedRun& run, const Scene& scene) {
+  Impl& m = *impl_;
+  m.n_bodies = run.bodies;
+  m.n_rigid = run.rigid;
+  for (const auto& b : scene.system.bodies()) m.masses.push_back(b.mass);
+  auto open = [&m](const char* path) {
+    m.doubles.push_back(std::make_unique<Series<double>>(m.file, path, H5T_NATIVE_DOUBLE));
+    return m.doubles.back().get();
+  };
+  m.step_series = std::make_unique<Series<std::int64_t>>(m.file, "/particles/bodies/position/step", H5T_NATIVE_INT64);
+  m.step = m.step_series.get();
+  m.work_series = std::make_unique<Series<std::int64_t>>(m.file, "/checkpoint/work", H5T_NATIVE_INT64);
+  m.time = open("/particles/bodies/position/time");
+  m.position = open("/particles/bodies/position/value");
+  m.velocity = open("/particles/bodies/velocity/value");
+  if (m.n_rigid > 0) {
+    m.orientation = open("/particles/bodies/orientation/value");
+    m.angular_momentum = open("/particles/bodies/angular_momentum/value");
+    m.exact_attitude = open("/checkpoint/attitude");
+  }
+  m.energy = open("/observables/energy/value");
+  m.kinetic_translational = open("/observables/kinetic_energy_translational/value");
+  m.kinetic_rotational = open("/observables/kinetic_energy_rotational/value");
+  m.potential_energy = open("/observables/potential_energy/value");
+  m.orthogonality = open("/observables/orthogonality_error/value");
+  m.linear_momentum_total = open("/observables/linear_momentum/value");
+  m.angular_momentum_total = open("/observables/angular_momentum/value");
+  m.exact_momentum = open("/checkpoint/linear_momentum");
+  m.wall_time = open("/checkpoint/wall_time");
+  m.allocated = m.step_series->frames();
+  m.complete = check_id(H5Dopen2(m.file, "/frames_complete", H5P_DEFAULT), "/frames_complete");
+  frames_written_ = static_cast<std::size_t>(run.frames);
+
+  // The outcome is written again at the end; the scene as run records what changed (--t-end).
+  if (H5Lexists(m.file, "work", H5P_DEFAULT) > 0) check(H5Ldelete(m.file, "work", H5P_DEFAULT), "removing /work");
+  hid_t parameters = check_id(H5Gopen2(m.file, "parameters", H5P_DEFAULT), "/parameters");
+  std::string overrides;
+  for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
+  remove_attribute(parameters, "overrides");
+  string_attribute(parameters, "overrides", overrides);
+  remove_attribute(parameters, "t_end");
+  scalar_attribute(parameters, "t_end", scene.run.t_end);
+  if (H5Lexists(parameters, "scene_as_run", H5P_DEFAULT) > 0) H5Ldelete(parameters, "scene_as_run", H5P_DEFAULT);
+  string_dataset(parameters, "scene_as_run", scene_as_run(scene), "the scene as run: after the --set overrides (YAML)");
+  H5Gclose(parameters);
+  // Each continuation, in order: "frame N at t = T".
+  hid_t checkpoint = check_id(H5Gopen2(m.file, "checkpoint", H5P_DEFAULT), "/checkpoint");
+  std::string resumes = read_string(checkpoint, "resumed", false);
+  char line[128];
+  std::snprintf(line, sizeof line, "frame %lld at t = %.17g", static_cast<long long>(run.frames - 1),
+                run.time[static_cast<std::size_t>(run.frames - 1)]);
+  resumes += (resumes.empty() ? "" : "\n") + std::string(line);
+  remove_attribute(checkpoint, "resumed");
+  string_attribute(checkpoint, "resumed", resumes);
+  H5Gclose(checkpoint);
+  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+}
+
+State RecordedRun::state(std::size_t frame) const {
+  State s;
+  const auto nb = static_cast<Eigen::Index>(bodies), nr = static_cast<Eigen::Index>(rigid);
+  s.t = time[frame];
+  s.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data() + 3 * bodies * frame, 3, nb);
+  s.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data() + 3 * bodies * frame, 3, nb);
+  s.Pi = Eigen::Map<const Eigen::Matrix3Xd>(Pi.data() + 3 * rigid * frame, 3, nr);
+  s.R.resize(rigid);
+  for (std::size_t k = 0; k < rigid; ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) s.R[k](r, c) = R[9 * (rigid * frame + k) + static_cast<std::size_t>(3 * r + c)];
+  return s;
+}
+
+WorkCounters RecordedRun::work_at(std::size_t frame) const {
+  const std::int64_t* w = work.data() + 4 * frame;
+  return WorkCounters{w[0], w[1], w[2], w[3]};
+}
+
+RecordedRun read_recorded_run(const fs::path& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw OutputError(path.string() + ": no such file");
+  RecordedRun run;
+  run.file = path;
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw OutputError(path.string() + " is not an HDF5 file noether can read" + system_reason());
+  try {
+    if (H5Lexists(file, "parameters", H5P_DEFAULT) <= 0 || H5Lexists(file, "frames_complete", H5P_DEFAULT) <= 0)
+      throw OutputError(path.string() + " is not a noether run's output (no /parameters or /frames_complete)");
+    if (H5Lexists(file, "checkpoint", H5P_DEFAULT) <= 0)
+      throw OutputError(path.string() + " has no /checkpoint: it was written by an older noether, "
+                                        "which did not keep the exact state; it cannot be continued");
+    hid_t parameters = H5Gopen2(file, "parameters", H5P_DEFAULT);
+    run.scene_text = read_string(parameters, "scene", true);
+    run.scene_path = read_string(parameters, "scene_path", false);
+    if (run.scene_path.empty()) run.scene_path = read_string(parameters, "scene_file", false);
+    const std::string overrides = read_string(parameters, "overrides", false);
+    H5Gclose(parameters);
+    for (std::size_t a = 0; a < overrides.size();) {
+      const std::size_t b = std::min(overrides.find('\n', a), overrides.size());
+      if (b > a) run.overrides.push_back(overrides.substr(a, b - a));
+      a = b + 1;
+    }
+    if (H5Lexists(file, "work", H5P_DEFAULT) > 0) {
+      hid_t work = H5Gopen2(file, "work", H5P_DEFAULT);
+      run.outcome = read_string(work, "outcome", false);
+      H5Gclose(work);
+    }
+    hid_t complete = H5Dopen2(file, "frames_complete", H5P_DEFAULT);
+    check(H5Dread(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &run.frames), "reading /frames_complete");
+    H5Dclose(complete);
+    if (run.frames < 1)
+      throw OutputError(path.string() + " holds no complete frame (the run was killed before its first block "
+                                        "was written); start it again");
+    const auto n = static_cast<hsize_t>(run.frames);
+    run.time = read_frames<double>(file, "/particles/bodies/position/time", H5T_NATIVE_DOUBLE, n);
+    run.x = read_frames<double>(file, "/particles/bodies/position/value", H5T_NATIVE_DOUBLE, n);
+    run.p = read_frames<double>(file, "/checkpoint/linear_momentum", H5T_NATIVE_DOUBLE, n);
+    run.bodies = run.x.size() / (3 * n);
+    if (H5Lexists(file, "/checkpoint/attitude", H5P_DEFAULT) > 0) {
+      run.R = read_frames<double>(file, "/checkpoint/attitude", H5T_NATIVE_DOUBLE, n);
+      run.Pi = read_frames<double>(file, "/particles/bodies/angular_momentum/value", H5T_NATIVE_DOUBLE, n);
+      run.rigid = run.R.size() / (9 * n);
+    }
+    run.U = read_frames<double>(file, "/observables/potential_energy/value", H5T_NATIVE_DOUBLE, n);
+    run.work = read_frames<std::int64_t>(file, "/checkpoint/work", H5T_NATIVE_INT64, n);
+    run.wall_seconds = read_frames<double>(file, "/checkpoint/wall_time", H5T_NATIVE_DOUBLE, n);
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+  H5Fclose(file);
+  return run;
 }
 
 }  // namespace noether

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <sstream>
 #include <unistd.h>
 
@@ -47,13 +48,19 @@ class Progress {
   bool printed_ = false;
 };
 
+// The run's accounting at every frame: the summary's statistics, and the frame to the output.
 class RunObserver final : public Observer {
  public:
-  RunObserver(const System& system, RunSummary& summary, H5Writer* writer,
-              const Integrator*& integrator)
-      : system_(system), s_(summary), writer_(writer), integrator_(integrator) {}
+  RunObserver(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
+      : system_(system), s_(summary), write_(std::move(write)) {}
 
   void observe(const State& state, const Forces& forces) override {
+    const Diagnostics d = account(state, forces);
+    if (write_) write_(state, d);
+  }
+
+  // The statistics of one frame (also of the frames a continued run replays from its file).
+  Diagnostics account(const State& state, const Forces& forces) {
     const Diagnostics d = diagnose(system_, state, forces.U);
     // A non-finite energy or state is a failure, never a number in the summary (std::max
     // would drop a NaN silently).
@@ -66,6 +73,7 @@ class RunObserver final : public Observer {
     if (s_.frames == 0) {
       s_.initial = d;
       // Scales for the relative momentum errors: the sum of the magnitudes of the parts.
+      p_scale_ = L_scale_ = 0.0;
       for (Eigen::Index i = 0; i < state.p.cols(); ++i) {
         p_scale_ += state.p.col(i).norm();
         L_scale_ += Vec3(state.x.col(i)).cross(Vec3(state.p.col(i))).norm();
@@ -100,7 +108,7 @@ class RunObserver final : public Observer {
           }
         }
     ++s_.frames;
-    if (writer_) writer_->write_frame(integrator_ ? integrator_->work().steps : 0, state, d);
+    return d;
   }
 
  private:
@@ -124,10 +132,16 @@ class RunObserver final : public Observer {
 
   const System& system_;
   RunSummary& s_;
-  H5Writer* writer_;
-  const Integrator*& integrator_;
+  std::function<void(const State&, const Diagnostics&)> write_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
 };
+
+// Work counters added up; −1 (not reported) stays −1.
+WorkCounters operator+(const WorkCounters& a, const WorkCounters& b) {
+  return WorkCounters{a.steps + b.steps, a.potential_evaluations + b.potential_evaluations,
+                      a.newton_iterations + b.newton_iterations,
+                      a.rejected_steps < 0 || b.rejected_steps < 0 ? -1 : a.rejected_steps + b.rejected_steps};
+}
 
 }  // namespace
 
@@ -139,50 +153,211 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
   return terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
 }
 
-RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options) {
+struct Simulation::Impl {
+  Scene scene;
+  RunOptions options;
+  std::shared_ptr<const Potential> potential;
+  std::shared_ptr<Integrator> integrator;
+  std::unique_ptr<H5Writer> writer;
   RunSummary summary;
-  for (const auto& p : scene.potentials)
-    summary.potential += (summary.potential.empty() ? "" : "+") + p.plugin;
-  const auto potential = make_scene_potential(scene, registry);
-  auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, potential,
-                                             scene.integrator.params);
-  summary.integrator = scene.integrator.plugin;
-  if (scene.units.declared) summary.units = scene.units.describe();
+  std::unique_ptr<RunObserver> observer;
+  State state;
+  double t_origin = 0.0;            // the time of step 0 and frame 0
+  std::int64_t steps_before = 0;    // fixed-step methods: steps from t_origin to state.t
+  bool integrator_at_state = false; // the integrator stands at `state` (no start() needed)
+  WorkCounters base_work{0, 0, 0, 0};  // work of the run this one continues
+  double wall_seconds = 0.0;           // wall time spent integrating (and of the run continued)
+  Clock::time_point call_start = Clock::now();
+  bool in_call = false, finished = false;
+  std::string failure;  // the error that ended the run, if any
 
-  // What the potential chose per pair, as the integrator's evaluations saw it.
-  auto pair_models = [&integrator] {
+  WorkCounters work() const { return base_work + integrator->work(); }
+  double wall_now() const {
+    return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
+  }
+  std::vector<PairModel> pair_models() const {
     const PotentialEvaluator* evaluator = integrator->potential_evaluator();
     return evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
-  };
-  summary.pair_models = pair_models();
-  std::unique_ptr<H5Writer> writer;
-  if (options.output) {
-    OutputOptions output;
-    output.overwrite = options.overwrite;
-    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
-    const double frames = 2.0 + std::ceil((scene.run.t_end - scene.initial.t) / scene.run.output_every);
-    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
-    if (!scene.file.empty() && std::filesystem::exists(scene.file)) output.inputs.push_back(scene.file);
-    writer = std::make_unique<H5Writer>(*options.output, scene, output);
   }
-  if (writer) writer->write_pair_models(summary.pair_models);
-  State state = scene.initial;
-  const Integrator* current = integrator.get();
-  Progress progress(options.progress, state.t, scene.run.t_end);
-  RunObserver observer(scene.system, summary, writer.get(), current);
+  void make_observer() {
+    observer = std::make_unique<RunObserver>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
+      if (writer) writer->write_frame(s, d, work(), wall_now());
+    });
+  }
+  void finish_output(const std::string& outcome) {
+    if (!writer) return;
+    auto records = integrator->take_step_series();
+    if (!records.empty()) writer->append_step_series(records);
+    writer->write_pair_models(pair_models());
+    RunSummary judged = summary;
+    judged.work = work();
+    judge(judged, scene);
+    std::string reasons;
+    for (const auto& r : judged.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
+    writer->set_verdict(judged.verdict.trustworthy ? "trustworthy" : "untrustworthy", reasons,
+                        judged.max_rel_energy_error, judged.energy_scale);
+    writer->finish(judged.work, wall_now(), outcome);
+    writer.reset();
+  }
+};
+
+Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options,
+                       std::shared_ptr<const Potential> potential)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.scene = std::move(scene);
+  m.options = std::move(options);
+  const Scene& sc = m.scene;
+  if (potential) {
+    m.potential = std::move(potential);
+    m.summary.potential = "python";
+  } else {
+    for (const auto& p : sc.potentials) m.summary.potential += (m.summary.potential.empty() ? "" : "+") + p.plugin;
+    m.potential = make_scene_potential(sc, registry);
+  }
+  m.integrator = registry.make_integrator(sc.integrator.plugin, sc.system, m.potential, sc.integrator.params);
+  m.summary.integrator = sc.integrator.plugin;
+  if (sc.units.declared) m.summary.units = sc.units.describe();
+  m.summary.pair_models = m.pair_models();
+  m.state = sc.initial;
+  m.t_origin = sc.initial.t;
+  m.make_observer();
+  if (m.options.output) {
+    OutputOptions output;
+    output.overwrite = m.options.overwrite;
+    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
+    const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
+    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
+    if (!sc.file.empty() && std::filesystem::exists(sc.file)) output.inputs.push_back(sc.file);
+    m.writer = std::make_unique<H5Writer>(*m.options.output, sc, output);
+    m.writer->write_pair_models(m.summary.pair_models);
+  }
+  // Frame 0: the integrator started at the initial state, its forces there.
+  m.call_start = Clock::now();
+  m.in_call = true;
+  Forces forces;
+  forces.resize(sc.system);
+  m.integrator->start(m.state);
+  m.integrator->current(m.state, forces);
+  m.state.t = sc.initial.t;
+  m.integrator_at_state = true;
+  m.observer->observe(m.state, forces);
+  m.wall_seconds = m.wall_now();
+  m.in_call = false;
+}
+
+std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file, PluginRegistry& registry,
+                                               RunOptions options, double t_end) {
+  const RecordedRun run = read_recorded_run(file);
+  const std::string& outcome = run.outcome;
+  std::vector<std::string> overrides = run.overrides;
+  const bool extend = !std::isnan(t_end);
+  if (extend) {
+    std::ostringstream o;
+    o.precision(17);
+    o << "run.t_end=" << t_end;
+    overrides.push_back(o.str());
+  }
+  if (outcome.rfind("failed", 0) == 0)
+    throw Error(file.string() + ": the run " + outcome +
+                "; continuing it would fail again — change the scene and run it afresh");
+  if (outcome.rfind("stopped: collision", 0) == 0 || outcome.rfind("stopped: close approach", 0) == 0)
+    throw Error(file.string() + ": the run ended at an event (" + outcome.substr(9) + "); there is nothing to continue");
+  Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
+  if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
+    throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
+  const std::size_t last = static_cast<std::size_t>(run.frames - 1);
+  const double t_last = run.time[last];
+  if (!(scene.run.t_end > t_last)) {
+    std::ostringstream why;
+    why.precision(10);
+    why << file.string() << ": the run is already at t = " << t_last << ", its t_end"
+        << (extend ? " is not later" : "; give a later --t-end to extend it");
+    throw Error(why.str());
+  }
+
+  // The run rebuilt without output, its recorded frames replayed into the summary, then the
+  // output reopened to append.
+  options.output.reset();
+  auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, options));
+  Impl& m = *sim->impl_;
+  m.summary.frames = 0;
+  m.summary.max_abs_energy_error = m.summary.max_rel_linear_momentum_error = 0.0;
+  m.summary.max_rel_angular_momentum_error = m.summary.max_orthogonality_error = 0.0;
+  m.summary.min_gap = std::numeric_limits<double>::infinity();
+  m.summary.min_gap_reach = 0.0;
+  m.summary.min_gap_pair.clear();
+  m.make_observer();
+  Forces forces;
+  forces.resize(m.scene.system);
+  {  // frame 0 with its forces (what the scene conserves), the others with U alone
+    State s0 = run.state(0);
+    auto workspace = m.potential->make_workspace();
+    m.potential->evaluate(s0, forces, *workspace);
+    forces.U = run.U[0];
+    m.observer->account(s0, forces);
+  }
+  for (std::size_t f = 1; f < run.time.size(); ++f) {
+    forces.U = run.U[f];
+    m.observer->account(run.state(f), forces);
+  }
+  m.state = run.state(last);
+  m.t_origin = run.time[0];
+  const double h = m.integrator->fixed_step();
+  m.steps_before = h > 0 && t_last > m.t_origin ? whole_steps(t_last - m.t_origin, h, "the recorded time") : 0;
+  m.integrator_at_state = false;
+  m.base_work = run.work_at(last) + WorkCounters{0, -m.integrator->work().potential_evaluations, 0, 0};
+  m.wall_seconds = run.wall_seconds[last];
+  m.options = std::move(options);
+  m.options.output = file;
+  m.writer = std::make_unique<H5Writer>(run, m.scene);
+  return sim;
+}
+
+Simulation::~Simulation() {
+  if (impl_ && impl_->writer) {
+    try {
+      impl_->finish_output(impl_->failure.empty() ? "stopped: the simulation was closed at t = " +
+                                                         std::to_string(impl_->state.t)
+                                                   : "failed: " + impl_->failure);
+    } catch (...) {
+    }
+  }
+}
+
+StopInfo Simulation::integrate(double t_end) {
+  Impl& m = *impl_;
+  if (m.finished) throw Error("the simulation is finished (finish() was called); make a new one");
+  if (!m.failure.empty())
+    throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
+                "); set a state to continue from");
+  if (!(t_end > m.state.t)) {
+    std::ostringstream why;
+    why.precision(17);
+    why << "integrate(t): t = " << t_end << " is not after the current time " << m.state.t;
+    throw Error(why.str());
+  }
+  const Scene& sc = m.scene;
+  const RunOptions& options = m.options;
+  Progress progress(options.progress, m.state.t, t_end);
 
   // The loop stops on one flag: the caller's (a signal) or the wall-time budget's.
   volatile std::sig_atomic_t stop_flag = 0;
   bool budget_exhausted = false;
-  Schedule schedule{scene.run.t_end, scene.run.output_every,
-                    Events{scene.run.close_approach, scene.run.collisions},
+  Schedule schedule{t_end, sc.run.output_every, Events{sc.run.close_approach, sc.run.collisions},
                     {}, (options.interrupt || options.max_wall_seconds > 0.0) ? &stop_flag : nullptr};
-  const auto start = Clock::now();
+  schedule.t_origin = m.t_origin;
+  schedule.steps_before = m.steps_before;
+  schedule.observe_start = false;
+  schedule.integrator_at_state = m.integrator_at_state;
+  m.call_start = Clock::now();
+  m.in_call = true;
+  const auto start = m.call_start;
   // An integrator's per-step records go to the output every 1024 steps (and are dropped
   // without one), so they never accumulate in memory.
-  auto stream_step_series = [&integrator, &writer] {
-    auto records = integrator->take_step_series();
-    if (writer && !records.empty()) writer->append_step_series(records);
+  auto stream_step_series = [&m] {
+    auto records = m.integrator->take_step_series();
+    if (m.writer && !records.empty()) m.writer->append_step_series(records);
   };
   schedule.on_step = [&, n = 0u](double t) mutable {
     ++n;
@@ -197,41 +372,104 @@ RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOpti
   };
   StopInfo stop;
   try {
-    stop = integrate(*integrator, *potential, scene.system, state, schedule, observer);
+    stop = noether::integrate(*m.integrator, *m.potential, sc.system, m.state, schedule, *m.observer);
   } catch (const Error& e) {
-    summary.work = integrator->work();
-    summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (writer) {
-      stream_step_series();
-      writer->write_pair_models(pair_models());
-      writer->finish(summary.work, summary.wall_seconds, std::string("failed: ") + e.what());
-    }
+    m.wall_seconds = m.wall_now();
+    m.in_call = false;
+    m.integrator_at_state = false;
+    m.failure = e.what();
+    m.finish_output(std::string("failed: ") + e.what());
     throw;
   }
-  summary.work = integrator->work();
-  summary.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  summary.stop_reason = stop.reason;
+  m.wall_seconds = m.wall_now();
+  m.in_call = false;
+  m.integrator_at_state = true;
+  m.steps_before = stop.steps;
+  m.summary.stop_reason = stop.reason;
   if (budget_exhausted && stop.event == "interrupted") {
     std::ostringstream why;
     why.precision(10);
     why << "wall-time budget of " << options.max_wall_seconds << " s exhausted at t = " << stop.t;
-    summary.stop_reason = why.str();
+    m.summary.stop_reason = stop.reason = why.str();
   }
-  summary.interpolated_frames = stop.interpolated_frames;
-  summary.final_state = std::move(state);
-  summary.pair_models = pair_models();  // now with what the run saw
-  judge(summary, scene);
-  if (writer) {
-    stream_step_series();
-    writer->write_pair_models(summary.pair_models);
-    std::string reasons;
-    for (const auto& r : summary.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
-    writer->set_verdict(summary.verdict.trustworthy ? "trustworthy" : "untrustworthy", reasons,
-                        summary.max_rel_energy_error, summary.energy_scale);
-    writer->finish(summary.work, summary.wall_seconds,
-                   summary.stop_reason.empty() ? "completed" : "stopped: " + summary.stop_reason);
+  if (!stop.event.empty() && stop.event != "interrupted") {
+    // An event ends on a shortened step, off the step grid: a further call starts afresh there.
+    m.integrator_at_state = false;
+    m.t_origin = m.state.t;
+    m.steps_before = 0;
   }
-  return summary;
+  m.summary.interpolated_frames += stop.interpolated_frames;
+  return stop;
+}
+
+double Simulation::time() const { return impl_->state.t; }
+const State& Simulation::state() const { return impl_->state; }
+const Scene& Simulation::scene() const { return impl_->scene; }
+const Potential& Simulation::potential() const { return *impl_->potential; }
+
+void Simulation::set_state(const State& s) {
+  Impl& m = *impl_;
+  if (m.finished) throw Error("the simulation is finished (finish() was called); make a new one");
+  const System& sys = m.scene.system;
+  const auto nb = static_cast<Eigen::Index>(sys.size()), nr = static_cast<Eigen::Index>(sys.rigid_count());
+  if (s.x.cols() != nb || s.p.cols() != nb || s.Pi.cols() != nr || s.R.size() != sys.rigid_count())
+    throw Error("set_state: the state has the wrong shape: " + std::to_string(nb) + " bodies and " +
+                std::to_string(nr) + " rigid bodies expected");
+  if (!std::isfinite(s.t) || !s.x.allFinite() || !s.p.allFinite() || !s.Pi.allFinite())
+    throw Error("set_state: the state has non-finite values");
+  for (std::size_t k = 0; k < s.R.size(); ++k) {
+    const double orth = (Mat3::Identity() - s.R[k].transpose() * s.R[k]).norm();
+    if (!s.R[k].allFinite() || orth > 1e-10 || !(s.R[k].determinant() > 0)) {
+      std::ostringstream why;
+      why << "set_state: the attitude of '" << sys.body(sys.body_of_rigid(k)).name
+          << "' is not a rotation (||I - R^T R|| = " << orth << ", det R = " << s.R[k].determinant()
+          << "; a rotation has 0 and +1)";
+      throw Error(why.str());
+    }
+  }
+  m.state = s;
+  m.failure.clear();
+  m.t_origin = s.t;
+  m.steps_before = 0;
+  m.integrator_at_state = false;
+  // A new segment: its first frame gives the references.
+  m.summary.frames = 0;
+  m.summary.max_abs_energy_error = m.summary.max_rel_linear_momentum_error = 0.0;
+  m.summary.max_rel_angular_momentum_error = m.summary.max_orthogonality_error = 0.0;
+  Forces forces;
+  forces.resize(sys);
+  m.integrator->start(m.state);
+  m.integrator->current(m.state, forces);
+  m.state.t = s.t;
+  m.integrator_at_state = true;
+  m.observer->observe(m.state, forces);
+}
+
+RunSummary Simulation::summary() const {
+  const Impl& m = *impl_;
+  RunSummary s = m.summary;
+  s.work = m.work();
+  s.wall_seconds = m.wall_now();
+  s.final_state = m.state;
+  s.pair_models = m.pair_models();
+  judge(s, m.scene);
+  return s;
+}
+
+RunSummary Simulation::finish() {
+  Impl& m = *impl_;
+  RunSummary s = summary();
+  if (!m.finished && m.writer)
+    m.finish_output(m.failure.empty() ? (s.stop_reason.empty() ? "completed" : "stopped: " + s.stop_reason)
+                                      : "failed: " + m.failure);
+  m.finished = true;
+  return s;
+}
+
+RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options) {
+  Simulation sim(scene, registry, options);
+  sim.integrate(scene.run.t_end);
+  return sim.finish();
 }
 
 void judge(RunSummary& s, const Scene& scene) {

@@ -36,12 +36,18 @@ namespace {
 // holds none of them in memory).
 class OutputTimes {
  public:
-  OutputTimes(double t0, double t_end, double every) : t0_(t0), t_end_(t_end), every_(every) {
-    if (!(every > 0.0) || !(t_end > t0)) throw SceneError("output times need t_end > t0 and output_every > 0");
+  // Output times t0 + kΔ after `from` (a continued run: those up to `from` were seen).
+  OutputTimes(double t0, double t_end, double every, double from) : t0_(t0), t_end_(t_end), every_(every) {
+    if (!(every > 0.0) || !(t_end > from)) throw SceneError("output times need t_end > t0 and output_every > 0");
     if (!((t_end - t0) / every <= 0x1p53))
       throw SceneError("run.output_every is more than 2^53 output frames before t_end, which noether cannot "
                        "count exactly; raise run.output_every");
+    if (from > t0) k_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor((from - t0) / every)));
     set();
+    while (next_ <= from + 1e-12 * std::max(1.0, std::abs(from)) && next_ < t_end_) {
+      ++k_;
+      set();
+    }
   }
   bool done() const { return done_; }
   double next() const { return next_; }
@@ -114,8 +120,11 @@ std::vector<Watch> watches(const System& system, const Events& events) {
 
 StopInfo integrate(Integrator& integrator, const Potential& potential, const System& system,
                    State& state, const Schedule& schedule, Observer& observer) {
-  const double t0 = state.t, t_end = schedule.t_end;
-  if (!(t_end > t0) || !(schedule.output_every > 0.0))
+  const double t_start = state.t, t_end = schedule.t_end;
+  // Step k and output frames are counted from t0: the run's start, also when this call
+  // continues it.
+  const double t0 = std::isnan(schedule.t_origin) ? t_start : schedule.t_origin;
+  if (!(t_end > t_start) || !(schedule.output_every > 0.0))
     throw SceneError("the run needs t_end > t0 and output_every > 0");
   const double h = integrator.fixed_step();
   std::int64_t n_steps = 0, stride = 0;
@@ -123,8 +132,10 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
   if (h > 0) {
     n_steps = whole_steps(t_end - t0, h, "run.t_end − t0");
     stride = whole_steps(schedule.output_every, h, "run.output_every");
+    if (schedule.steps_before >= n_steps)
+      throw SceneError("the run is already at or beyond t_end = " + std::to_string(t_end));
   } else {
-    outputs.emplace(t0, t_end, schedule.output_every);
+    outputs.emplace(t0, t_end, schedule.output_every, t_start);
   }
 
   Forces forces;
@@ -137,15 +148,15 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     if (!own_workspace) own_workspace = potential.make_workspace();
     potential.evaluate(at, into, *own_workspace);
   };
-  integrator.start(state);
+  if (!schedule.integrator_at_state) integrator.start(state);
   integrator.current(state, forces);
-  state.t = t0;
-  double last_observed = t0;
+  state.t = t_start;
+  double last_observed = t_start;
   auto observe = [&] {
     observer.observe(state, forces);
     last_observed = state.t;
   };
-  observe();
+  if (schedule.observe_start) observe();
 
   std::vector<Watch> watch = watches(system, schedule.events);
   State previous, reached, probe;
@@ -160,7 +171,8 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
   };
 
   StopInfo stop;
-  for (std::int64_t k = 1;; ++k) {
+  for (std::int64_t k = schedule.steps_before + 1;; ++k) {
+    stop.steps = k;
     const double t_prev = integrator.time();
     try {
       integrator.step(t_end);

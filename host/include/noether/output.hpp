@@ -28,14 +28,42 @@ struct OutputOptions {
   std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
 };
 
+// A run as its output file holds it, for continuing it (noether run --resume): the scene as
+// given, and the exact state of every complete frame (/checkpoint keeps γ and R bit for bit;
+// the velocity and quaternion series are derived from them and are not exact).
+struct RecordedRun {
+  std::filesystem::path file;
+  std::string scene_text, scene_path;        // the scene file's text and where it was
+  std::vector<std::string> overrides;
+  std::string outcome;                       // /work/outcome, empty when the run was killed
+  std::int64_t frames = 0;                   // /frames_complete
+  std::size_t bodies = 0, rigid = 0;
+  std::vector<double> time, x, p, R, Pi, U;  // [frame][...] row-major, as in the file
+  std::vector<std::int64_t> work;            // [frame][4]: steps, evaluations, Newton, rejected
+  std::vector<double> wall_seconds;          // [frame]
+  State state(std::size_t frame) const;
+  WorkCounters work_at(std::size_t frame) const;
+};
+
+// Reads an output file for --resume; OutputError names what is missing (a file from an older
+// noether without /checkpoint, a run with no complete frame).
+RecordedRun read_recorded_run(const std::filesystem::path& file);
+
 class H5Writer {
  public:
   H5Writer(const std::filesystem::path& file, const Scene& scene, OutputOptions options = {});
+  // Continues the output of `run` (locked, as a new file is): the frames after its first
+  // `run.frames` are overwritten as the continued run writes; /work is written again at the end.
+  // The scene's overrides, t_end and scene_as_run are recorded again (--t-end extends a run).
+  H5Writer(const RecordedRun& run, const Scene& scene, OutputOptions options = {});
   ~H5Writer();
   H5Writer(const H5Writer&) = delete;
   H5Writer& operator=(const H5Writer&) = delete;
 
-  void write_frame(std::int64_t step, const State& state, const Diagnostics& diagnostics);
+  // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
+  // checkpoint a continued run starts from).
+  void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
+                   double wall_seconds);
   // Writes buffered frames and flushes the file.
   void flush();
   // Writes /work and the run's outcome ("completed" or the error message), then closes.
@@ -53,6 +81,7 @@ class H5Writer {
  private:
   struct Impl;
   void create_layout(const Scene& scene);  // every group, attribute and series, then a flush
+  void open_layout(const RecordedRun& run, const Scene& scene);  // the same, of an existing file
   std::unique_ptr<Impl> impl_;
   std::size_t frames_written_ = 0;
   std::vector<double> frame_;  // scratch for one frame of a derived field

@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <memory>
 #include <limits>
 #include <optional>
 #include <string>
@@ -69,8 +70,53 @@ struct RunSummary {
 // The scene's potential: its plugins made by name, summed when more than one.
 std::shared_ptr<const Potential> make_scene_potential(const Scene& scene, PluginRegistry& registry);
 
-// Runs the scene. On an IntegrationError the output written so far is finalized (readable,
-// with the error recorded) and the error is rethrown.
+// A run held open: integrate to a time, read or change the state, integrate on. `noether run`
+// is one call of integrate(t_end); the Python module's Simulation is this class.
+class Simulation {
+ public:
+  // Makes the plugins by name (or uses `potential` instead of the scene's: one written in
+  // Python), creates the output file, and observes the initial state (frame 0).
+  Simulation(Scene scene, PluginRegistry& registry, RunOptions options = {},
+             std::shared_ptr<const Potential> potential = nullptr);
+  // Continues the run recorded in `file` (killed, interrupted, out of its wall-time budget, or
+  // finished when t_end extends it) from its last complete frame, appending to the same file
+  // (`noether run --resume`, docs/user-guide.md "Continuing a run"). For fixed-step integrators
+  // the continuation is bit for bit the uninterrupted run; adaptive ones start afresh from the
+  // last frame's state. NaN t_end: the scene's.
+  static std::unique_ptr<Simulation> resume(const std::filesystem::path& file, PluginRegistry& registry,
+                                            RunOptions options = {},
+                                            double t_end = std::numeric_limits<double>::quiet_NaN());
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Integrates to t > time(): frames at the scene's output times (counted from the run's t0)
+  // and at t itself. Stops early at an event, an interrupt or the wall-time budget (the stop
+  // reason says which; empty when t was reached). On an IntegrationError the state is the last
+  // valid one, the output is finalized with the error, and the error propagates.
+  StopInfo integrate(double t);
+  double time() const;
+  const State& state() const;
+  // Replaces the state between calls, after checking it (shapes, finite values, attitudes in
+  // SO(3) to 1e-10). The integrator starts again from it, which begins a new segment: the
+  // summary's references (E0, momenta) are taken from this state.
+  void set_state(const State& state);
+  const Scene& scene() const;
+  const Potential& potential() const;
+  // The summary so far, judged against run.trust.
+  RunSummary summary() const;
+  // Writes the outcome to the output file and closes it (the destructor does it too); returns
+  // the summary. Calling integrate() afterwards is an error.
+  RunSummary finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Runs the scene to its t_end: Simulation(scene).integrate(t_end), then finish(). On an
+// IntegrationError the output written so far is finalized (readable, with the error recorded)
+// and the error is rethrown.
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options);
 
 // The verdict on a finished run against the scene's run.trust thresholds (also fills

@@ -11,6 +11,7 @@
 
 #include <csignal>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,16 @@ struct Schedule {
   // When non-null and set (to a signal number, by a signal handler), the run stops after the
   // current step: the state there is observed and the run ends as by an event, "interrupted".
   const volatile std::sig_atomic_t* interrupt = nullptr;
+
+  // Continuing a run (Simulation::integrate called again, `noether run --resume`): the time of
+  // step 0 and of frame 0 (NaN: state.t); the fixed steps already taken from there to state.t;
+  // whether the starting state is observed (it was, by the run being continued); and whether
+  // the integrator already stands at `state` (then it is not started again, so its next step
+  // is the one an uninterrupted run would take).
+  double t_origin = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t steps_before = 0;
+  bool observe_start = true;
+  bool integrator_at_state = false;
 };
 
 // What ended the run.
@@ -52,6 +63,9 @@ struct StopInfo {
   // Output frames that were interpolated between the method's steps (dense output), not states
   // the method itself reached.
   std::int64_t interpolated_frames = 0;
+  // Fixed-step methods: the steps from t_origin to the end of the run (Schedule::steps_before
+  // of a continuation).
+  std::int64_t steps = 0;
 };
 
 // Runs `integrator` from `state` (at state.t) to schedule.t_end. On return `state` is the
