@@ -5,6 +5,7 @@
 
 #include <noether/scene.hpp>
 
+#include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -19,9 +20,12 @@ void print_shapes(const noether::Scene& scene, std::ostream& out);
 // exit 128 + the signal (130, 143).
 // A wall-time budget (seconds, 0: none) stops the run like an event: exit 0, stop reason in the
 // summary and the output, a note on stderr.
+// With `resume` (an output file) instead of a scene: continues that run, appending to it;
+// `resume_t_end` (NaN: the recorded t_end) extends it.
 int run(const std::string& scene_file, const std::string& output,
         const std::vector<std::string>& overrides, bool progress, bool force, bool json = false,
-        double max_wall_time = 0.0);
+        double max_wall_time = 0.0, const std::string& resume = {},
+        double resume_t_end = std::numeric_limits<double>::quiet_NaN());
 int list_plugins();
 
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether

@@ -8,7 +8,9 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <iostream>
 
 int main(int argc, char** argv) {
@@ -25,8 +27,14 @@ int main(int argc, char** argv) {
   std::string scene, output;
   std::vector<std::string> overrides;
   bool no_progress = false;
-  run_cmd->add_option("scene", scene, "scene file (YAML)")->required();
+  run_cmd->add_option("scene", scene, "scene file (YAML)");
   run_cmd->add_option("-o,--output", output, "HDF5 output file");
+  std::string resume;
+  double resume_t_end = std::numeric_limits<double>::quiet_NaN();
+  run_cmd->add_option("--resume", resume,
+                      "continue the run recorded in this output file from its last complete frame, appending to it "
+                      "(instead of a scene)");
+  run_cmd->add_option("--t-end", resume_t_end, "with --resume: a later end time, to extend a run");
   run_cmd->add_option("--set", overrides, "override a scene key: --set integrator.step=1e-3")
       ->take_all();
   run_cmd->add_flag("--no-progress", no_progress, "no progress line on stderr");
@@ -140,8 +148,23 @@ int main(int argc, char** argv) {
   orbit.refine = !no_refine;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
-    if (*run_cmd) return noether::app::run(scene, output, overrides, !no_progress, force, summary_format == "json",
-                                            max_wall_time);
+    if (*run_cmd) {
+      if (resume.empty() == scene.empty()) {
+        std::cerr << "noether run: give a scene, or --resume FILE.h5 (not both)\n";
+        return 2;
+      }
+      if (!resume.empty() && (!output.empty() || !overrides.empty() || force)) {
+        std::cerr << "noether run: --resume appends to the file it continues, with the scene recorded there: "
+                     "-o, --set and --force do not apply (extend a run with --t-end)\n";
+        return 2;
+      }
+      if (resume.empty() && !std::isnan(resume_t_end)) {
+        std::cerr << "noether run: --t-end goes with --resume; for a new run use --set run.t_end=T\n";
+        return 2;
+      }
+      return noether::app::run(scene, output, overrides, !no_progress, force, summary_format == "json",
+                               max_wall_time, resume, resume_t_end);
+    }
     if (*plugins_cmd) return noether::app::list_plugins();
     if (*find_cmd) return noether::app::orbit_find(orbit);
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);

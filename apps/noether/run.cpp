@@ -49,23 +49,37 @@ void install_stop_handlers() {
 
 }  // namespace
 
-int run(const std::string& scene_file, const std::string& output,
-        const std::vector<std::string>& overrides, bool progress, bool force, bool json, double max_wall_time) {
-  const noether::Scene scene = noether::load_scene(scene_file, overrides);
+int run(const std::string& scene_file, const std::string& output_given,
+        const std::vector<std::string>& overrides, bool progress, bool force, bool json, double max_wall_time,
+        const std::string& resume, double resume_t_end) {
   noether::PluginRegistry registry;
   noether::RunOptions options;
-  if (!output.empty()) options.output = output;
+  const std::string output = resume.empty() ? output_given : resume;
+  if (!output_given.empty()) options.output = output_given;
   options.overwrite = force;
   options.progress = progress;
   options.interrupt = &g_signal;
   options.max_wall_seconds = max_wall_time;
+  std::unique_ptr<noether::Simulation> sim;
+  double resumed_at = 0.0;
+  if (resume.empty()) {
+    sim = std::make_unique<noether::Simulation>(noether::load_scene(scene_file, overrides), registry, options);
+  } else {
+    sim = noether::Simulation::resume(resume, registry, options, resume_t_end);
+    resumed_at = sim->time();
+  }
+  const noether::Scene& scene = sim->scene();
   install_stop_handlers();
   try {
-    const auto summary = noether::run_scene(scene, registry, options);
+    sim->integrate(scene.run.t_end);
+    const auto summary = sim->finish();
     if (json) {
       std::cout << noether::format_summary_json(summary);
     } else {
-      std::cout << "scene                         " << scene_file << "\n";
+      std::cout << "scene                         " << (resume.empty() ? scene_file : scene.file) << "\n";
+      if (!resume.empty())
+        std::cout << "resumed                       " << resume << " from t = " << resumed_at
+                  << " (the summary covers the whole run)\n";
       print_shapes(scene, std::cout);
       std::cout << noether::format_summary(summary);
       if (!output.empty()) std::cout << "output                        " << output << "\n";

@@ -585,6 +585,7 @@ void H5Writer::flush() {
   // The frames first, then the counter that makes them part of the file: a kill before the
   // second flush leaves the counter at the previous block.
   m.step->write(first);
+  m.work_series->write(first);
   for (auto& s : m.doubles) s->write(first);
   check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
   frames_written_ = needed;

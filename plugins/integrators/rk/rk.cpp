@@ -15,6 +15,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 
 #include <cmath>
+#include <limits>
 #include <functional>
 #include <optional>
 #include <sstream>
@@ -128,7 +129,10 @@ class Rk final : public noether::Integrator {
   // rk4: a step of h, or a shorter one that ends at t_max.
   void fixed_step_to(double t_max) {
     const double remaining = t_max - t_;
-    const bool whole = remaining >= step_ * (1.0 - 1e-9);
+    // A whole step unless t_max is clearly closer: t_ = t0 + k h and t_max carry rounding of
+    // order ε|t|, which over 10^7 steps exceeds 1e-9 h (a shortened last step would make a
+    // continued run differ from an uninterrupted one in the last bits).
+    const bool whole = remaining >= step_ * (1.0 - 1e-9) - 16 * std::numeric_limits<double>::epsilon() * std::abs(t_max);
     rk4_.do_step(rhs_, y_, t_, whole ? step_ : remaining);
     if (whole) {
       t_ = t0_ + static_cast<double>(++k_) * step_;
