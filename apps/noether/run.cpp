@@ -62,15 +62,15 @@ int run(const std::string& scene_file, const std::string& output_given,
   options.max_wall_seconds = max_wall_time;
   std::unique_ptr<noether::Simulation> sim;
   double resumed_at = 0.0;
-  if (resume.empty()) {
-    sim = std::make_unique<noether::Simulation>(noether::load_scene(scene_file, overrides), registry, options);
-  } else {
-    sim = noether::Simulation::resume(resume, registry, options, resume_t_end);
-    resumed_at = sim->time();
-  }
-  const noether::Scene& scene = sim->scene();
   install_stop_handlers();
   try {
+    if (resume.empty()) {
+      sim = std::make_unique<noether::Simulation>(noether::load_scene(scene_file, overrides), registry, options);
+    } else {
+      sim = noether::Simulation::resume(resume, registry, options, resume_t_end);
+      resumed_at = sim->time();
+    }
+    const noether::Scene& scene = sim->scene();
     sim->integrate(scene.run.t_end);
     const auto summary = sim->finish();
     if (json) {

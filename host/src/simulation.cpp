@@ -237,11 +237,18 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   m.in_call = true;
   Forces forces;
   forces.resize(sc.system);
-  m.integrator->start(m.state);
-  m.integrator->current(m.state, forces);
-  m.state.t = sc.initial.t;
-  m.integrator_at_state = true;
-  m.observer->observe(m.state, forces);
+  try {
+    m.integrator->start(m.state);
+    m.integrator->current(m.state, forces);
+    m.state.t = sc.initial.t;
+    m.integrator_at_state = true;
+    m.observer->observe(m.state, forces);
+  } catch (const Error& e) {  // the output says why the run ended at t0
+    m.wall_seconds = m.wall_now();
+    m.in_call = false;
+    m.finish_output(std::string("failed: ") + e.what());
+    throw;
+  }
   m.wall_seconds = m.wall_now();
   m.in_call = false;
 }
