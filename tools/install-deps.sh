@@ -17,7 +17,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   libnlopt-dev
-  python3 python3-numpy python3-matplotlib python3-h5py
+  python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest
+  pybind11-dev
 )
 if [ "${1:-}" = "--sanitize" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev)

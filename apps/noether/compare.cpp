@@ -19,30 +19,8 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
             std::string csv, std::string h5, std::string png, bool plot, double max_wall_time) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
-  noether::CompareSpec spec = spec_file.empty() ? noether::default_compare_spec(scene)
-                                                : noether::load_compare_spec(spec_file, scene);
-  if (!runs.empty() || !models.empty()) {
-    spec.runs.clear();
-    for (std::size_t k = 0; k < runs.size(); ++k)
-      for (auto& r : noether::expand_runs(noether::parse_params(runs[k], "--run " + std::to_string(k + 1))))
-        spec.runs.push_back(std::move(r));
-    for (std::size_t k = 0; k < models.size(); ++k)
-      for (auto& r : noether::expand_model_runs(noether::parse_params(models[k], "--model " + std::to_string(k + 1))))
-        spec.runs.push_back(std::move(r));
-  }
-  if (models.empty() && !reference_model.empty())
-    throw noether::SceneError("--reference-model goes with --model: it is the potential the models are "
-                              "measured against (integrator runs are measured against the scene's potential)");
-  if (!models.empty()) {
-    // Models are measured against a reference model under the scene's own integrator, so that
-    // the integration error cancels and the difference is the models'.
-    spec.reference = noether::Params();
-    spec.reference_check = noether::Params();
-    spec.reference_potential =
-        noether::parse_params(reference_model.empty() ? "{plugin: mutual-exact}" : reference_model, "--reference-model");
-  }
-  if (repeats > 0) spec.repeats = repeats;
-  if (max_wall_time > 0) spec.max_wall_seconds = max_wall_time;
+  const noether::CompareSpec spec =
+      noether::make_compare_spec(scene, runs, models, reference_model, spec_file, repeats, max_wall_time);
   const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";
   if (csv.empty()) csv = stem + ".csv";
   if (h5.empty()) h5 = stem + ".h5";

@@ -332,4 +332,32 @@ void write_compare_h5(const CompareResult& r, const Scene& scene, const std::fil
   check(H5Fclose(f), "closing the compare file");
 }
 
+CompareSpec make_compare_spec(const Scene& scene, const std::vector<std::string>& runs,
+                              const std::vector<std::string>& models, const std::string& reference_model,
+                              const std::string& spec_file, int repeats, double max_wall_seconds) {
+  CompareSpec spec = spec_file.empty() ? default_compare_spec(scene) : load_compare_spec(spec_file, scene);
+  if (!runs.empty() || !models.empty()) {
+    spec.runs.clear();
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      for (auto& r : expand_runs(parse_params(runs[k], "--run " + std::to_string(k + 1)))) spec.runs.push_back(std::move(r));
+    for (std::size_t k = 0; k < models.size(); ++k)
+      for (auto& r : expand_model_runs(parse_params(models[k], "--model " + std::to_string(k + 1))))
+        spec.runs.push_back(std::move(r));
+  }
+  if (models.empty() && !reference_model.empty())
+    throw SceneError("--reference-model goes with --model: it is the potential the models are "
+                     "measured against (integrator runs are measured against the scene's potential)");
+  if (!models.empty()) {
+    // Models are measured against a reference model under the scene's own integrator, so that
+    // the integration error cancels and the difference is the models'.
+    spec.reference = Params();
+    spec.reference_check = Params();
+    spec.reference_potential =
+        parse_params(reference_model.empty() ? "{plugin: mutual-exact}" : reference_model, "--reference-model");
+  }
+  if (repeats > 0) spec.repeats = repeats;
+  if (max_wall_seconds > 0) spec.max_wall_seconds = max_wall_seconds;
+  return spec;
+}
+
 }  // namespace noether

@@ -3,6 +3,8 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "h5_helpers.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -110,6 +112,10 @@ class RunObserver final : public Observer {
     ++s_.frames;
     return d;
   }
+
+  // The scales of the relative momentum errors (a saved simulation keeps them).
+  std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
+  void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
 
  private:
   // The forces at t0 tell what the scene conserves: a net force or a net torque about the
@@ -471,6 +477,225 @@ RunSummary Simulation::finish() {
                                       : "failed: " + m.failure);
   m.finished = true;
   return s;
+}
+
+// Saving and loading ------------------------------------------------------------------------
+// A checkpoint file: the scene as given, the exact state, where the run stands (t0, steps), its
+// work and the summary's running values, so that a loaded simulation continues as this one would.
+namespace {
+
+using namespace noether::h5;
+
+void write_doubles(hid_t parent, const char* name, const double* data, std::vector<hsize_t> dims) {
+  hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+  hid_t d = check_id(H5Dcreate2(parent, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
+  std::size_t n = 1;
+  for (auto x : dims) n *= x;
+  if (n) check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+  H5Dclose(d);
+  H5Sclose(space);
+}
+
+std::vector<double> read_doubles(hid_t parent, const char* name, std::size_t expected) {
+  hid_t d = H5Dopen2(parent, name, H5P_DEFAULT);
+  if (d < 0) throw OutputError(std::string("the checkpoint has no ") + name);
+  hid_t space = H5Dget_space(d);
+  const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+  H5Sclose(space);
+  if (n != expected) {
+    H5Dclose(d);
+    throw OutputError(std::string("the checkpoint's ") + name + " has " + std::to_string(n) + " numbers, the scene needs " +
+                      std::to_string(expected));
+  }
+  std::vector<double> out(n);
+  if (n) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  H5Dclose(d);
+  return out;
+}
+
+double read_scalar(hid_t obj, const char* name) {
+  if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t space = H5Aget_space(a);
+  std::vector<double> v(static_cast<std::size_t>(std::max<hssize_t>(1, H5Sget_simple_extent_npoints(space))));
+  H5Sclose(space);
+  H5Aread(a, H5T_NATIVE_DOUBLE, v.data());
+  H5Aclose(a);
+  return v[0];
+}
+
+std::vector<double> read_vector(hid_t obj, const char* name) {
+  if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t space = H5Aget_space(a);
+  std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  H5Sclose(space);
+  H5Aread(a, H5T_NATIVE_DOUBLE, v.data());
+  H5Aclose(a);
+  return v;
+}
+
+// The diagnostics as 13 numbers and back.
+std::vector<double> pack(const Diagnostics& d) {
+  return {d.kinetic_translational, d.kinetic_rotational, d.potential, d.energy, d.linear_momentum.x(),
+          d.linear_momentum.y(), d.linear_momentum.z(), d.angular_momentum.x(), d.angular_momentum.y(),
+          d.angular_momentum.z(), d.orthogonality_error};
+}
+Diagnostics unpack(const std::vector<double>& v) {
+  if (v.size() != 11) throw OutputError("the checkpoint's diagnostics have the wrong size");
+  Diagnostics d;
+  d.kinetic_translational = v[0], d.kinetic_rotational = v[1], d.potential = v[2], d.energy = v[3];
+  d.linear_momentum = Vec3(v[4], v[5], v[6]);
+  d.angular_momentum = Vec3(v[7], v[8], v[9]);
+  d.orthogonality_error = v[10];
+  return d;
+}
+
+}  // namespace
+
+void Simulation::save(const std::filesystem::path& path) const {
+  const Impl& m = *impl_;
+  if (m.scene.text.empty())
+    throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+  // Written under a temporary name and renamed: a kill while saving leaves the previous file.
+  const std::filesystem::path partial = path.string() + ".partial";
+  hid_t file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (file < 0) throw OutputError("cannot create " + path.string() + system_reason());
+  try {
+    string_attribute(file, "format", "noether simulation checkpoint 1");
+    hid_t g = make_group(file, "parameters");
+    string_dataset(g, "scene", m.scene.text, "the scene file's text, as given");
+    std::error_code ec;
+    const auto absolute = std::filesystem::absolute(m.scene.file, ec);
+    string_attribute(g, "scene_path", ec ? m.scene.file : absolute.string());
+    std::string overrides;
+    for (const auto& o : m.scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
+    string_attribute(g, "overrides", overrides);
+    H5Gclose(g);
+    const State& st = m.state;
+    const hsize_t nb = static_cast<hsize_t>(st.x.cols()), nr = st.R.size();
+    g = make_group(file, "state");
+    scalar_attribute(g, "t", st.t);
+    write_doubles(g, "x", st.x.data(), {nb, 3});
+    write_doubles(g, "p", st.p.data(), {nb, 3});
+    std::vector<double> R;
+    for (const auto& Rk : st.R)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) R.push_back(Rk(r, c));
+    write_doubles(g, "R", R.data(), {nr, 3, 3});
+    write_doubles(g, "Pi", st.Pi.data(), {nr, 3});
+    H5Gclose(g);
+    g = make_group(file, "run");
+    scalar_attribute(g, "t_origin", m.t_origin);
+    scalar_attribute(g, "steps_before", static_cast<double>(m.steps_before));
+    const WorkCounters w = m.work();
+    numeric_attribute<double>(g, "work", H5T_NATIVE_DOUBLE,
+                              {static_cast<double>(w.steps), static_cast<double>(w.potential_evaluations),
+                               static_cast<double>(w.newton_iterations), static_cast<double>(w.rejected_steps)});
+    scalar_attribute(g, "wall_seconds", m.wall_now());
+    const RunSummary& s = m.summary;
+    numeric_attribute<double>(g, "initial", H5T_NATIVE_DOUBLE, pack(s.initial));
+    numeric_attribute<double>(g, "final", H5T_NATIVE_DOUBLE, pack(s.final));
+    const auto [p_scale, L_scale] = m.observer->scales();
+    numeric_attribute<double>(g, "statistics", H5T_NATIVE_DOUBLE,
+                              {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
+                               s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0,
+                               s.conserves_angular_momentum ? 1.0 : 0.0, s.min_gap, s.min_gap_reach, s.min_distance,
+                               s.t_of_min_distance, static_cast<double>(s.frames),
+                               static_cast<double>(s.interpolated_frames), p_scale, L_scale});
+    string_attribute(g, "min_gap_pair", s.min_gap_pair);
+    string_attribute(g, "stop_reason", s.stop_reason);
+    H5Gclose(g);
+  } catch (...) {
+    H5Fclose(file);
+    std::filesystem::remove(partial);
+    throw;
+  }
+  check(H5Fclose(file), "closing the checkpoint");
+  std::error_code ec;
+  std::filesystem::rename(partial, path, ec);
+  if (ec) throw OutputError("cannot write " + path.string() + ": " + ec.message());
+}
+
+std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, PluginRegistry& registry,
+                                             RunOptions options) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw OutputError(path.string() + ": no such file");
+  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (file < 0) throw OutputError(path.string() + " is not an HDF5 file" + system_reason());
+  std::unique_ptr<Simulation> sim;
+  try {
+    if (read_string(file, "format", false) != "noether simulation checkpoint 1")
+      throw OutputError(path.string() + " is not a checkpoint saved by Simulation.save (an output file continues "
+                                        "with `noether run --resume`)");
+    hid_t g = H5Gopen2(file, "parameters", H5P_DEFAULT);
+    const std::string text = read_string(g, "scene", true), scene_path = read_string(g, "scene_path", false),
+                      joined = read_string(g, "overrides", false);
+    H5Gclose(g);
+    std::vector<std::string> overrides;
+    for (std::size_t a = 0; a < joined.size();) {
+      const std::size_t b = std::min(joined.find('\n', a), joined.size());
+      if (b > a) overrides.push_back(joined.substr(a, b - a));
+      a = b + 1;
+    }
+    Scene scene = parse_scene(text, scene_path, overrides);
+    const std::size_t nb = scene.system.size(), nr = scene.system.rigid_count();
+    State st = State::zeros(scene.system);
+    g = H5Gopen2(file, "state", H5P_DEFAULT);
+    st.t = read_scalar(g, "t");
+    const auto x = read_doubles(g, "x", 3 * nb), p = read_doubles(g, "p", 3 * nb), R = read_doubles(g, "R", 9 * nr),
+               Pi = read_doubles(g, "Pi", 3 * nr);
+    H5Gclose(g);
+    st.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, static_cast<Eigen::Index>(nb));
+    st.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(nb));
+    st.Pi = Eigen::Map<const Eigen::Matrix3Xd>(Pi.data(), 3, static_cast<Eigen::Index>(nr));
+    for (std::size_t k = 0; k < nr; ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) st.R[k](r, c) = R[9 * k + static_cast<std::size_t>(3 * r + c)];
+    scene.initial = st;  // frame 0 of the loaded simulation is where the saved one stood
+    g = H5Gopen2(file, "run", H5P_DEFAULT);
+    const double t_origin = read_scalar(g, "t_origin"), steps_before = read_scalar(g, "steps_before"),
+                 wall = read_scalar(g, "wall_seconds");
+    const auto work = read_vector(g, "work"), stats = read_vector(g, "statistics");
+    const Diagnostics initial = unpack(read_vector(g, "initial")), final_ = unpack(read_vector(g, "final"));
+    const std::string pair = read_string(g, "min_gap_pair", false), stop = read_string(g, "stop_reason", false);
+    H5Gclose(g);
+    if (work.size() != 4 || stats.size() != 14) throw OutputError(path.string() + ": a damaged checkpoint");
+
+    const bool with_output = options.output.has_value();
+    sim = std::make_unique<Simulation>(std::move(scene), registry, options);
+    Impl& m = *sim->impl_;
+    RunSummary& s = m.summary;
+    if (!with_output) {  // the frame the constructor observed is the saved state's: not counted again
+      s.initial = initial;
+      s.final = final_;
+      s.max_abs_energy_error = stats[0], s.max_rel_linear_momentum_error = stats[1];
+      s.max_rel_angular_momentum_error = stats[2], s.max_orthogonality_error = stats[3];
+      s.conserves_linear_momentum = stats[4] != 0, s.conserves_angular_momentum = stats[5] != 0;
+      s.min_gap = stats[6], s.min_gap_reach = stats[7], s.min_distance = stats[8], s.t_of_min_distance = stats[9];
+      s.frames = static_cast<std::size_t>(stats[10]);
+      s.interpolated_frames = static_cast<std::int64_t>(stats[11]);
+      m.observer->set_scales(stats[12], stats[13]);
+      s.min_gap_pair = pair;
+      s.stop_reason = stop;
+    }
+    m.t_origin = t_origin;
+    m.steps_before = static_cast<std::int64_t>(steps_before);
+    m.base_work = WorkCounters{static_cast<std::int64_t>(work[0]),
+                               static_cast<std::int64_t>(work[1]) - m.integrator->work().potential_evaluations,
+                               static_cast<std::int64_t>(work[2]), static_cast<std::int64_t>(work[3])};
+    m.wall_seconds = wall;
+    m.integrator_at_state = false;  // started again at the next integrate (as --resume does)
+  } catch (...) {
+    H5Fclose(file);
+    throw;
+  }
+  H5Fclose(file);
+  return sim;
 }
 
 RunSummary run_scene(const Scene& scene, PluginRegistry& registry, const RunOptions& options) {

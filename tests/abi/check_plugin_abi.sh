@@ -4,7 +4,10 @@
 # Lists the noether symbols libnoether-core exports (its versioned interface: whatever its
 # headers declare), then fails if a plugin
 #   - needs a noether library other than libnoether-core (the host or the orbits library), or
-#   - links a noether symbol that libnoether-core does not export.
+#   - links a noether symbol that libnoether-core does not export, or
+#   - leaves any symbol unresolved by the libraries it links (`ldd -r`): a plugin that relies on
+#     the process having loaded a library (the driver links spdlog and fmt; Python does not) loads
+#     in `noether` and fails in `import noether`.
 set -euo pipefail
 core=$1
 shift
@@ -24,6 +27,12 @@ for plugin in "$@"; do
       *) echo "FAIL $name needs $lib: plugins may link libnoether-core only"; status=1 ;;
     esac
   done
+  unresolved=$(ldd -r "$plugin" 2>&1 | grep -c "undefined symbol" || true)
+  if [ "$unresolved" -ne 0 ]; then
+    echo "FAIL $name leaves $unresolved symbols unresolved by its own libraries (link them):"
+    ldd -r "$plugin" 2>&1 | grep "undefined symbol" | head -3 | sed 's/^/  /'
+    status=1
+  fi
   nm -DC --undefined-only "$plugin" | sed 's/^ *U //' | noether_symbols | sort -u > "$work/uses"
   outside=$(comm -23 "$work/uses" "$work/exports")
   if [ -n "$outside" ]; then

@@ -43,6 +43,14 @@ CompareSpec default_compare_spec(const Scene& scene);
 // A compare file: {repeats: N, reference: {...}, runs: [{plugin: ..., ...}, ...]}.
 CompareSpec load_compare_spec(const std::filesystem::path& file, const Scene& scene);
 
+// The spec of `noether compare` (and noether.compare in Python) from its options: `runs` and
+// `models` as YAML mappings (lists expand), replacing the default sweep or the spec file's runs
+// when given; `reference_model` (YAML, with models only; default {plugin: mutual-exact});
+// repeats and the wall-time budget when > 0. Names each option in its errors.
+CompareSpec make_compare_spec(const Scene& scene, const std::vector<std::string>& runs,
+                              const std::vector<std::string>& models, const std::string& reference_model,
+                              const std::string& spec_file, int repeats, double max_wall_seconds);
+
 struct CompareRow {
   std::string family, label;
   bool ok = false;

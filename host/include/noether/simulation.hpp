@@ -105,6 +105,15 @@ class Simulation {
   const Potential& potential() const;
   // The summary so far, judged against run.trust.
   RunSummary summary() const;
+  // Saves the simulation where it stands (the scene, the exact state, t0 and the step count,
+  // work, and the summary's running values) to an HDF5 checkpoint; load() continues from it as
+  // this simulation would — bit for bit for fixed-step integrators. A simulation with an
+  // output file keeps writing there; the checkpoint does not copy its frames.
+  void save(const std::filesystem::path& file) const;
+  // A saved simulation. With options.output, the loaded one writes a new output file whose
+  // frame 0 is the saved state (and whose summary starts there).
+  static std::unique_ptr<Simulation> load(const std::filesystem::path& file, PluginRegistry& registry,
+                                          RunOptions options = {});
   // Writes the outcome to the output file and closes it (the destructor does it too); returns
   // the summary. Calling integrate() afterwards is an error.
   RunSummary finish();

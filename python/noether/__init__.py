@@ -1,0 +1,158 @@
+"""noether: bodies under mutual gravity — the full body problem and point masses.
+
+The same core, plugins and output as the `noether` command (docs/python.md):
+
+    import noether
+    sim = noether.Simulation("examples/dumbbells.yaml")
+    sim.integrate(10.0)
+    sim.positions, sim.attitudes, sim.summary()["max_abs_energy_error"]
+
+Scenes come from a YAML file, a dict of the same keys, or YAML text (Simulation.from_yaml);
+potentials and integrators are plugins chosen by name in the scene. Errors are
+noether.Error and its kinds (SceneError, PluginError, IntegrationError, OutputError), with the
+messages the command prints.
+"""
+import json
+import os
+
+from ._noether import (Error, IntegrationError, OutputError, PluginError, SceneError, __version__,
+                       _Simulation)
+from . import _noether
+from .output import Output, read
+from .compare import Table, compare
+
+__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "Error", "SceneError", "PluginError",
+           "IntegrationError", "OutputError", "__version__"]
+
+
+def plugins():
+    """Every plugin found (the bundled ones and those on NOETHER_PLUGIN_PATH): a list of dicts
+    with name, kind ("potential" or "integrator"), description, file and params (name, type,
+    default — None when required —, description)."""
+    return _noether.plugins()
+
+
+def _scene_text(scene):
+    """(text, name) of a scene given as a dict: JSON is YAML, so the scene reader reads it as
+    it reads a file, with the same checks and messages."""
+    return json.dumps(scene, indent=1), "<dict>"
+
+
+class Simulation:
+    """A run held open: integrate to a time, read or set the state, integrate on.
+
+    Simulation(scene, set=(), output=None, force=False, potential=None)
+      scene     a path to a YAML scene file, or a dict with the keys of one (docs/user-guide.md)
+      set       overrides as for `noether run --set`: ["integrator.step=1e-3", ...]
+      output    an HDF5 file to write as the command does (frames at run.output_every and at
+                every time integrate() stops); None: no file
+      force     replace an existing output file
+      potential a Python callable f(positions, attitudes) -> (U, forces, moments) used instead
+                of the scene's potential plugins (prototyping only: it is slow; docs/python.md)
+
+    The state properties return copies (NumPy arrays) of the state where the simulation stands;
+    assigning one (sim.positions = x) or calling set_state(...) replaces that part, checked, and
+    starts a new segment (the summary's references are taken there).
+    """
+
+    def __init__(self, scene, set=(), output=None, force=False, potential=None):
+        overrides = [set] if isinstance(set, str) else list(set)
+        if isinstance(scene, _Simulation):  # from load()
+            self._sim = scene
+        elif isinstance(scene, dict):
+            text, name = _scene_text(scene)
+            self._sim = _Simulation.from_text(text, name, overrides, _path(output), force, potential)
+        elif isinstance(scene, (str, os.PathLike)):
+            self._sim = _Simulation.from_file(os.fspath(scene), overrides, _path(output), force, potential)
+        else:
+            raise TypeError("Simulation(scene): a path to a YAML scene, or a dict of its keys; "
+                            "for YAML text use Simulation.from_yaml(text)")
+
+    @classmethod
+    def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>"):
+        """A simulation of a scene given as YAML text (relative shape paths: from the working
+        folder)."""
+        overrides = [set] if isinstance(set, str) else list(set)
+        return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
+
+    @classmethod
+    def load(cls, path, output=None, force=False):
+        """A simulation saved with save(): it continues as the saved one would have (bit for bit
+        with fixed-step integrators). With output, frames go to a new file whose frame 0 is the
+        saved state."""
+        return cls(_Simulation.load(os.fspath(path), _path(output), force))
+
+    # Running ---------------------------------------------------------------------------------
+    def integrate(self, t):
+        """Integrates to time t (frames at the scene's output times and at t). Returns a dict:
+        t reached, stopped (bool), reason and event ("collision", "close approach", …) when an
+        event stopped it before t. t equal to the current time does nothing."""
+        if t == self._sim.t:
+            return {"t": self._sim.t, "stopped": False, "reason": "", "event": ""}
+        return self._sim.integrate(float(t))
+
+    def summary(self):
+        """The run summary so far as a dict (the keys of `noether run --summary json`)."""
+        return json.loads(self._sim.summary_json())
+
+    def summary_text(self):
+        """The summary as `noether run` prints it."""
+        return self._sim.summary_text()
+
+    def diagnostics(self):
+        """Energy, its parts, the total momenta and max ‖I − RᵀR‖ at the current state."""
+        return self._sim.diagnostics()
+
+    def finish(self):
+        """Writes the outcome to the output file and closes it; returns the summary dict."""
+        return json.loads(self._sim.finish())
+
+    def save(self, path):
+        """Saves the simulation where it stands (scene, exact state, step count, work, the
+        summary's running values) to an HDF5 checkpoint for Simulation.load()."""
+        self._sim.save(os.fspath(path))
+
+    def set_state(self, **parts):
+        """Replaces parts of the state: t, positions, velocities, momenta, attitudes (rotation
+        matrices), quaternions (w, x, y, z), angular_velocities (body frame), angular_momenta
+        (body frame Π = J Ω). Attitudes that are not rotations raise noether.Error."""
+        self._sim.set_state(**parts)
+
+    # The state (copies) -----------------------------------------------------------------------
+    t = property(lambda self: self._sim.t, lambda self, v: self._sim.set_state(t=v), doc="time")
+    positions = property(lambda self: self._sim.positions, lambda self, v: self._sim.set_state(positions=v),
+                         doc="x_i, inertial frame, (n, 3)")
+    velocities = property(lambda self: self._sim.velocities, lambda self, v: self._sim.set_state(velocities=v),
+                          doc="v_i = γ_i/m_i, inertial frame, (n, 3)")
+    momenta = property(lambda self: self._sim.momenta, lambda self, v: self._sim.set_state(momenta=v),
+                       doc="γ_i = m_i v_i, inertial frame, (n, 3) (the state's own variable: exact)")
+    attitudes = property(lambda self: self._sim.attitudes, lambda self, v: self._sim.set_state(attitudes=v),
+                         doc="R_k, body to inertial frame, rigid bodies, (m, 3, 3)")
+    quaternions = property(lambda self: self._sim.quaternions, lambda self, v: self._sim.set_state(quaternions=v),
+                           doc="R_k as unit quaternions (w, x, y, z), (m, 4)")
+    angular_velocities = property(lambda self: self._sim.angular_velocities,
+                                  lambda self, v: self._sim.set_state(angular_velocities=v),
+                                  doc="Ω_k = J_k⁻¹ Π_k, body frame, (m, 3)")
+    angular_momenta = property(lambda self: self._sim.angular_momenta,
+                               lambda self, v: self._sim.set_state(angular_momenta=v),
+                               doc="Π_k, body frame, (m, 3) (the state's own variable: exact)")
+
+    # The scene ---------------------------------------------------------------------------------
+    names = property(lambda self: self._sim.names, doc="body names, in the order of every body axis")
+    rigid_names = property(lambda self: self._sim.rigid_names, doc="names of the rigid bodies (attitude axis)")
+    masses = property(lambda self: self._sim.masses)
+    inertias = property(lambda self: self._sim.inertias, doc="J_k, body frame, (m, 3, 3)")
+    G = property(lambda self: self._sim.G)
+    units = property(lambda self: self._sim.units, doc="the scene's units: length, mass, time, declared")
+    run = property(lambda self: self._sim.run, doc="the scene's t_end and output_every")
+
+    def scene_as_run(self):
+        """The scene as run (after the overrides), as YAML."""
+        return self._sim.scene_as_run()
+
+    def __repr__(self):
+        return f"<noether.Simulation t={self.t:.10g}, bodies {self.names}>"
+
+
+def _path(p):
+    return None if p is None else os.fspath(p)

@@ -1,0 +1,94 @@
+"""Reading noether's HDF5 output (docs/user-guide.md, "Output"): named arrays with their units."""
+import h5py
+import numpy as np
+
+# Short names for the series of an output file.
+SERIES = {
+    "time": "particles/bodies/position/time",
+    "step": "particles/bodies/position/step",
+    "positions": "particles/bodies/position/value",
+    "velocities": "particles/bodies/velocity/value",
+    "quaternions": "particles/bodies/orientation/value",
+    "angular_momenta": "particles/bodies/angular_momentum/value",
+    "momenta": "checkpoint/linear_momentum",
+    "attitudes": "checkpoint/attitude",
+    "energy": "observables/energy/value",
+    "kinetic_energy_translational": "observables/kinetic_energy_translational/value",
+    "kinetic_energy_rotational": "observables/kinetic_energy_rotational/value",
+    "potential_energy": "observables/potential_energy/value",
+    "orthogonality_error": "observables/orthogonality_error/value",
+    "linear_momentum": "observables/linear_momentum/value",
+    "angular_momentum": "observables/angular_momentum/value",
+}
+
+
+class Output:
+    """An output file of `noether run` (or of a Simulation with output=...), read whole.
+
+    out["positions"] is an array [frame][body][xyz]; out.unit("positions") its unit ("km", "L",
+    …); out.description(name) what it is; out.names the bodies; out.frames the number of complete
+    frames (a killed run's file holds only those: the rest is cut off). Names: see SERIES, or
+    out.keys(). out.outcome is "completed", "stopped: …", "failed: …", or None for a killed run.
+    """
+
+    def __init__(self, path):
+        self.path = str(path)
+        self._arrays, self._units, self._descriptions = {}, {}, {}
+        with h5py.File(self.path, "r", locking=False) as f:
+            if "frames_complete" not in f or "parameters" not in f:
+                raise ValueError(f"{self.path} is not an output file of noether (no /frames_complete)")
+            self.frames = int(f["frames_complete"][()])
+            self.names = [n.decode() if isinstance(n, bytes) else n for n in f["particles/bodies/name"][()]]
+            self.masses = f["particles/bodies/mass"][()]
+            self.parameters = dict(f["parameters"].attrs)
+            self.scene = _text(f["parameters/scene"][()])
+            self.outcome = f["work"].attrs["outcome"] if "work" in f else None
+            self.work = dict(f["work"].attrs) if "work" in f else {}
+            for name, path in SERIES.items():
+                if path in f:
+                    d = f[path]
+                    self._arrays[name] = d[: self.frames]
+                    self._units[name] = d.attrs.get("unit", "")
+                    self._descriptions[name] = d.attrs.get("description", "")
+            if "particles/bodies/inertia" in f:
+                self.inertias = f["particles/bodies/inertia"][()]
+
+    def keys(self):
+        return list(self._arrays)
+
+    def __getitem__(self, name):
+        if name not in self._arrays:
+            raise KeyError(f"{name!r}: this file has {', '.join(self._arrays)}")
+        return self._arrays[name]
+
+    def __contains__(self, name):
+        return name in self._arrays
+
+    def unit(self, name):
+        self[name]
+        return self._units[name]
+
+    def description(self, name):
+        self[name]
+        return self._descriptions[name]
+
+    def energy_error(self):
+        """E − E0 at every frame."""
+        E = self["energy"]
+        return E - E[0]
+
+    def __repr__(self):
+        return f"<noether.Output {self.path}: {self.frames} frames, bodies {self.names}, {self.outcome or 'killed'}>"
+
+
+def read(path):
+    """The output file at `path` as an Output."""
+    return Output(path)
+
+
+def _text(value):
+    if isinstance(value, bytes):
+        return value.decode()
+    if isinstance(value, np.ndarray):
+        return value.tobytes().decode()
+    return str(value)

@@ -1,0 +1,386 @@
+// noether._noether: the Python bindings of the host library (docs/python.md). The Python package
+// noether (python/noether/__init__.py) wraps these in the API users see.
+#include "python_potential.hpp"
+
+#include <noether/compare.hpp>
+#include <noether/diagnostics.hpp>
+#include <noether/error.hpp>
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+#include <noether/simulation.hpp>
+#include <noether/version.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+namespace py = pybind11;
+using noether::State;
+
+namespace {
+
+// One registry for the process: plugins stay loaded as long as anything made from them lives.
+noether::PluginRegistry& registry() {
+  static auto* r = new noether::PluginRegistry();  // never destroyed: plugin code may outlive exit
+  return *r;
+}
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Columns of a 3×n Eigen matrix as an (n, 3) array (a copy: the state moves on).
+py::array_t<double> rows(const Eigen::Matrix3Xd& m, const std::vector<double>* scale = nullptr) {
+  py::array_t<double> out({static_cast<py::ssize_t>(m.cols()), py::ssize_t{3}});
+  auto v = out.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.cols(); ++i)
+    for (int a = 0; a < 3; ++a) v(i, a) = scale ? m(a, i) / (*scale)[static_cast<std::size_t>(i)] : m(a, i);
+  return out;
+}
+
+// An (n, 3) array into the columns of a 3×n matrix, checked.
+void set_rows(Eigen::Matrix3Xd& m, const py::handle& value, const char* what) {
+  auto a = Array::ensure(value);
+  if (!a || a.ndim() != 2 || a.shape(0) != m.cols() || a.shape(1) != 3) {
+    std::ostringstream msg;
+    msg << what << ": expected an array of shape (" << m.cols() << ", 3)";
+    throw noether::Error(msg.str());
+  }
+  auto v = a.unchecked<2>();
+  for (Eigen::Index i = 0; i < m.cols(); ++i)
+    for (int k = 0; k < 3; ++k) m(k, i) = v(i, k);
+}
+
+// The Simulation as Python sees it: the C++ one, with the state's derived views.
+class PySimulation {
+ public:
+  explicit PySimulation(std::unique_ptr<noether::Simulation> sim) : sim_(std::move(sim)) {}
+
+  static PySimulation from_text(const std::string& text, const std::string& name,
+                                const std::vector<std::string>& overrides, const std::optional<std::string>& output,
+                                bool force, py::object potential) {
+    return make(noether::parse_scene(text, name, overrides), output, force, std::move(potential));
+  }
+  static PySimulation from_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                                const std::optional<std::string>& output, bool force, py::object potential) {
+    return make(noether::load_scene(file, overrides), output, force, std::move(potential));
+  }
+  static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force) {
+    noether::RunOptions options;
+    if (output) options.output = *output;
+    options.overwrite = force;
+    return PySimulation(noether::Simulation::load(file, registry(), options));
+  }
+
+  py::dict integrate(double t) {
+    noether::StopInfo stop;
+    {
+      py::gil_scoped_release release;  // a Python potential takes it back for each evaluation
+      stop = sim_->integrate(t);
+    }
+    py::dict out;
+    out["t"] = sim_->time();
+    out["stopped"] = !stop.reason.empty();
+    out["reason"] = stop.reason;
+    out["event"] = stop.event;
+    return out;
+  }
+
+  double time() const { return sim_->time(); }
+  const noether::System& system() const { return sim_->scene().system; }
+
+  py::array_t<double> positions() const { return rows(sim_->state().x); }
+  py::array_t<double> momenta() const { return rows(sim_->state().p); }
+  py::array_t<double> velocities() const {
+    std::vector<double> m;
+    for (const auto& b : system().bodies()) m.push_back(b.mass);
+    return rows(sim_->state().p, &m);
+  }
+  py::array_t<double> angular_momenta() const { return rows(sim_->state().Pi); }
+  py::array_t<double> angular_velocities() const {  // Ω_k = J_k⁻¹ Π_k, body frame
+    const State& s = sim_->state();
+    Eigen::Matrix3Xd omega(3, s.Pi.cols());
+    for (Eigen::Index k = 0; k < s.Pi.cols(); ++k)
+      omega.col(k) = system().body(system().body_of_rigid(static_cast<std::size_t>(k))).inertia_inverse * s.Pi.col(k);
+    return rows(omega);
+  }
+  py::array_t<double> attitudes() const {
+    const State& s = sim_->state();
+    py::array_t<double> out({static_cast<py::ssize_t>(s.R.size()), py::ssize_t{3}, py::ssize_t{3}});
+    auto v = out.mutable_unchecked<3>();
+    for (std::size_t k = 0; k < s.R.size(); ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) v(static_cast<py::ssize_t>(k), r, c) = s.R[k](r, c);
+    return out;
+  }
+  py::array_t<double> quaternions() const {
+    const State& s = sim_->state();
+    py::array_t<double> out({static_cast<py::ssize_t>(s.R.size()), py::ssize_t{4}});
+    auto v = out.mutable_unchecked<2>();
+    for (std::size_t k = 0; k < s.R.size(); ++k) {
+      const noether::Vec4 q = noether::quaternion_from_rotation(s.R[k]);
+      for (int a = 0; a < 4; ++a) v(static_cast<py::ssize_t>(k), a) = q[a];
+    }
+    return out;
+  }
+
+  // Sets any of the state's parts (the others keep their values), checked by the core.
+  void set_state(py::kwargs parts) {
+    State s = sim_->state();
+    const noether::System& sys = system();
+    for (auto item : parts) {
+      const std::string key = item.first.cast<std::string>();
+      const py::handle value = item.second;
+      if (key == "t") {
+        s.t = value.cast<double>();
+      } else if (key == "positions") {
+        set_rows(s.x, value, "positions");
+      } else if (key == "momenta") {
+        set_rows(s.p, value, "momenta");
+      } else if (key == "velocities") {
+        set_rows(s.p, value, "velocities");
+        for (Eigen::Index i = 0; i < s.p.cols(); ++i) s.p.col(i) *= sys.body(static_cast<std::size_t>(i)).mass;
+      } else if (key == "angular_momenta") {
+        set_rows(s.Pi, value, "angular_momenta");
+      } else if (key == "angular_velocities") {
+        set_rows(s.Pi, value, "angular_velocities");
+        for (Eigen::Index k = 0; k < s.Pi.cols(); ++k)
+          s.Pi.col(k) = sys.body(sys.body_of_rigid(static_cast<std::size_t>(k))).inertia * s.Pi.col(k);
+      } else if (key == "attitudes") {
+        auto a = Array::ensure(value);
+        if (!a || a.ndim() != 3 || static_cast<std::size_t>(a.shape(0)) != s.R.size() || a.shape(1) != 3 ||
+            a.shape(2) != 3)
+          throw noether::Error("attitudes: expected an array of shape (" + std::to_string(s.R.size()) + ", 3, 3)");
+        auto v = a.unchecked<3>();
+        for (std::size_t k = 0; k < s.R.size(); ++k)
+          for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) s.R[k](r, c) = v(static_cast<py::ssize_t>(k), r, c);
+      } else if (key == "quaternions") {
+        auto a = Array::ensure(value);
+        if (!a || a.ndim() != 2 || static_cast<std::size_t>(a.shape(0)) != s.R.size() || a.shape(1) != 4)
+          throw noether::Error("quaternions: expected an array of shape (" + std::to_string(s.R.size()) + ", 4)");
+        auto v = a.unchecked<2>();
+        for (std::size_t k = 0; k < s.R.size(); ++k) {
+          const noether::Vec4 q(v(static_cast<py::ssize_t>(k), 0), v(static_cast<py::ssize_t>(k), 1),
+                                v(static_cast<py::ssize_t>(k), 2), v(static_cast<py::ssize_t>(k), 3));
+          if (!(std::abs(q.norm() - 1.0) <= 1e-10))
+            throw noether::Error("quaternions: row " + std::to_string(k) + " is not a unit quaternion (norm " +
+                                 std::to_string(q.norm()) + ")");
+          s.R[k] = noether::rotation_from_quaternion(q);
+        }
+      } else {
+        throw noether::Error("set_state: unknown part '" + key +
+                             "' (t, positions, velocities, momenta, attitudes, quaternions, angular_velocities, "
+                             "angular_momenta)");
+      }
+    }
+    sim_->set_state(s);
+  }
+
+  py::dict diagnostics() const {  // E, T, U, momenta and ‖I − RᵀR‖ at the current state
+    noether::Forces forces;
+    forces.resize(system());
+    sim_->potential().evaluate(sim_->state(), forces);
+    const noether::Diagnostics d = noether::diagnose(system(), sim_->state(), forces.U);
+    py::dict out;
+    out["energy"] = d.energy;
+    out["kinetic_energy_translational"] = d.kinetic_translational;
+    out["kinetic_energy_rotational"] = d.kinetic_rotational;
+    out["potential_energy"] = d.potential;
+    out["linear_momentum"] = std::vector<double>{d.linear_momentum.x(), d.linear_momentum.y(), d.linear_momentum.z()};
+    out["angular_momentum"] =
+        std::vector<double>{d.angular_momentum.x(), d.angular_momentum.y(), d.angular_momentum.z()};
+    out["orthogonality_error"] = d.orthogonality_error;
+    return out;
+  }
+
+  std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
+  std::string summary_text() const { return noether::format_summary(sim_->summary()); }
+  std::string finish() { return noether::format_summary_json(sim_->finish()); }
+  void save(const std::filesystem::path& file) const { sim_->save(file); }
+  std::string scene_as_run() const { return noether::scene_as_run(sim_->scene()); }
+
+  std::vector<std::string> names() const {
+    std::vector<std::string> out;
+    for (const auto& b : system().bodies()) out.push_back(b.name);
+    return out;
+  }
+  std::vector<std::string> rigid_names() const {
+    std::vector<std::string> out;
+    for (std::size_t k = 0; k < system().rigid_count(); ++k) out.push_back(system().body(system().body_of_rigid(k)).name);
+    return out;
+  }
+  std::vector<double> masses() const {
+    std::vector<double> out;
+    for (const auto& b : system().bodies()) out.push_back(b.mass);
+    return out;
+  }
+  py::array_t<double> inertias() const {
+    const auto n = system().rigid_count();
+    py::array_t<double> out({static_cast<py::ssize_t>(n), py::ssize_t{3}, py::ssize_t{3}});
+    auto v = out.mutable_unchecked<3>();
+    for (std::size_t k = 0; k < n; ++k)
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          v(static_cast<py::ssize_t>(k), r, c) = system().body(system().body_of_rigid(k)).inertia(r, c);
+    return out;
+  }
+  double G() const { return system().G(); }
+  py::dict units() const {
+    const auto& u = sim_->scene().units;
+    py::dict out;
+    out["length"] = u.of_length();
+    out["mass"] = u.of_mass();
+    out["time"] = u.of_time();
+    out["declared"] = u.declared;
+    return out;
+  }
+  py::dict run_settings() const {
+    const auto& r = sim_->scene().run;
+    py::dict out;
+    out["t_end"] = r.t_end;
+    out["output_every"] = r.output_every;
+    return out;
+  }
+
+ private:
+  static PySimulation make(noether::Scene scene, const std::optional<std::string>& output, bool force,
+                           py::object potential) {
+    noether::RunOptions options;
+    if (output) options.output = *output;
+    options.overwrite = force;
+    std::shared_ptr<const noether::Potential> custom;
+    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(scene.system, potential);
+    return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom));
+  }
+  std::unique_ptr<noether::Simulation> sim_;
+};
+
+py::list plugins() {
+  std::vector<std::string> failures;
+  const auto found = registry().load_all(failures);
+  py::list out;
+  for (const auto& p : found) {
+    py::dict d;
+    d["name"] = p.name;
+    d["kind"] = std::string(noether::to_string(p.kind));
+    d["description"] = p.description;
+    d["file"] = p.file.string();
+    py::list params;
+    for (const auto& q : p.params) {
+      py::dict e;
+      e["name"] = q.name;
+      e["type"] = q.type;
+      e["default"] = q.default_value ? py::object(py::str(q.default_value)) : py::object(py::none());
+      e["description"] = q.description;
+      params.append(e);
+    }
+    d["params"] = params;
+    out.append(d);
+  }
+  for (const auto& f : failures) PyErr_WarnEx(PyExc_RuntimeWarning, f.c_str(), 1);
+  return out;
+}
+
+py::dict compare(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
+                 const std::vector<std::string>& runs, const std::vector<std::string>& models,
+                 const std::string& reference_model, const std::string& spec_file, int repeats,
+                 double max_wall_seconds) {
+  const noether::Scene scene = noether::parse_scene(text, name, overrides);
+  const noether::CompareSpec spec =
+      noether::make_compare_spec(scene, runs, models, reference_model, spec_file, repeats, max_wall_seconds);
+  noether::CompareResult result;
+  {
+    py::gil_scoped_release release;
+    result = noether::compare(scene, registry(), spec);
+  }
+  py::dict out;
+  out["reference"] = result.reference;
+  out["reference_error"] = result.reference_error;
+  out["reference_error_note"] = result.reference_error_note;
+  out["reference_seconds"] = result.reference_seconds;
+  out["text"] = noether::format_compare(result);
+  py::list rows;
+  for (const auto& r : result.rows) {
+    py::dict d;
+    d["family"] = r.family;
+    d["label"] = r.label;
+    d["ok"] = r.ok;
+    d["error"] = r.error;
+    d["wall_seconds"] = r.wall_seconds;
+    d["potential_evaluations"] = r.potential_evaluations;
+    d["steps"] = r.steps;
+    d["rejected_steps"] = r.rejected_steps;
+    d["final_position_error"] = r.final_position_error;
+    d["final_attitude_error"] = r.final_attitude_error;
+    d["max_abs_energy_error"] = r.max_abs_energy_error;
+    d["max_rel_angular_momentum_error"] = r.max_rel_angular_momentum_error;
+    d["max_orthogonality_error"] = r.max_orthogonality_error;
+    rows.append(d);
+  }
+  out["rows"] = rows;
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_noether, m) {
+  m.doc() = "noether's core and host library (use the package `noether`, not this module)";
+  m.attr("__version__") = NOETHER_VERSION;
+
+  // noether::Error and its kinds as Python exceptions, with the same messages.
+  static py::exception<noether::Error> error(m, "Error", PyExc_RuntimeError);
+  static py::exception<noether::SceneError> scene_error(m, "SceneError", error.ptr());
+  static py::exception<noether::PluginError> plugin_error(m, "PluginError", error.ptr());
+  static py::exception<noether::IntegrationError> integration_error(m, "IntegrationError", error.ptr());
+  static py::exception<noether::OutputError> output_error(m, "OutputError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const noether::SceneError& e) {
+      scene_error(e.what());
+    } catch (const noether::PluginError& e) {
+      plugin_error(e.what());
+    } catch (const noether::IntegrationError& e) {
+      integration_error(e.what());
+    } catch (const noether::OutputError& e) {
+      output_error(e.what());
+    } catch (const noether::Error& e) {
+      error(e.what());
+    }
+  });
+
+  m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
+  m.def("compare", &compare);
+
+  py::class_<PySimulation>(m, "_Simulation")
+      .def_static("from_text", &PySimulation::from_text)
+      .def_static("from_file", &PySimulation::from_file)
+      .def_static("load", &PySimulation::load)
+      .def("integrate", &PySimulation::integrate)
+      .def_property_readonly("t", &PySimulation::time)
+      .def_property_readonly("positions", &PySimulation::positions)
+      .def_property_readonly("velocities", &PySimulation::velocities)
+      .def_property_readonly("momenta", &PySimulation::momenta)
+      .def_property_readonly("attitudes", &PySimulation::attitudes)
+      .def_property_readonly("quaternions", &PySimulation::quaternions)
+      .def_property_readonly("angular_velocities", &PySimulation::angular_velocities)
+      .def_property_readonly("angular_momenta", &PySimulation::angular_momenta)
+      .def("set_state", &PySimulation::set_state)
+      .def("diagnostics", &PySimulation::diagnostics)
+      .def("summary_json", &PySimulation::summary_json)
+      .def("summary_text", &PySimulation::summary_text)
+      .def("finish", &PySimulation::finish)
+      .def("save", &PySimulation::save)
+      .def("scene_as_run", &PySimulation::scene_as_run)
+      .def_property_readonly("names", &PySimulation::names)
+      .def_property_readonly("rigid_names", &PySimulation::rigid_names)
+      .def_property_readonly("masses", &PySimulation::masses)
+      .def_property_readonly("inertias", &PySimulation::inertias)
+      .def_property_readonly("G", &PySimulation::G)
+      .def_property_readonly("units", &PySimulation::units)
+      .def_property_readonly("run", &PySimulation::run_settings);
+}
