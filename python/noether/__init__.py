@@ -82,6 +82,13 @@ class Simulation:
         saved state."""
         return cls(_Simulation.load(os.fspath(path), _path(output), force))
 
+    @classmethod
+    def resume(cls, path, t_end=None):
+        """Continues the run recorded in an output file (as `noether run --resume`): from its
+        last complete frame, appending to the file; t_end extends it. integrate(sim.run["t_end"])
+        then finish() completes it."""
+        return cls(_Simulation.resume(os.fspath(path), float("nan") if t_end is None else float(t_end)))
+
     # Running ---------------------------------------------------------------------------------
     def integrate(self, t):
         """Integrates to time t (frames at the scene's output times and at t). Returns a dict:

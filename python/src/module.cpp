@@ -75,6 +75,10 @@ class PySimulation {
     return PySimulation(noether::Simulation::load(file, registry(), options));
   }
 
+  static PySimulation resume(const std::filesystem::path& file, double t_end) {
+    return PySimulation(noether::Simulation::resume(file, registry(), {}, t_end));
+  }
+
   py::dict integrate(double t) {
     noether::StopInfo stop;
     {
@@ -360,6 +364,7 @@ PYBIND11_MODULE(_noether, m) {
       .def_static("from_text", &PySimulation::from_text)
       .def_static("from_file", &PySimulation::from_file)
       .def_static("load", &PySimulation::load)
+      .def_static("resume", &PySimulation::resume)
       .def("integrate", &PySimulation::integrate)
       .def_property_readonly("t", &PySimulation::time)
       .def_property_readonly("positions", &PySimulation::positions)

@@ -1,0 +1,132 @@
+"""noether.Simulation: the same numbers as the command, the state in and out, errors."""
+import json
+import subprocess
+
+import numpy as np
+import pytest
+
+import noether
+
+
+def test_dumbbells_built_in_python_reproduce_the_command(dumbbells, source, noether_exe):
+    # The scene as a dict, integrated in two calls; the command runs the YAML file in one go.
+    sim = noether.Simulation(dumbbells)
+    sim.integrate(7.3052)
+    sim.integrate(20)
+    got = sim.summary()
+    cli = json.loads(subprocess.run([noether_exe, "run", str(source / "examples/dumbbells.yaml"), "--no-progress",
+                                     "--summary", "json"], check=True, capture_output=True, text=True).stdout)
+    assert f"{got['max_abs_energy_error']:.4e}" == "2.6962e-07"
+    for key in ["E0", "max_abs_energy_error", "max_rel_angular_momentum_error", "max_orthogonality_error",
+                "closest_approach", "t_of_closest_approach", "steps", "final_time"]:
+        assert got[key] == cli[key], key
+    # 7.3052 is not an output time: that call's end is one frame more than the command writes.
+    assert got["output_frames"] == cli["output_frames"] + 1
+
+
+def test_state_round_trip_is_exact(dumbbells):
+    sim = noether.Simulation(dumbbells)
+    sim.integrate(1.0)
+    rng = np.random.default_rng(1)
+    x = sim.positions + rng.normal(scale=1e-3, size=(2, 3))
+    p = sim.momenta * 1.001
+    R = sim.attitudes[::-1].copy()  # swap the two attitudes: rotations still
+    Pi = sim.angular_momenta + 1e-3
+    sim.set_state(positions=x, momenta=p, attitudes=R, angular_momenta=Pi)
+    sim.integrate(sim.t)  # integrating to the current time changes nothing
+    for got, want in [(sim.positions, x), (sim.momenta, p), (sim.attitudes, R), (sim.angular_momenta, Pi)]:
+        assert got.tobytes() == want.tobytes()
+    # Derived parts round-trip to rounding: v = γ/m, Ω = J⁻¹Π, quaternions.
+    v, w, q = sim.velocities, sim.angular_velocities, sim.quaternions
+    sim.velocities, sim.angular_velocities, sim.quaternions = v, w, q
+    np.testing.assert_allclose(sim.velocities, v, rtol=1e-15)
+    np.testing.assert_allclose(sim.angular_velocities, w, rtol=1e-14)
+    np.testing.assert_allclose(sim.attitudes, R, atol=1e-15)
+
+
+def test_a_state_set_between_calls_is_where_the_run_continues(dumbbells):
+    # Stop at t = 2, reset to the state of t = 1, integrate one unit: the state of t = 2 again,
+    # bitwise (the LGVI step map is a function of the state alone).
+    sim = noether.Simulation(dumbbells)
+    sim.integrate(1.0)
+    x1, p1, R1, Pi1 = sim.positions, sim.momenta, sim.attitudes, sim.angular_momenta
+    sim.integrate(2.0)
+    x2 = sim.positions
+    sim.set_state(t=1.0, positions=x1, momenta=p1, attitudes=R1, angular_momenta=Pi1)
+    sim.integrate(2.0)
+    assert sim.positions.tobytes() == x2.tobytes()
+
+
+def test_attitudes_that_are_not_rotations_raise(dumbbells):
+    sim = noether.Simulation(dumbbells)
+    before = sim.attitudes
+    with pytest.raises(noether.Error, match=r"attitude of 'beta' is not a rotation \(\|\|I - R\^T R\|\| = "):
+        sim.attitudes = np.stack([np.eye(3), 2 * np.eye(3)])
+    with pytest.raises(noether.Error, match=r"det R = -1"):
+        sim.attitudes = np.stack([np.eye(3), -np.eye(3)])  # orthogonal, a reflection
+    with pytest.raises(noether.Error, match=r"expected an array of shape \(2, 3, 3\)"):
+        sim.attitudes = np.eye(3)
+    with pytest.raises(noether.Error, match="not a unit quaternion"):
+        sim.quaternions = [[1, 0, 0, 0], [1, 1, 0, 0]]
+    with pytest.raises(noether.Error, match="unknown part 'spin'"):
+        sim.set_state(spin=[0, 0, 1])
+    assert sim.attitudes.tobytes() == before.tobytes()  # nothing changed
+
+
+def test_scene_errors_carry_file_and_line(tmp_path, source):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text((source / "examples/dumbbells.yaml").read_text().replace("mass: 3", "mass: -3"))
+    with pytest.raises(noether.SceneError, match=r"bad\.yaml:\d+"):
+        noether.Simulation(bad)
+    with pytest.raises(noether.SceneError, match="integrator.step"):
+        noether.Simulation(source / "examples/dumbbells.yaml", set=["integrator.step=abc"])
+    with pytest.raises(noether.PluginError, match="no-such-plugin"):
+        noether.Simulation(source / "examples/dumbbells.yaml", set=["integrator={plugin: no-such-plugin}"])
+    with pytest.raises(TypeError):
+        noether.Simulation(42)
+
+
+def test_integration_errors_are_exceptions_and_keep_the_last_valid_state(source):
+    sim = noether.Simulation(source / "examples/dumbbells.yaml", set=["integrator={plugin: cvode, max_steps: 50}",
+                                                                      "run.output_every=5"])
+    with pytest.raises(noether.IntegrationError, match="max_steps"):
+        sim.integrate(20)
+    assert 0 < sim.t < 20
+    assert np.isfinite(sim.positions).all()
+
+
+def test_save_and_load_continue_bit_for_bit(dumbbells, tmp_path):
+    for integrator in [{"plugin": "lgvi", "step": 0.0002}, {"plugin": "rk", "method": "rk4", "step": 0.0002}]:
+        dumbbells["integrator"] = integrator
+        whole = noether.Simulation(dumbbells)
+        whole.integrate(3.0)
+        part = noether.Simulation(dumbbells)
+        part.integrate(1.3702)  # between output times: one frame more
+        part.save(tmp_path / "sim.h5")
+        del part
+        loaded = noether.Simulation.load(tmp_path / "sim.h5")
+        assert loaded.t == 1.3702
+        loaded.integrate(3.0)
+        for name in ["positions", "momenta", "attitudes", "angular_momenta"]:
+            assert getattr(loaded, name).tobytes() == getattr(whole, name).tobytes(), (integrator, name)
+        a, b = loaded.summary(), whole.summary()
+        for key in ["E0", "max_abs_energy_error", "max_rel_angular_momentum_error", "steps", "output_frames"]:
+            assert a[key] == b[key] + (1 if key == "output_frames" else 0), (integrator, key)
+
+
+def test_a_checkpoint_is_not_an_output_file(dumbbells, tmp_path):
+    sim = noether.Simulation(dumbbells, output=tmp_path / "run.h5")
+    sim.integrate(0.5)
+    sim.finish()
+    with pytest.raises(noether.OutputError, match="not a checkpoint saved by Simulation.save"):
+        noether.Simulation.load(tmp_path / "run.h5")
+    with pytest.raises(noether.OutputError, match="no such file"):
+        noether.Simulation.load(tmp_path / "missing.h5")
+
+
+def test_plugins_are_listed():
+    names = {p["name"]: p for p in noether.plugins()}
+    for name in ["lgvi", "rk", "cvode", "point-mass", "sphere-cluster", "mutual-series", "mutual-exact"]:
+        assert name in names
+    assert names["lgvi"]["kind"] == "integrator"
+    assert any(q["name"] == "step" for q in names["lgvi"]["params"])
