@@ -13,5 +13,7 @@ bool Integrator::interpolate(double, State&) { return false; }
 double Integrator::fixed_step() const { return 0.0; }
 std::vector<StepSeries> Integrator::take_step_series() { return {}; }
 PotentialEvaluator* Integrator::potential_evaluator() { return nullptr; }
+std::vector<double> Integrator::checkpoint() const { return {}; }
+void Integrator::restore(const State& state, const std::vector<double>&) { start(state); }
 
 }  // namespace noether

@@ -220,7 +220,8 @@ struct H5Writer::Impl {
   *kinetic_rotational = nullptr, *potential_energy = nullptr, *linear_momentum_total = nullptr,
   *angular_momentum_total = nullptr, *orthogonality = nullptr;
   // /checkpoint: the exact state (γ, R) and the work and wall time at each frame (--resume).
-  Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr;
+  Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr,
+  *integrator_checkpoint = nullptr;
   std::unique_ptr<Series<std::int64_t>> step_series, work_series;
   std::size_t buffered = 0;
   hsize_t allocated = 0;   // frames allocated in every series
@@ -492,6 +493,11 @@ void H5Writer::create_layout(const Scene& scene) {
                              "attitude matrix R (body to inertial) of each rigid body [frame][rigid body][row][column], "
                              "exact");
   m.wall_time = m.add(checkpoint, "wall_time", {}, "s", "wall time spent by the run up to each frame");
+  if (options.checkpoint_width > 0)
+    m.integrator_checkpoint =
+        m.add(checkpoint, "integrator", {options.checkpoint_width}, "mixed",
+              "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's "
+              "coordinates, a two-step form's previous step), from which a continued run restores it");
   m.work_series = std::make_unique<Series<std::int64_t>>(checkpoint, "work", H5T_NATIVE_INT64,
                                                          std::vector<hsize_t>{4}, m.allocated, -1);
   string_attribute(m.work_series->dataset, "description",
@@ -534,13 +540,18 @@ H5Writer::~H5Writer() {
 }
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
-                           double wall_seconds) {
+                           double wall_seconds, const std::vector<double>& integrator_checkpoint) {
   Impl& m = *impl_;
   m.step->push(&work.steps);
   const std::int64_t counters[4] = {work.steps, work.potential_evaluations, work.newton_iterations,
                                     work.rejected_steps};
   m.work_series->push(counters);
   m.wall_time->push(&wall_seconds);
+  if (m.integrator_checkpoint) {
+    if (integrator_checkpoint.size() != m.integrator_checkpoint->frame_size)
+      throw OutputError("the integrator's checkpoint changed its size during the run");
+    m.integrator_checkpoint->push(integrator_checkpoint.data());
+  }
   m.exact_momentum->push(state.p.data());
   m.time->push(&state.t);
   m.position->push(state.x.data());
@@ -768,6 +779,7 @@ void H5Writer::open_layout(const RecordedRun& run, const Scene& scene) {
   m.angular_momentum_total = open("/observables/angular_momentum/value");
   m.exact_momentum = open("/checkpoint/linear_momentum");
   m.wall_time = open("/checkpoint/wall_time");
+  if (H5Lexists(m.file, "/checkpoint/integrator", H5P_DEFAULT) > 0) m.integrator_checkpoint = open("/checkpoint/integrator");
   m.allocated = m.step_series->frames();
   m.complete = check_id(H5Dopen2(m.file, "/frames_complete", H5P_DEFAULT), "/frames_complete");
   frames_written_ = static_cast<std::size_t>(run.frames);
@@ -809,6 +821,11 @@ State RecordedRun::state(std::size_t frame) const {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) s.R[k](r, c) = R[9 * (rigid * frame + k) + static_cast<std::size_t>(3 * r + c)];
   return s;
+}
+
+std::vector<double> RecordedRun::integrator_at(std::size_t frame) const {
+  const auto first = integrator.begin() + static_cast<std::ptrdiff_t>(integrator_width * frame);
+  return std::vector<double>(first, first + static_cast<std::ptrdiff_t>(integrator_width));
 }
 
 WorkCounters RecordedRun::work_at(std::size_t frame) const {
@@ -866,6 +883,10 @@ RecordedRun read_recorded_run(const fs::path& path) {
     run.U = read_frames<double>(file, "/observables/potential_energy/value", H5T_NATIVE_DOUBLE, n);
     run.work = read_frames<std::int64_t>(file, "/checkpoint/work", H5T_NATIVE_INT64, n);
     run.wall_seconds = read_frames<double>(file, "/checkpoint/wall_time", H5T_NATIVE_DOUBLE, n);
+    if (H5Lexists(file, "/checkpoint/integrator", H5P_DEFAULT) > 0) {
+      run.integrator = read_frames<double>(file, "/checkpoint/integrator", H5T_NATIVE_DOUBLE, n);
+      run.integrator_width = run.integrator.size() / n;
+    }
   } catch (...) {
     H5Fclose(file);
     throw;

@@ -187,7 +187,7 @@ struct Simulation::Impl {
   }
   void make_observer() {
     observer = std::make_unique<RunObserver>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
-      if (writer) writer->write_frame(s, d, work(), wall_now());
+      if (writer) writer->write_frame(s, d, work(), wall_now(), integrator->checkpoint());
     });
   }
   void finish_output(const std::string& outcome) {
@@ -228,8 +228,16 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   m.state = sc.initial;
   m.t_origin = sc.initial.t;
   m.make_observer();
+  // Frame 0: the integrator started at the initial state (which also tells the size of its
+  // checkpoint, for the output's layout), its forces there.
+  m.call_start = Clock::now();
+  m.in_call = true;
+  Forces forces;
+  forces.resize(sc.system);
+  m.integrator->start(m.state);
   if (m.options.output) {
     OutputOptions output;
+    output.checkpoint_width = m.integrator->checkpoint().size();
     output.overwrite = m.options.overwrite;
     // t0, every output time, and one more for an event or an interrupt (the stepping loop).
     const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
@@ -238,13 +246,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
     m.writer = std::make_unique<H5Writer>(*m.options.output, sc, output);
     m.writer->write_pair_models(m.summary.pair_models);
   }
-  // Frame 0: the integrator started at the initial state, its forces there.
-  m.call_start = Clock::now();
-  m.in_call = true;
-  Forces forces;
-  forces.resize(sc.system);
   try {
-    m.integrator->start(m.state);
     m.integrator->current(m.state, forces);
     m.state.t = sc.initial.t;
     m.integrator_at_state = true;
@@ -318,8 +320,15 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   m.t_origin = run.time[0];
   const double h = m.integrator->fixed_step();
   m.steps_before = h > 0 && t_last > m.t_origin ? whole_steps(t_last - m.t_origin, h, "the recorded time") : 0;
-  m.integrator_at_state = false;
-  m.base_work = run.work_at(last) + WorkCounters{0, -m.integrator->work().potential_evaluations, 0, 0};
+  // The integrator continues from its own variables where it has any (relative frame,
+  // Lagrangian forms), else from the state.
+  const std::vector<double> checkpoint = run.integrator_at(last);
+  if (checkpoint.size() != m.integrator->checkpoint().size())
+    throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
+  const std::int64_t evaluations = m.integrator->work().potential_evaluations;
+  m.integrator->restore(m.state, checkpoint);
+  m.integrator_at_state = true;
+  m.base_work = run.work_at(last) + WorkCounters{0, -evaluations, 0, 0};
   m.wall_seconds = run.wall_seconds[last];
   m.options = std::move(options);
   m.options.output = file;
@@ -352,6 +361,8 @@ StopInfo Simulation::integrate(double t_end) {
   }
   const Scene& sc = m.scene;
   const RunOptions& options = m.options;
+  if (const double h = m.integrator->fixed_step(); h > 0 && t_end != sc.run.t_end)
+    whole_steps(t_end - m.t_origin, h, "integrate(t): t − t0");  // a fixed-step method lands on its grid only
   Progress progress(options.progress, m.state.t, t_end);
 
   // The loop stops on one flag: the caller's (a signal) or the wall-time budget's.
@@ -586,6 +597,8 @@ void Simulation::save(const std::filesystem::path& path) const {
         for (int c = 0; c < 3; ++c) R.push_back(Rk(r, c));
     write_doubles(g, "R", R.data(), {nr, 3, 3});
     write_doubles(g, "Pi", st.Pi.data(), {nr, 3});
+    const std::vector<double> own = m.integrator->checkpoint();  // Integrator::checkpoint
+    write_doubles(g, "integrator", own.data(), {own.size()});
     H5Gclose(g);
     g = make_group(file, "run");
     scalar_attribute(g, "t_origin", m.t_origin);
@@ -649,6 +662,15 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     st.t = read_scalar(g, "t");
     const auto x = read_doubles(g, "x", 3 * nb), p = read_doubles(g, "p", 3 * nb), R = read_doubles(g, "R", 9 * nr),
                Pi = read_doubles(g, "Pi", 3 * nr);
+    hid_t own = H5Dopen2(g, "integrator", H5P_DEFAULT);
+    std::size_t own_size = 0;
+    if (own >= 0) {
+      hid_t space = H5Dget_space(own);
+      own_size = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
+      H5Sclose(space);
+      H5Dclose(own);
+    }
+    const std::vector<double> integrator_checkpoint = read_doubles(g, "integrator", own_size);
     H5Gclose(g);
     st.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, static_cast<Eigen::Index>(nb));
     st.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(nb));
@@ -689,7 +711,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
                                static_cast<std::int64_t>(work[1]) - m.integrator->work().potential_evaluations,
                                static_cast<std::int64_t>(work[2]), static_cast<std::int64_t>(work[3])};
     m.wall_seconds = wall;
-    m.integrator_at_state = false;  // started again at the next integrate (as --resume does)
+    // The integrator continues from its own variables where it has any, else from the state.
+    if (integrator_checkpoint.size() != m.integrator->checkpoint().size())
+      throw OutputError(path.string() + ": its integrator checkpoint does not fit the scene's integrator");
+    m.integrator->restore(m.state, integrator_checkpoint);
+    m.integrator_at_state = true;
   } catch (...) {
     H5Fclose(file);
     throw;

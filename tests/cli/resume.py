@@ -2,7 +2,8 @@
 continued each time with `noether run --resume` ends with a file equal, bit for bit, to the one an
 uninterrupted run writes (docs/user-guide.md, "Continuing a run").
 
-For the LGVI and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
+For the LGVI (inertial Hamiltonian, and relative Lagrangian: a method whose variables are not the
+State, restored from /checkpoint/integrator) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
 killed at a random moment, resumed and killed again, KILLS times (at least 5), then resumed to the
 end. Asserted:
   * every frame is in the file exactly once: the times are the uninterrupted run's, in order;
@@ -43,7 +44,9 @@ def summary_of(stdout):
     return json.loads(stdout)
 
 
-for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method: rk4, step: 0.0002}"])]:
+for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method: rk4, step: 0.0002}"]),
+                         ("lgvi-relative-lagrangian",
+                          ["integrator={plugin: lgvi, step: 0.0002, frame: relative, form: lagrangian}"])]:
     sets = ["--set", "run.t_end=300", "--set", "run.output_every=0.01"]
     for o in overrides:
         sets += ["--set", o]

@@ -22,3 +22,18 @@ ctest --test-dir "$work/build" --output-on-failure
 # The out-of-tree plugin links the installed libnoether-core only, and only its interface.
 core=$(find "$work/prefix" -name 'libnoether-core.so' | head -1)
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/build/noether-j2.so" | tail -1
+# The Python module from the prefix: found there (<prefix>/<libdir>/python3/dist-packages), it
+# finds the installed libnoether and plugins, and also the out-of-tree one on NOETHER_PLUGIN_PATH.
+if [ -n "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py')" ]; then
+  pydir=$(dirname "$(dirname "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py' | head -1)")")
+  cd "$work"  # not the source tree: nothing found by accident
+  NOETHER_PLUGIN_PATH="$work/build" PYTHONPATH="$pydir" /usr/bin/python3 -c "
+import noether
+names = [p['name'] for p in noether.plugins()]
+assert 'lgvi' in names and 'j2' in names, names
+assert noether.__file__.startswith('$work/prefix'), noether.__file__
+sim = noether.Simulation('$src/examples/dumbbells.yaml', set=['run.t_end=1'])
+sim.integrate(1)
+print('python from the prefix:', noether.__file__, 'max|dE| %.4e' % sim.summary()['max_abs_energy_error'])
+"
+fi

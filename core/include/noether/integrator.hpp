@@ -72,6 +72,13 @@ class NOETHER_API Integrator {
   // the host evaluates output frames with it (the same model choices as the steps) and reports
   // what it saw (pair models). Null by default: the host then uses a workspace of its own.
   virtual PotentialEvaluator* potential_evaluator();
+  // Exact continuation (`noether run --resume`, Simulation::save): the method's own variables
+  // that the State does not hold, or holds only after rounding (a relative frame's coordinates,
+  // a two-step form's previous step), as a fixed number of doubles for a given system; empty
+  // (the default) when start(current state) continues the method exactly. restore(s, data)
+  // continues from a checkpoint taken where the state was s (by default: start(s)).
+  virtual std::vector<double> checkpoint() const;
+  virtual void restore(const State& state, const std::vector<double>& data);
   const WorkCounters& work() const { return work_; }
 
  protected:

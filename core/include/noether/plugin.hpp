@@ -30,7 +30,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 5u
+#define NOETHER_PLUGIN_API_VERSION 6u
 
 namespace noether {
 

@@ -26,6 +26,7 @@ struct OutputOptions {
   double preallocate_bytes = 256.0 * 1024 * 1024;
   bool overwrite = false;          // replace an existing file (--force); never a link or an input
   std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
+  std::size_t checkpoint_width = 0;  // Integrator::checkpoint()'s size: /checkpoint/integrator [frame][width]
 };
 
 // A run as its output file holds it, for continuing it (noether run --resume): the scene as
@@ -41,7 +42,10 @@ struct RecordedRun {
   std::vector<double> time, x, p, R, Pi, U;  // [frame][...] row-major, as in the file
   std::vector<std::int64_t> work;            // [frame][4]: steps, evaluations, Newton, rejected
   std::vector<double> wall_seconds;          // [frame]
+  std::vector<double> integrator;            // [frame][integrator_width]: Integrator::checkpoint()
+  std::size_t integrator_width = 0;
   State state(std::size_t frame) const;
+  std::vector<double> integrator_at(std::size_t frame) const;
   WorkCounters work_at(std::size_t frame) const;
 };
 
@@ -63,7 +67,7 @@ class H5Writer {
   // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
   // checkpoint a continued run starts from).
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
-                   double wall_seconds);
+                   double wall_seconds, const std::vector<double>& integrator_checkpoint = {});
   // Writes buffered frames and flushes the file.
   void flush();
   // Writes /work and the run's outcome ("completed" or the error message), then closes.

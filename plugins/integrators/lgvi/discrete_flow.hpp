@@ -11,6 +11,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace lgvi {
 
@@ -35,6 +36,10 @@ class DiscreteFlow {
   // the forces there (U, inertial f, body-frame M), for output and diagnostics.
   virtual void current(State& s, Forces& f) const = 0;
   virtual double time() const = 0;
+  // The flow's own variables beyond the State (noether::Integrator::checkpoint): none for the
+  // inertial Hamiltonian form, whose variables are the State's.
+  virtual std::vector<double> checkpoint() const { return {}; }
+  virtual void restore(const State& s, const std::vector<double>&) { start(s); }
 
   noether::WorkCounters work;
 };

@@ -33,6 +33,29 @@ class InertialLagrangian final : public DiscreteFlow {
     h_ = 0;
   }
 
+  // h and the previous step's D = x_k − x_{k−1} and L (h = 0 before the first step); the State
+  // holds x and R exactly, but γ and Π only through the discrete Legendre transform.
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out{h_};
+    const std::size_t n = system_.size(), nr = system_.rigid_count();
+    out.resize(1 + 3 * n + 3 * nr, 0.0);
+    if (h_ != 0) {
+      std::copy(D_.data(), D_.data() + 3 * n, out.begin() + 1);
+      for (std::size_t r = 0; r < nr; ++r) std::copy(L_[r].data(), L_[r].data() + 3, out.begin() + 1 + 3 * n + 3 * r);
+    }
+    return out;
+  }
+  void restore(const State& s, const std::vector<double>& data) override {
+    const std::size_t n = system_.size(), nr = system_.rigid_count();
+    if (data.size() != 1 + 3 * n + 3 * nr) throw noether::Error("lgvi: a Lagrangian checkpoint of the wrong size");
+    start(s);
+    h_ = data[0];
+    if (h_ == 0) return;
+    D_ = Eigen::Map<const Eigen::Matrix3Xd>(data.data() + 1, 3, static_cast<Eigen::Index>(n));
+    L_.resize(nr);
+    for (std::size_t r = 0; r < nr; ++r) L_[r] = Vec3(data[1 + 3 * n + 3 * r], data[2 + 3 * n + 3 * r], data[3 + 3 * n + 3 * r]);
+  }
+
   void advance(double h) override {
     const std::size_t n = system_.size(), nr = system_.rigid_count();
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta

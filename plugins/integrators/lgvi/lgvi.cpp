@@ -85,6 +85,14 @@ class Lgvi final : public noether::Integrator {
   }
 
   double time() const override { return t_; }
+  std::vector<double> checkpoint() const override { return flow_->checkpoint(); }
+  void restore(const noether::State& state, const std::vector<double>& data) override {
+    if (data.empty()) return start(state);
+    flow_->restore(state, data);
+    t0_ = state.t;
+    k_ = 0;
+    t_ = state.t;
+  }
   double fixed_step() const override { return h_; }
 
   void current(noether::State& state, noether::Forces& forces) override {

@@ -24,6 +24,28 @@ RelativeFrame::RelativeFrame(const System& system, noether::PotentialEvaluator& 
   canonical_ = State::zeros(system);
 }
 
+void pack(const Reduced& r, std::vector<double>& out) {
+  out.push_back(r.t);
+  for (const Vec3* v : {&r.X, &r.Gamma, &r.Pi, &r.Pi2, &r.x2, &r.gamma2}) out.insert(out.end(), v->data(), v->data() + 3);
+  for (const Mat3* m : {&r.R, &r.R2}) out.insert(out.end(), m->data(), m->data() + 9);
+}
+
+Reduced unpack(const std::vector<double>& in, std::size_t offset) {
+  if (in.size() < offset + kReducedSize) throw noether::Error("lgvi: a relative-frame checkpoint of the wrong size");
+  Reduced r;
+  const double* p = in.data() + offset;
+  r.t = *p++;
+  for (Vec3* v : {&r.X, &r.Gamma, &r.Pi, &r.Pi2, &r.x2, &r.gamma2}) {
+    *v = Vec3(p[0], p[1], p[2]);
+    p += 3;
+  }
+  for (Mat3* m : {&r.R, &r.R2}) {
+    *m = Eigen::Map<const Mat3>(p);
+    p += 9;
+  }
+  return r;
+}
+
 Reduced RelativeFrame::reduce(const State& s) const {
   Reduced r;
   r.t = s.t;

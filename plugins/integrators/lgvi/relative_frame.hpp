@@ -21,6 +21,11 @@ struct Reduced {
   Mat3 R2;
 };
 
+// The reduced variables as 37 doubles and back (checkpoints), in the order of the struct.
+void pack(const Reduced& r, std::vector<double>& out);
+Reduced unpack(const std::vector<double>& in, std::size_t offset = 0);
+constexpr std::size_t kReducedSize = 37;
+
 struct ReducedForces {
   double U = 0;
   Vec3 dU_dX;  // ∂U/∂X

@@ -62,6 +62,16 @@ class RelativeHamiltonian final : public DiscreteFlow {
     frame_.inertial_forces(r_, current_, f);
   }
   double time() const override { return r_.t; }
+  // The reduced variables themselves: reduce(reconstruct(r)) is r only up to rounding.
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out;
+    pack(r_, out);
+    return out;
+  }
+  void restore(const State&, const std::vector<double>& data) override {
+    r_ = unpack(data);
+    evaluate(r_, current_);
+  }
 
  private:
   void evaluate(const Reduced& r, ReducedForces& f) {

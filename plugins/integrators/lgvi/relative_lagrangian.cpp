@@ -39,6 +39,27 @@ class RelativeLagrangian final : public DiscreteFlow {
     h_ = 0;
   }
 
+  // The reduced variables, then h and the previous step's D, A, L2, Δ (h = 0 before the first).
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out;
+    pack(r_, out);
+    out.push_back(h_);
+    for (const Vec3* v : {&D_, &A_, &L2_, &Delta_}) out.insert(out.end(), v->data(), v->data() + 3);
+    return out;
+  }
+  void restore(const State&, const std::vector<double>& data) override {
+    if (data.size() != kReducedSize + 13) throw noether::Error("lgvi: a relative Lagrangian checkpoint of the wrong size");
+    r_ = unpack(data);
+    frame_.evaluate(r_, forces_);
+    ++work.potential_evaluations;
+    const double* p = data.data() + kReducedSize;
+    h_ = *p++;
+    for (Vec3* v : {&D_, &A_, &L2_, &Delta_}) {
+      *v = Vec3(p[0], p[1], p[2]);
+      p += 3;
+    }
+  }
+
   void advance(double h) override {
     const ReducedForces& fk = forces_;
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
