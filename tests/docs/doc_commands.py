@@ -13,7 +13,10 @@ backslash continues it. Each one is
 A command that is neither fails the test, so docs cannot show a command nothing runs.
 When the lines after a command in the same block show its output ("label   value" lines, as
 the summary prints them), every such line must appear in the actual output with the same
-numbers, wall times excepted."""
+numbers, wall times excepted.
+`python3 examples/...py` commands and every ```python block run with Debian's python3 and the
+build tree's module (PYTHONPATH); a doc's ```python blocks run in order as one script, which must
+exit 0 (its asserts are the doc's claims)."""
 import os
 import re
 import shlex
@@ -23,7 +26,7 @@ import tempfile
 import time
 
 PLACEHOLDER = re.compile(r"(^|\s)[A-Z][A-Z0-9_]*(\.\w+)?(=\S*)?(\s|$)|\b[A-Z]\b|\.\.\.|…")  # SCENE, OUT.h5, KEY=VALUE, F
-STARTS = re.compile(r"^(\./build/release/bin/noether|noether|\$HOME/noether/bin/noether|tools/\w+\.py)\s")
+STARTS = re.compile(r"^(\./build/release/bin/noether|noether|\$HOME/noether/bin/noether|tools/\w+\.py|python3 examples/\S+\.py)\s")
 
 # Commands that are not run here, with the test that runs them.
 OUT_OF_TREE = "tests/install/out_of_tree.sh runs this workflow (label install)"
@@ -56,6 +59,21 @@ def next_block(lines, j):
         block.append(lines[j][4:])
         j += 1
     return block
+
+
+def python_blocks(path):
+    """(first line, the text of every ```python block of a Markdown file, joined in order)."""
+    lines = open(path, encoding="utf-8").read().split("\n")
+    code, first, inside = [], None, False
+    for i, line in enumerate(lines):
+        if line.startswith("```"):
+            inside = not inside and line[3:].strip() == "python"
+            if inside and first is None:
+                first = i + 1
+            continue
+        if inside:
+            code.append(line)
+    return first, "\n".join(code)
 
 
 def blocks(path):
@@ -138,6 +156,21 @@ def main():
     for name in ("examples", "tests"):
         os.symlink(os.path.join(src, name), os.path.join(scratch, name))
     os.makedirs(os.path.join(scratch, "docs", "img"))
+    module = os.path.join(os.path.dirname(noether), os.pardir, "lib", "python3", "dist-packages")
+    python_env = dict(os.environ, MPLBACKEND="Agg", PYTHONPATH=os.path.abspath(module))
+    docs = [os.path.join(src, "README.md")] + sorted(
+        os.path.join(src, "docs", f) for f in os.listdir(os.path.join(src, "docs")) if f.endswith(".md"))
+    for path in docs:  # the ```python blocks of each doc, as one script
+        first, code = python_blocks(path)
+        if first is None:
+            continue
+        where = f"{os.path.relpath(path, src)}:{first}"
+        t0 = time.time()
+        proc = subprocess.run(["/usr/bin/python3", "-c", code], cwd=scratch, capture_output=True, text=True,
+                              env=python_env)
+        print(f"{where}: the doc's python blocks  → exit {proc.returncode} in {time.time() - t0:.1f} s", flush=True)
+        if proc.returncode != 0:
+            failures.append(f"{where}: the doc's python blocks exited {proc.returncode}: {proc.stderr.strip()[-600:]}")
     for f, line, text, output in found:
         where = f"{f}:{line}"
         if text in COVERED_ELSEWHERE:
@@ -158,10 +191,12 @@ def main():
         argv = shlex.split(text)
         if argv[0].startswith("tools/"):  # the repository's scripts, with Debian's python3
             argv = ["/usr/bin/python3", os.path.join(src, argv[0])] + argv[1:]
+        elif argv[0] == "python3":  # the examples, with the build tree's module
+            argv = ["/usr/bin/python3", os.path.join(src, argv[1])] + argv[2:]
         else:
             argv[0] = noether
         t0 = time.time()
-        proc = subprocess.run(argv, cwd=scratch, capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
+        proc = subprocess.run(argv, cwd=scratch, capture_output=True, text=True, env=python_env)
         print(f"{where}: {text}  → exit {proc.returncode} in {time.time() - t0:.1f} s", flush=True)
         if proc.returncode != 0:
             failures.append(f"{where}: `{text}` exited {proc.returncode}: {proc.stderr.strip()[-400:]}")
