@@ -28,7 +28,7 @@ struct ToleranceRow {
 inline std::vector<std::pair<Vec3, Mat3>> orbit_configurations(const Scene& scene, double t_end, int count) {
   struct Collect final : Observer {
     std::vector<std::pair<Vec3, Mat3>> out;
-    void observe(const State& s, const Forces&) override {
+    void observe(const State& s, const Forces&, bool) override {
       const Mat3 RA = s.R[0], RB = s.R[1];
       out.emplace_back(RA.transpose() * (s.x.col(1) - s.x.col(0)), RA.transpose() * RB);
     }

@@ -16,7 +16,7 @@ namespace {
 
 struct Trajectory final : Observer {
   std::vector<State> states;
-  void observe(const State& s, const Forces&) override { states.push_back(s); }
+  void observe(const State& s, const Forces&, bool) override { states.push_back(s); }
 };
 
 Trajectory integrate(const std::string& integrator, const std::vector<std::string>& more = {}) {

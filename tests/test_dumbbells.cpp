@@ -50,7 +50,7 @@ TEST(Dumbbells, StepTooLargeForTheSpinIsAClearError) {
   auto lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
   struct Count final : Observer {
     int frames = 0;
-    void observe(const State&, const Forces&) override { ++frames; }
+    void observe(const State&, const Forces&, bool) override { ++frames; }
   } count;
   State s = scene.initial;
   try {

@@ -19,7 +19,7 @@ namespace {
 
 struct Orbit final : Observer {
   std::vector<double> t, E, lrl_angle;
-  void observe(const State& s, const Forces& f) override {
+  void observe(const State& s, const Forces& f, bool) override {
     const Vec3 x = s.x.col(0), v = s.p.col(0);  // m = 1
     const double L = x.x() * v.y() - x.y() * v.x(), r = x.norm();
     // Laplace–Runge–Lenz vector / μ: its direction is the periapsis.

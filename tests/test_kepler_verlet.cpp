@@ -37,7 +37,7 @@ struct Recorder final : Observer {
   std::vector<State> states;
   std::vector<double> energies;
   const System* system = nullptr;
-  void observe(const State& s, const Forces& f) override {
+  void observe(const State& s, const Forces& f, bool) override {
     states.push_back(s);
     double T = 0;
     for (Eigen::Index i = 0; i < s.p.cols(); ++i)

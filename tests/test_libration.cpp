@@ -23,7 +23,7 @@ namespace {
 // The angle between the secondary's long axis and the direction to the primary, about z.
 struct Libration final : Observer {
   std::vector<double> t, angle;
-  void observe(const State& s, const Forces&) override {
+  void observe(const State& s, const Forces&, bool) override {
     const Vec3 u = (s.x.col(0) - s.x.col(1)).normalized();  // secondary → primary
     const Vec3 e1 = s.R[1].col(0);                           // the secondary's long axis
     t.push_back(s.t);

@@ -17,7 +17,7 @@ struct History final : Observer {
   const System* system = nullptr;
   std::vector<double> t, dE, orth;
   double E0 = 0;
-  void observe(const State& s, const Forces& f) override {
+  void observe(const State& s, const Forces& f, bool) override {
     const Diagnostics d = diagnose(*system, s, f.U);
     if (t.empty()) E0 = d.energy;
     t.push_back(s.t);

@@ -114,7 +114,7 @@ TEST(OrderSelection, WarnsWhenAPairComesCloserThanItsOrderWasChosenFor) {
 
   struct Collect final : Observer {
     std::vector<State> states;
-    void observe(const State& s, const Forces&) override { states.push_back(s); }
+    void observe(const State& s, const Forces&, bool) override { states.push_back(s); }
   } collect;
   auto registry = bundled_plugins();
   auto potential = make_scene_potential(scene, registry);

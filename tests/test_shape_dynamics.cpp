@@ -18,7 +18,7 @@ struct Track final : Observer {
   const System* system = nullptr;
   std::vector<double> t, E, orth;
   State last;
-  void observe(const State& s, const Forces& f) override {
+  void observe(const State& s, const Forces& f, bool) override {
     const Diagnostics d = diagnose(*system, s, f.U);
     t.push_back(s.t);
     E.push_back(d.energy);

@@ -87,7 +87,7 @@ TEST(Workspace, OneModelEvaluatedFromSeveralThreadsGivesWhatOneThreadGives) {
 
 class Last final : public Observer {
  public:
-  void observe(const State& state, const Forces& forces) override { last = state, U = forces.U; }
+  void observe(const State& state, const Forces& forces, bool) override { last = state, U = forces.U; }
   State last;
   double U = 0;
 };

@@ -499,9 +499,10 @@ void H5Writer::create_layout(const Scene& scene) {
               "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's "
               "coordinates, a two-step form's previous step), from which a continued run restores it");
   m.work_series = std::make_unique<Series<std::int64_t>>(checkpoint, "work", H5T_NATIVE_INT64,
-                                                         std::vector<hsize_t>{4}, m.allocated, -1);
+                                                         std::vector<hsize_t>{5}, m.allocated, -1);
   string_attribute(m.work_series->dataset, "description",
-                   "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps");
+                   "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, "
+                   "frames interpolated between the method's steps");
   H5Gclose(checkpoint);
 
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
@@ -540,11 +541,12 @@ H5Writer::~H5Writer() {
 }
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
-                           double wall_seconds, const std::vector<double>& integrator_checkpoint) {
+                           double wall_seconds, std::int64_t interpolated_frames,
+                           const std::vector<double>& integrator_checkpoint) {
   Impl& m = *impl_;
   m.step->push(&work.steps);
-  const std::int64_t counters[4] = {work.steps, work.potential_evaluations, work.newton_iterations,
-                                    work.rejected_steps};
+  const std::int64_t counters[5] = {work.steps, work.potential_evaluations, work.newton_iterations,
+                                    work.rejected_steps, interpolated_frames};
   m.work_series->push(counters);
   m.wall_time->push(&wall_seconds);
   if (m.integrator_checkpoint) {
@@ -829,9 +831,11 @@ std::vector<double> RecordedRun::integrator_at(std::size_t frame) const {
 }
 
 WorkCounters RecordedRun::work_at(std::size_t frame) const {
-  const std::int64_t* w = work.data() + 4 * frame;
+  const std::int64_t* w = work.data() + 5 * frame;
   return WorkCounters{w[0], w[1], w[2], w[3]};
 }
+
+std::int64_t RecordedRun::interpolated_at(std::size_t frame) const { return work[5 * frame + 4]; }
 
 RecordedRun read_recorded_run(const fs::path& path) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -882,6 +886,7 @@ RecordedRun read_recorded_run(const fs::path& path) {
     }
     run.U = read_frames<double>(file, "/observables/potential_energy/value", H5T_NATIVE_DOUBLE, n);
     run.work = read_frames<std::int64_t>(file, "/checkpoint/work", H5T_NATIVE_INT64, n);
+    if (run.work.size() != 5 * n) throw OutputError(path.string() + ": /checkpoint/work is not [frame][5]");
     run.wall_seconds = read_frames<double>(file, "/checkpoint/wall_time", H5T_NATIVE_DOUBLE, n);
     if (H5Lexists(file, "/checkpoint/integrator", H5P_DEFAULT) > 0) {
       run.integrator = read_frames<double>(file, "/checkpoint/integrator", H5T_NATIVE_DOUBLE, n);

@@ -56,8 +56,9 @@ class RunObserver final : public Observer {
   RunObserver(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
       : system_(system), s_(summary), write_(std::move(write)) {}
 
-  void observe(const State& state, const Forces& forces) override {
+  void observe(const State& state, const Forces& forces, bool interpolated) override {
     const Diagnostics d = account(state, forces);
+    if (interpolated) ++s_.interpolated_frames;
     if (write_) write_(state, d);
   }
 
@@ -187,7 +188,7 @@ struct Simulation::Impl {
   }
   void make_observer() {
     observer = std::make_unique<RunObserver>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
-      if (writer) writer->write_frame(s, d, work(), wall_now(), integrator->checkpoint());
+      if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
     });
   }
   void finish_output(const std::string& outcome) {
@@ -250,7 +251,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
     m.integrator->current(m.state, forces);
     m.state.t = sc.initial.t;
     m.integrator_at_state = true;
-    m.observer->observe(m.state, forces);
+    m.observer->observe(m.state, forces, false);
   } catch (const Error& e) {  // the output says why the run ended at t0
     m.wall_seconds = m.wall_now();
     m.in_call = false;
@@ -316,6 +317,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     forces.U = run.U[f];
     m.observer->account(run.state(f), forces);
   }
+  m.summary.interpolated_frames = run.interpolated_at(last);
   m.state = run.state(last);
   m.t_origin = run.time[0];
   const double h = m.integrator->fixed_step();
@@ -337,13 +339,21 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
 }
 
 Simulation::~Simulation() {
-  if (impl_ && impl_->writer) {
-    try {
-      impl_->finish_output(impl_->failure.empty() ? "stopped: the simulation was closed at t = " +
-                                                         std::to_string(impl_->state.t)
-                                                   : "failed: " + impl_->failure);
-    } catch (...) {
-    }
+  if (!impl_ || !impl_->writer) return;
+  const Impl& m = *impl_;
+  // Closed without finish() (a Python object collected): the outcome says where it stood.
+  std::string outcome;
+  if (!m.failure.empty())
+    outcome = "failed: " + m.failure;
+  else if (!m.summary.stop_reason.empty())
+    outcome = "stopped: " + m.summary.stop_reason;
+  else if (m.state.t >= m.scene.run.t_end)
+    outcome = "completed";
+  else
+    outcome = "stopped: the simulation was closed at t = " + std::to_string(m.state.t) + ", before t_end";
+  try {
+    impl_->finish_output(outcome);
+  } catch (...) {
   }
 }
 
@@ -422,7 +432,6 @@ StopInfo Simulation::integrate(double t_end) {
     m.t_origin = m.state.t;
     m.steps_before = 0;
   }
-  m.summary.interpolated_frames += stop.interpolated_frames;
   return stop;
 }
 
@@ -458,6 +467,7 @@ void Simulation::set_state(const State& s) {
   m.integrator_at_state = false;
   // A new segment: its first frame gives the references.
   m.summary.frames = 0;
+  m.summary.interpolated_frames = 0;
   m.summary.max_abs_energy_error = m.summary.max_rel_linear_momentum_error = 0.0;
   m.summary.max_rel_angular_momentum_error = m.summary.max_orthogonality_error = 0.0;
   Forces forces;
@@ -466,7 +476,7 @@ void Simulation::set_state(const State& s) {
   m.integrator->current(m.state, forces);
   m.state.t = s.t;
   m.integrator_at_state = true;
-  m.observer->observe(m.state, forces);
+  m.observer->observe(m.state, forces, false);
 }
 
 RunSummary Simulation::summary() const {

@@ -152,8 +152,11 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
   integrator.current(state, forces);
   state.t = t_start;
   double last_observed = t_start;
-  auto observe = [&] {
-    observer.observe(state, forces);
+  StopInfo stop;
+  // A frame is the method's own state, or one interpolated between its steps (counted).
+  auto observe = [&](bool interpolated = false) {
+    if (interpolated) ++stop.interpolated_frames;
+    observer.observe(state, forces, interpolated);
     last_observed = state.t;
   };
   if (schedule.observe_start) observe();
@@ -170,7 +173,6 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     return probe;
   };
 
-  StopInfo stop;
   for (std::int64_t k = schedule.steps_before + 1;; ++k) {
     stop.steps = k;
     const double t_prev = integrator.time();
@@ -225,9 +227,9 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           for (; !outputs->done() && outputs->next() < t_event; outputs->advance()) {
             integrator.interpolate(outputs->next(), state);
             evaluate(state, forces);
-            observe();
-            ++stop.interpolated_frames;
+            observe(true);
           }
+        bool interpolated = false;
         if (h > 0 || !integrator.interpolate(t_event, state)) {
           // No dense output: one shortened step of the method from the step's start.
           integrator.start(previous);
@@ -235,10 +237,10 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
           integrator.current(state, forces);
         } else {
           evaluate(state, forces);
-          ++stop.interpolated_frames;
+          interpolated = true;
         }
         state.t = t_event;
-        observe();
+        observe(interpolated);
         std::ostringstream why;
         why.precision(10);
         why << hit->kind << ": bodies '" << system.body(hit->a).name << "' and '"
@@ -266,6 +268,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
       const double tol = 1e-12 * std::max(1.0, std::abs(t));
       for (; !outputs->done() && outputs->next() <= t + tol; outputs->advance()) {
         const double tau = outputs->next();
+        bool interpolated = false;
         if (std::abs(tau - t) <= tol) {
           integrator.current(state, forces);
         } else {
@@ -273,10 +276,10 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
             throw Error("the integrator chooses its own steps but has no dense output to reach t = " +
                         std::to_string(tau));
           evaluate(state, forces);
-          ++stop.interpolated_frames;
+          interpolated = true;
         }
         state.t = tau;
-        observe();
+        observe(interpolated);
       }
       if (outputs->done()) break;
     }

@@ -151,7 +151,7 @@ namespace {
 
 class NullObserver final : public Observer {
  public:
-  void observe(const State&, const Forces&) override {}
+  void observe(const State&, const Forces&, bool) override {}
 };
 
 // The rk plugin's Fehlberg 7(8) at the given tolerances, through the stepping loop (no events).

@@ -11,7 +11,7 @@ using namespace noether;
 namespace {
 
 struct Null final : Observer {
-  void observe(const State&, const Forces&) override {}
+  void observe(const State&, const Forces&, bool) override {}
 };
 
 // ns per LGVI step: integrate 1000 steps per iteration (one potential evaluation each).

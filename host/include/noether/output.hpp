@@ -40,13 +40,15 @@ struct RecordedRun {
   std::int64_t frames = 0;                   // /frames_complete
   std::size_t bodies = 0, rigid = 0;
   std::vector<double> time, x, p, R, Pi, U;  // [frame][...] row-major, as in the file
-  std::vector<std::int64_t> work;            // [frame][4]: steps, evaluations, Newton, rejected
+  std::vector<std::int64_t> work;            // [frame][5]: steps, evaluations, Newton, rejected,
+                                             // frames interpolated so far
   std::vector<double> wall_seconds;          // [frame]
   std::vector<double> integrator;            // [frame][integrator_width]: Integrator::checkpoint()
   std::size_t integrator_width = 0;
   State state(std::size_t frame) const;
   std::vector<double> integrator_at(std::size_t frame) const;
   WorkCounters work_at(std::size_t frame) const;
+  std::int64_t interpolated_at(std::size_t frame) const;
 };
 
 // Reads an output file for --resume; OutputError names what is missing (a file from an older
@@ -67,7 +69,8 @@ class H5Writer {
   // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
   // checkpoint a continued run starts from).
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
-                   double wall_seconds, const std::vector<double>& integrator_checkpoint = {});
+                   double wall_seconds, std::int64_t interpolated_frames = 0,
+                   const std::vector<double>& integrator_checkpoint = {});
   // Writes buffered frames and flushes the file.
   void flush();
   // Writes /work and the run's outcome ("completed" or the error message), then closes.

@@ -21,8 +21,9 @@ class Observer {
  public:
   virtual ~Observer() = default;
   // Called at t0, at every output time and at the end (or at the event that ended the run),
-  // with the potential evaluated at that state.
-  virtual void observe(const State& state, const Forces& forces) = 0;
+  // with the potential evaluated at that state; `interpolated` when the state was interpolated
+  // between the method's steps (dense output) rather than reached by the method.
+  virtual void observe(const State& state, const Forces& forces, bool interpolated) = 0;
 };
 
 struct Events {
