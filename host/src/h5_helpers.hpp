@@ -108,6 +108,17 @@ inline void scalar_attribute(hid_t obj, const char* name, double value) {
   H5Sclose(space);
 }
 
+// The non-empty lines of a newline-joined attribute (/parameters overrides).
+inline std::vector<std::string> lines_of(const std::string& joined) {
+  std::vector<std::string> out;
+  for (std::size_t a = 0; a < joined.size();) {
+    const std::size_t b = std::min(joined.find('\n', a), joined.size());
+    if (b > a) out.push_back(joined.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
 // Deletes an attribute if there is one (before writing it again).
 inline void remove_attribute(hid_t obj, const char* name) {
   if (H5Aexists(obj, name) > 0) H5Adelete(obj, name);

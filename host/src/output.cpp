@@ -347,7 +347,8 @@ void H5Writer::create_layout(const Scene& scene) {
   string_attribute(parameters, "overrides", overrides);
   std::string potentials;
   for (const auto& p : scene.potentials) potentials += (potentials.empty() ? "" : "+") + p.plugin;
-  string_attribute(parameters, "potential", potentials);
+  string_attribute(parameters, "potential", options.custom_potential ? "python (given in code, not the scene's)" : potentials);
+  numeric_attribute<int>(parameters, "custom_potential", H5T_NATIVE_INT, {options.custom_potential ? 1 : 0});
   string_attribute(parameters, "integrator", scene.integrator.plugin);
   scalar_attribute(parameters, "G", sys.G());
   string_attribute(parameters, "units", scene.units.describe());
@@ -857,12 +858,15 @@ RecordedRun read_recorded_run(const fs::path& path) {
     run.scene_path = read_string(parameters, "scene_path", false);
     if (run.scene_path.empty()) run.scene_path = read_string(parameters, "scene_file", false);
     const std::string overrides = read_string(parameters, "overrides", false);
-    H5Gclose(parameters);
-    for (std::size_t a = 0; a < overrides.size();) {
-      const std::size_t b = std::min(overrides.find('\n', a), overrides.size());
-      if (b > a) run.overrides.push_back(overrides.substr(a, b - a));
-      a = b + 1;
+    if (H5Aexists(parameters, "custom_potential") > 0) {
+      int custom = 0;
+      hid_t a = H5Aopen(parameters, "custom_potential", H5P_DEFAULT);
+      H5Aread(a, H5T_NATIVE_INT, &custom);
+      H5Aclose(a);
+      run.custom_potential = custom != 0;
     }
+    H5Gclose(parameters);
+    run.overrides = lines_of(overrides);
     if (H5Lexists(file, "work", H5P_DEFAULT) > 0) {
       hid_t work = H5Gopen2(file, "work", H5P_DEFAULT);
       run.outcome = read_string(work, "outcome", false);

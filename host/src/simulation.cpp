@@ -176,6 +176,7 @@ struct Simulation::Impl {
   double wall_seconds = 0.0;           // wall time spent integrating (and of the run continued)
   Clock::time_point call_start = Clock::now();
   bool in_call = false, finished = false;
+  bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
 
   WorkCounters work() const { return base_work + integrator->work(); }
@@ -217,6 +218,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   const Scene& sc = m.scene;
   if (potential) {
     m.potential = std::move(potential);
+    m.custom_potential = true;
     m.summary.potential = "python";
   } else {
     for (const auto& p : sc.potentials) m.summary.potential += (m.summary.potential.empty() ? "" : "+") + p.plugin;
@@ -239,6 +241,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   if (m.options.output) {
     OutputOptions output;
     output.checkpoint_width = m.integrator->checkpoint().size();
+    output.custom_potential = m.custom_potential;
     output.overwrite = m.options.overwrite;
     // t0, every output time, and one more for an event or an interrupt (the stepping loop).
     const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
@@ -274,6 +277,9 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     o << "run.t_end=" << t_end;
     overrides.push_back(o.str());
   }
+  if (run.custom_potential)
+    throw Error(file.string() + ": the run's potential was given in code (a Python function), not by its scene, "
+                "so it cannot be continued from the file alone; save() the Simulation and load() it with the potential");
   if (outcome.rfind("failed", 0) == 0)
     throw Error(file.string() + ": the run " + outcome +
                 "; continuing it would fail again — change the scene and run it afresh");
@@ -586,6 +592,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   if (file < 0) throw OutputError("cannot create " + path.string() + system_reason());
   try {
     string_attribute(file, "format", "noether simulation checkpoint 1");
+    numeric_attribute<int>(file, "custom_potential", H5T_NATIVE_INT, {m.custom_potential ? 1 : 0});
     hid_t g = make_group(file, "parameters");
     string_dataset(g, "scene", m.scene.text, "the scene file's text, as given");
     std::error_code ec;
@@ -643,7 +650,7 @@ void Simulation::save(const std::filesystem::path& path) const {
 }
 
 std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, PluginRegistry& registry,
-                                             RunOptions options) {
+                                             RunOptions options, std::shared_ptr<const Potential> potential) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
   std::error_code ec;
@@ -655,16 +662,14 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     if (read_string(file, "format", false) != "noether simulation checkpoint 1")
       throw OutputError(path.string() + " is not a checkpoint saved by Simulation.save (an output file continues "
                                         "with `noether run --resume`)");
+    if (read_scalar(file, "custom_potential") != 0 && !potential)
+      throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
+                                  "function), not by the scene: pass the same potential to load it");
     hid_t g = H5Gopen2(file, "parameters", H5P_DEFAULT);
     const std::string text = read_string(g, "scene", true), scene_path = read_string(g, "scene_path", false),
                       joined = read_string(g, "overrides", false);
     H5Gclose(g);
-    std::vector<std::string> overrides;
-    for (std::size_t a = 0; a < joined.size();) {
-      const std::size_t b = std::min(joined.find('\n', a), joined.size());
-      if (b > a) overrides.push_back(joined.substr(a, b - a));
-      a = b + 1;
-    }
+    const std::vector<std::string> overrides = lines_of(joined);
     Scene scene = parse_scene(text, scene_path, overrides);
     const std::size_t nb = scene.system.size(), nr = scene.system.rigid_count();
     State st = State::zeros(scene.system);
@@ -699,7 +704,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     if (work.size() != 4 || stats.size() != 14) throw OutputError(path.string() + ": a damaged checkpoint");
 
     const bool with_output = options.output.has_value();
-    sim = std::make_unique<Simulation>(std::move(scene), registry, options);
+    sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
     Impl& m = *sim->impl_;
     RunSummary& s = m.summary;
     if (!with_output) {  // the frame the constructor observed is the saved state's: not counted again

@@ -76,11 +76,11 @@ class Simulation:
         return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
 
     @classmethod
-    def load(cls, path, output=None, force=False):
+    def load(cls, path, output=None, force=False, potential=None):
         """A simulation saved with save(): it continues as the saved one would have (bit for bit
         with fixed-step integrators). With output, frames go to a new file whose frame 0 is the
-        saved state."""
-        return cls(_Simulation.load(os.fspath(path), _path(output), force))
+        saved state. A simulation saved with a Python potential needs it again: potential=."""
+        return cls(_Simulation.load(os.fspath(path), _path(output), force, potential))
 
     @classmethod
     def resume(cls, path, t_end=None):

@@ -68,11 +68,14 @@ class PySimulation {
                                 const std::optional<std::string>& output, bool force, py::object potential) {
     return make(noether::load_scene(file, overrides), output, force, std::move(potential));
   }
-  static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force) {
+  static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force,
+                           py::object potential) {
     noether::RunOptions options;
     if (output) options.output = *output;
     options.overwrite = force;
-    return PySimulation(noether::Simulation::load(file, registry(), options));
+    std::shared_ptr<const noether::Potential> custom;
+    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
+    return PySimulation(noether::Simulation::load(file, registry(), options, custom));
   }
 
   static PySimulation resume(const std::filesystem::path& file, double t_end) {
@@ -257,7 +260,7 @@ class PySimulation {
     if (output) options.output = *output;
     options.overwrite = force;
     std::shared_ptr<const noether::Potential> custom;
-    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(scene.system, potential);
+    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
     return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom));
   }
   std::unique_ptr<noether::Simulation> sim_;

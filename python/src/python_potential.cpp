@@ -10,8 +10,7 @@ namespace py = pybind11;
 
 namespace noether::python {
 
-PythonPotential::PythonPotential(const System& system, py::object function)
-    : bodies_(system.size()), rigid_(system.rigid_count()), function_(std::move(function)) {
+PythonPotential::PythonPotential(py::object function) : function_(std::move(function)) {
   if (!PyCallable_Check(function_.ptr()))
     throw SceneError("potential: expected a callable f(positions, attitudes) -> (U, forces, moments)");
 }
@@ -39,7 +38,8 @@ py::array_t<double, py::array::c_style | py::array::forcecast> rows_of_three(con
 
 void PythonPotential::evaluate(const State& state, Forces& forces, Workspace&) const {
   py::gil_scoped_acquire gil;
-  const auto nb = static_cast<py::ssize_t>(bodies_), nr = static_cast<py::ssize_t>(rigid_);
+  const std::size_t bodies = static_cast<std::size_t>(state.x.cols()), rigid = state.R.size();
+  const auto nb = static_cast<py::ssize_t>(bodies), nr = static_cast<py::ssize_t>(rigid);
   py::array_t<double> x({nb, py::ssize_t{3}});
   auto xv = x.mutable_unchecked<2>();
   for (py::ssize_t i = 0; i < nb; ++i)
@@ -59,13 +59,13 @@ void PythonPotential::evaluate(const State& state, Forces& forces, Workspace&) c
   if (!py::isinstance<py::tuple>(result) || (t = result.cast<py::tuple>()).size() != 3)
     throw SceneError("the Python potential must return a tuple (U, forces, moments)");
   forces.U = t[0].cast<double>();
-  const auto f = rows_of_three(t[1], bodies_, "forces");
+  const auto f = rows_of_three(t[1], bodies, "forces");
   auto fv = f.unchecked<2>();
   for (py::ssize_t i = 0; i < nb; ++i)
     for (py::ssize_t a = 0; a < 3; ++a) forces.f(a, i) = fv(i, a);
   if (nr == 0) return;
   if (t[2].is_none()) throw SceneError("the Python potential returned no moments, but the scene has rigid bodies");
-  const auto M = rows_of_three(t[2], rigid_, "moments");
+  const auto M = rows_of_three(t[2], rigid, "moments");
   auto Mv = M.unchecked<2>();
   for (py::ssize_t k = 0; k < nr; ++k)
     for (py::ssize_t a = 0; a < 3; ++a) forces.M(a, k) = Mv(k, a);

@@ -3,7 +3,6 @@
 // "A potential in Python"). Every evaluation calls back into the interpreter: expect it to be
 // 100–1000 times slower than a plugin.
 #include <noether/potential.hpp>
-#include <noether/system.hpp>
 
 #include <pybind11/pybind11.h>
 
@@ -16,13 +15,12 @@ namespace noether::python {
 // (docs/equations.md §2), or None when there are no rigid bodies.
 class PythonPotential final : public Potential {
  public:
-  PythonPotential(const System& system, pybind11::object function);
+  explicit PythonPotential(pybind11::object function);
   ~PythonPotential() override;
   using Potential::evaluate;
   void evaluate(const State& state, Forces& forces, Workspace& workspace) const override;
 
  private:
-  std::size_t bodies_, rigid_;
   pybind11::object function_;
 };
 

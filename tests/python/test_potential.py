@@ -62,3 +62,23 @@ def test_python_potential_errors_are_clear(source, dumbbells):
     with pytest.raises(noether.IntegrationError, match="the Python potential raised: ValueError: bodies too close"):
         sim.integrate(6.32591398)
     assert sim.t < 1.0
+
+
+def test_a_checkpoint_of_a_python_potential_needs_it_again(source, tmp_path):
+    scene = source / "examples/figure-eight.yaml"
+    h = 0.00632591398
+    f = point_masses(1.0, [1, 1, 1])
+    sim = noether.Simulation(scene, potential=f)
+    sim.integrate(100 * h)
+    sim.save(tmp_path / "python.h5")
+    with pytest.raises(noether.Error, match="pass the same potential to load it"):
+        noether.Simulation.load(tmp_path / "python.h5")  # never silently the scene's plugin instead
+    run = noether.Simulation(scene, potential=f, output=tmp_path / "run.h5")
+    run.integrate(10 * h)
+    del run  # closed before t_end
+    with pytest.raises(noether.Error, match="potential was given in code"):
+        noether.Simulation.resume(tmp_path / "run.h5")  # the file alone cannot continue it
+    loaded = noether.Simulation.load(tmp_path / "python.h5", potential=f)
+    loaded.integrate(1000 * h)
+    sim.integrate(1000 * h)
+    assert loaded.positions.tobytes() == sim.positions.tobytes()

@@ -26,7 +26,8 @@ struct OutputOptions {
   double preallocate_bytes = 256.0 * 1024 * 1024;
   bool overwrite = false;          // replace an existing file (--force); never a link or an input
   std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
-  std::size_t checkpoint_width = 0;  // Integrator::checkpoint()'s size: /checkpoint/integrator [frame][width]
+  std::size_t checkpoint_width = 0;
+  bool custom_potential = false;  // the run's potential was given in code (Python), not by the scene  // Integrator::checkpoint()'s size: /checkpoint/integrator [frame][width]
 };
 
 // A run as its output file holds it, for continuing it (noether run --resume): the scene as
@@ -37,6 +38,7 @@ struct RecordedRun {
   std::string scene_text, scene_path;        // the scene file's text and where it was
   std::vector<std::string> overrides;
   std::string outcome;                       // /work/outcome, empty when the run was killed
+  bool custom_potential = false;             // its potential was given in code, not by the scene
   std::int64_t frames = 0;                   // /frames_complete
   std::size_t bodies = 0, rigid = 0;
   std::vector<double> time, x, p, R, Pi, U;  // [frame][...] row-major, as in the file

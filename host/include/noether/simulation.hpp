@@ -112,8 +112,11 @@ class Simulation {
   void save(const std::filesystem::path& file) const;
   // A saved simulation. With options.output, the loaded one writes a new output file whose
   // frame 0 is the saved state (and whose summary starts there).
+  // A simulation saved with a potential given in code (not the scene's plugins) needs that
+  // potential again: `potential`; without it, loading such a checkpoint is refused.
   static std::unique_ptr<Simulation> load(const std::filesystem::path& file, PluginRegistry& registry,
-                                          RunOptions options = {});
+                                          RunOptions options = {},
+                                          std::shared_ptr<const Potential> potential = nullptr);
   // Writes the outcome to the output file and closes it (the destructor does it too); returns
   // the summary. Calling integrate() afterwards is an error.
   RunSummary finish();
