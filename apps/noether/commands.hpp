@@ -5,6 +5,7 @@
 
 #include <noether/scene.hpp>
 
+#include <cstdint>
 #include <limits>
 #include <ostream>
 #include <string>
@@ -27,6 +28,20 @@ int run(const std::string& scene_file, const std::string& output,
         double max_wall_time = 0.0, const std::string& resume = {},
         double resume_t_end = std::numeric_limits<double>::quiet_NaN());
 int list_plugins();
+
+// noether ensemble: exit 0 when every sample ran (completed or stopped by an event), 3 when
+// some failed (each recorded with its message), 2 for a bad specification (before any run).
+struct EnsembleCommand {
+  std::string output;
+  std::size_t samples = 0;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;
+  std::string pair;
+  std::size_t trajectories = 0;
+  bool resume = false, force = false;
+};
+int ensemble(const std::string& scene_file, const std::vector<std::string>& overrides,
+             const std::vector<std::string>& vary, const EnsembleCommand& command);
 
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether
 // when installed, the source tree's tools/ in a build.

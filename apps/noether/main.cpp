@@ -80,6 +80,26 @@ int main(int argc, char** argv) {
                           "wall-time budget of each compared run in seconds (not the reference); a run that exhausts it is listed as stopped")
       ->check(CLI::NonNegativeNumber);
 
+  auto* ensemble_cmd = app.add_subcommand(
+      "ensemble", "run a scene many times with keys drawn from distributions, on every core, into one HDF5 file");
+  std::vector<std::string> vary;
+  noether::app::EnsembleCommand ensemble;
+  ensemble_cmd->add_option("scene", scene, "scene file (YAML)")->required();
+  ensemble_cmd->add_option("--vary", vary,
+                           "KEY=DIST: normal(mean, sd), uniform(a, b), log-uniform(a, b), list(v1, ...), grid(a, b, n) "
+                           "(repeatable; KEY as for --set)")
+      ->required();
+  ensemble_cmd->add_option("--samples", ensemble.samples, "number of samples (default: the grids' points)");
+  ensemble_cmd->add_option("--seed", ensemble.seed, "random seed: sample i draws from (seed, i)")->capture_default_str();
+  ensemble_cmd->add_option("--threads", ensemble.threads, "worker threads (default: one per core)");
+  ensemble_cmd->add_option("--pair", ensemble.pair, "a,b: the bodies whose mutual orbit is recorded (default: the first two)");
+  ensemble_cmd->add_option("--trajectories", ensemble.trajectories,
+                           "write full output files for the first K samples (ENS-sample-I.h5)");
+  ensemble_cmd->add_option("-o,--output", ensemble.output, "the ensemble's HDF5 file")->required();
+  ensemble_cmd->add_option("--set", overrides, "override a scene key for every sample")->take_all();
+  ensemble_cmd->add_flag("--resume", ensemble.resume, "continue the ensemble in the output file: run only missing samples");
+  ensemble_cmd->add_flag("--force", ensemble.force, "replace an existing output file");
+
   auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine");
   orbit_cmd->require_subcommand(1);
   noether::app::OrbitOptions orbit;
@@ -166,6 +186,7 @@ int main(int argc, char** argv) {
                                max_wall_time, resume, resume_t_end);
     }
     if (*plugins_cmd) return noether::app::list_plugins();
+    if (*ensemble_cmd) return noether::app::ensemble(scene, overrides, vary, ensemble);
     if (*find_cmd) return noether::app::orbit_find(orbit);
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);
     if (*orbit_scene_cmds[1]) return noether::app::orbit_stability(orbit);

@@ -172,6 +172,17 @@ void apply_override(Params& root, const std::string& assignment) {
                        (node->path().empty() ? std::string("top level") : node->path()) + "'");
     node = next;
   }
+  if (node->is_sequence()) {  // one item of a list: velocity.1=0.17
+    auto& items = node->mutable_items();
+    const std::string& last = parts.back();
+    const bool numeric = !last.empty() && last.size() <= 9 && last.find_first_not_of("0123456789") == std::string::npos;
+    if (numeric && std::stoul(last) < items.size()) {
+      items[std::stoul(last)] = std::move(value);
+      return;
+    }
+    throw SceneError("--set " + key + ": '" + key.substr(0, key.size() - last.size() - 1) + "' has no item '" +
+                     last + "' (it has " + std::to_string(items.size()) + ", numbered from 0)");
+  }
   if (!node->is_map() && !node->is_null())
     throw SceneError("--set " + key + ": '" + node->path() + "' is not a mapping");
   node->set(parts.back(), std::move(value));

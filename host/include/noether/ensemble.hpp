@@ -1,0 +1,65 @@
+#pragma once
+// Ensembles (docs/ensembles.md): one scene run many times with some of its keys drawn from
+// distributions, on every core, into one HDF5 file. Each sample's values depend on (seed, index)
+// only, and results are stored by index, so the file is the same bit for bit whatever the number
+// of threads and the order in which samples finish; a killed ensemble resumes without redoing
+// the samples it finished.
+#include <noether/registry.hpp>
+#include <noether/scene.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+// A distribution of one scene key: normal(μ, σ), uniform(a, b), log-uniform(a, b) (a, b > 0),
+// list(v1, v2, ...) (one of the values, each equally likely), grid(a, b, n) (n values from a to
+// b; several grids form their product, the first varying slowest).
+struct Variation {
+  enum class Kind { Normal, Uniform, LogUniform, List, Grid };
+  std::string key;    // as for --set: bodies.dimorphos.velocity.1
+  std::string text;   // the specification as given
+  Kind kind = Kind::Normal;
+  std::vector<double> args;  // the parameters, or the list's values
+};
+
+// "KEY=normal(0.1, 0.01)" → a Variation; SceneError naming the problem otherwise.
+Variation parse_variation(const std::string& text);
+
+// The values of sample `index` (in the order of `vary`): a function of (seed, index) only.
+// `samples` sizes the grids' product.
+std::vector<double> sample_values(const std::vector<Variation>& vary, std::uint64_t seed, std::size_t index);
+// The number of samples the grids give (1 without grids).
+std::size_t grid_size(const std::vector<Variation>& vary);
+
+struct EnsembleOptions {
+  std::vector<Variation> vary;
+  std::size_t samples = 0;     // 0: the grids' product (an error without grids)
+  std::uint64_t seed = 1;
+  unsigned threads = 0;        // 0: one per core
+  std::string pair;            // "a,b": the bodies whose mutual orbit is recorded (default: the first two)
+  std::size_t trajectories = 0;  // full output files for the first k samples, next to the ensemble file
+  bool resume = false;         // continue an ensemble file: run only the samples it lacks
+  bool overwrite = false;
+};
+
+struct EnsembleReport {
+  std::size_t samples = 0, run = 0, skipped = 0;  // skipped: finished in an earlier (resumed) run
+  std::size_t completed = 0, stopped = 0, failed = 0;
+  double wall_seconds = 0.0;          // the whole ensemble
+  double sample_seconds = 0.0;        // summed over the samples run (integration and set-up)
+  double setup_seconds = 0.0;         // summed scene parsing and plugin set-up
+  unsigned threads = 0;
+};
+
+// Runs the ensemble of `scene_file` (with `overrides` applied to every sample) into `output`.
+// Every variation key and distribution is checked (and one sample's scene built) before any
+// sample runs. `progress` is called from the main thread with (samples finished, total).
+EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::vector<std::string>& overrides,
+                            const EnsembleOptions& options, const std::filesystem::path& output,
+                            const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace noether
