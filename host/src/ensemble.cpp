@@ -215,9 +215,14 @@ class EnsembleFile {
       H5Dread(outcome_, H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, done_.data());
       return;
     }
-    if (exists) std::filesystem::remove(path, ec);
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+    // Built under a hidden name and renamed into place once its layout is complete, so the path
+    // holds either nothing (or the file --force replaces) or a whole layout, whenever a kill comes.
+    const std::filesystem::path partial =
+        path.parent_path() / ("." + path.filename().string() + ".partial-" + std::to_string(::getpid()));
+    file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file_ < 0) throw OutputError("cannot create " + path.string() + system_reason());
+    partial_ = partial;
+    path_ = path;
     string_attribute(file_, "identity", identity_);
     string_attribute(file_, "description",
                      "noether ensemble: one row per sample; outcome -1 not run, 0 completed, 1 stopped by an "
@@ -265,6 +270,13 @@ class EnsembleFile {
     H5Dclose(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}));
     H5Gclose(timing);
     check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    std::filesystem::rename(partial_, path_, ec);
+    if (ec) {
+      H5Fclose(file_);
+      file_ = -1;
+      std::filesystem::remove(partial_, ec);
+      throw OutputError("cannot create " + path.string() + ": " + ec.message());
+    }
     done_.assign(samples, -1);
   }
   ~EnsembleFile() {
@@ -358,6 +370,7 @@ class EnsembleFile {
   }
 
   hid_t file_ = -1, outcome_ = -1;
+  std::filesystem::path partial_, path_;
   hsize_t samples_;
   hsize_t nb_, nr_;
   std::string identity_;
@@ -489,7 +502,8 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
   std::vector<std::thread> pool;
   for (unsigned k = 0; k < threads; ++k) pool.emplace_back(worker);
 
-  // The main thread writes: each result at its index, committed at least every second.
+  // The main thread writes: each result at its index, committed every 50 ms at most (two
+  // flushes: a few milliseconds), so a kill loses at most that much work.
   auto last_commit = Clock::now();
   std::size_t written = 0;
   for (;;) {
@@ -506,7 +520,7 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
       report.sample_seconds += r.wall;
       report.setup_seconds += r.setup;
     }
-    if (!batch.empty() && std::chrono::duration<double>(Clock::now() - last_commit).count() >= 1.0) {
+    if (!batch.empty() && std::chrono::duration<double>(Clock::now() - last_commit).count() >= 0.05) {
       file.commit();
       last_commit = Clock::now();
       if (progress) progress(report.skipped + written, samples);

@@ -1,0 +1,145 @@
+"""ensemble.py NOETHER SOURCE_DIR WORK_DIR: `noether ensemble` (docs/ensembles.md).
+
+  1. The same ensemble with 1 and 2 threads gives the same file, every dataset bitwise (the
+     wall times under /timing excepted): samples draw from (seed, index) and land at their index.
+  2. Killed with SIGKILL at random moments (5 times) and resumed each time, an ensemble ends
+     equal to an uninterrupted one: no sample lost, none run twice (resume runs only the samples
+     without an outcome).
+  3. A sample whose integrator fails is recorded as failed with its message; the others run; exit 3.
+  4. Bad distributions and unknown keys are refused (exit 2) before any sample runs: no file.
+"""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+for name in os.listdir("."):
+    os.remove(name)
+scene = os.path.join(src, "examples", "dumbbells.yaml")
+failures = []
+VARY = ["--vary", "bodies.alpha.angular_velocity.2=normal(9, 0.5)", "--vary", "bodies.beta.mass=uniform(2.9, 3.1)",
+        "--vary", "bodies.alpha.position.2=grid(0.1, 0.3, 4)"]
+
+
+def ensemble(out, *extra, check=True):
+    p = subprocess.run([noether, "ensemble", scene, *VARY, "--set", "run.t_end=4", "-o", out, *extra],
+                       capture_output=True, text=True)
+    if check and p.returncode != 0:
+        failures.append(f"ensemble {out} {extra}: exit {p.returncode}: {p.stderr.strip()}")
+    return p
+
+
+def datasets(path):
+    out = {}
+    with h5py.File(path, "r") as f:
+        f.visititems(lambda n, o: out.__setitem__(n, o[()]) if isinstance(o, h5py.Dataset)
+                     and not n.startswith("timing") else None)
+    return out
+
+
+def same(a, b, what):
+    A, B = datasets(a), datasets(b)
+    if sorted(A) != sorted(B):
+        failures.append(f"{what}: different datasets {sorted(set(A) ^ set(B))}")
+        return
+    for k in A:
+        if A[k].tobytes() != B[k].tobytes():
+            failures.append(f"{what}: /{k} differs")
+
+
+# 1. Threads.
+t = time.monotonic()
+ensemble("one.h5", "--samples", "128", "--threads", "1")
+duration = time.monotonic() - t
+ensemble("two.h5", "--samples", "128", "--threads", "2")
+same("one.h5", "two.h5", "1 vs 2 threads")
+with h5py.File("one.h5") as f:
+    if not (f["outcome"][()] == 0).all():
+        failures.append(f"outcomes {f['outcome'][()]}")
+    grid = f["inputs/bodies.alpha.position.2"][()]
+    if not np.allclose(sorted(set(grid)), np.linspace(0.1, 0.3, 4), rtol=0, atol=1e-15):
+        failures.append(f"the grid's values {sorted(set(grid))}")
+    spin = f["inputs/bodies.alpha.angular_velocity.2"][()]
+    if not (8.8 < spin.mean() < 9.2 and 0.4 < spin.std() < 0.6):  # normal(9, 0.5): 128 draws
+        failures.append(f"normal(9, 0.5) drew mean {spin.mean()}, sd {spin.std()}")
+    if not np.isfinite(f["orbit/period"][()]).all():
+        failures.append("the mutual orbit's period is missing")
+
+# 2. Kill and resume: 5 kills at random moments, each continuation resumed; a run that ends
+# before its kill starts the file afresh (the result must be the same whichever way it is made).
+rng = random.Random(3)
+kills, resumed_with_work = 0, 0
+base = [noether, "ensemble", scene, *VARY, "--set", "run.t_end=4", "-o", "killed.h5", "--samples", "128",
+        "--threads", "2"]
+args = base + ["--force"]
+while kills < 5:
+    p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(rng.uniform(0.05, 0.15) * duration)
+    if p.poll() is None:
+        p.send_signal(signal.SIGKILL)
+        kills += 1
+    out = p.communicate()[0]
+    if p.returncode == 0:  # finished first: again from nothing
+        args = base + ["--force"]
+        continue
+    args = base + (["--resume"] if os.path.exists("killed.h5") else [])
+p = subprocess.run(base + ["--resume"], capture_output=True, text=True)
+if p.returncode != 0:
+    failures.append(f"the last resume failed: {p.stderr.strip()}")
+else:
+    same("one.h5", "killed.h5", f"killed {kills} times and resumed")
+    line = p.stdout.strip().split("\n")[1]
+    print(line)
+    if " 0 finished before" in line:
+        failures.append("the last resume found no finished sample: the kills came before any commit")
+
+# 3. A failing sample.
+p = subprocess.run([noether, "ensemble", scene, "--vary", "integrator.max_steps=list(40, 0)", "--samples", "8",
+                    "--set", "integrator={plugin: cvode, max_steps: 0}", "--set", "run.t_end=2", "-o", "fail.h5"],
+                   capture_output=True, text=True)
+with h5py.File("fail.h5") as f:
+    outcome, steps = f["outcome"][()], f["inputs/integrator.max_steps"][()]
+    message = [m.decode() for m in f["message"][()]]
+if p.returncode != 3 or not ((outcome == 2) == (steps == 40)).all() or not (outcome == 0).any():
+    failures.append(f"failing samples: exit {p.returncode}, outcomes {outcome}, max_steps {steps}")
+if not all("max_steps" in m for m, o in zip(message, outcome) if o == 2):
+    failures.append(f"failed samples' messages {message}")
+
+# 4. Refused before any run.
+for spec, expect in [("bodies.beta.mass=normal(1)", "normal takes \\(mean, sd\\)"),
+                     ("bodies.beta.mass=gauss(1, 2)", "unknown distribution 'gauss'"),
+                     ("bodies.beta.mass=uniform(2, 1)", "needs a < b"),
+                     ("bodies.beta.mass=log-uniform(0, 1)", "needs 0 < a < b"),
+                     ("bodies.beta.mass=grid(1, 2, 2.5)", "whole n"),
+                     ("bodies.beta.mass=list(1, x)", "'x' is not a finite number"),
+                     ("bodies.gamma.mass=uniform(1, 2)", "no 'gamma'"),
+                     ("bodies.beta.mas=uniform(1, 2)", "mas"),
+                     ("bodies.beta.mass", "expected KEY=DISTRIBUTION")]:
+    p = subprocess.run([noether, "ensemble", scene, "--vary", spec, "--samples", "4", "-o", "refused.h5"],
+                       capture_output=True, text=True)
+    import re
+    if p.returncode != 2 or not re.search(expect, p.stderr) or os.path.exists("refused.h5"):
+        failures.append(f"--vary {spec}: exit {p.returncode}, {p.stderr.strip()!r}")
+p = subprocess.run([noether, "ensemble", scene, "--vary", "bodies.beta.mass=uniform(1, 2)", "-o", "refused.h5"],
+                   capture_output=True, text=True)
+if p.returncode != 2 or "--samples N is needed" not in p.stderr:
+    failures.append(f"no --samples: {p.returncode} {p.stderr!r}")
+p = ensemble("one.h5", "--samples", "128", check=False)
+if p.returncode != 2 or "exists" not in p.stderr:
+    failures.append(f"an existing file: {p.returncode} {p.stderr!r}")
+p = ensemble("one.h5", "--samples", "24", "--resume", check=False)
+if p.returncode != 2 or "holds another ensemble" not in p.stderr:
+    failures.append(f"resuming another ensemble: {p.returncode} {p.stderr!r}")
+
+for f in failures:
+    print("FAIL:", f)
+print(f"ensemble: {len(failures)} failures; kills {kills}")
+sys.exit(1 if failures else 0)
