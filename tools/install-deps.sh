@@ -17,6 +17,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   libnlopt-dev
+  libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest
   pybind11-dev
 )

@@ -2,12 +2,39 @@
 #include "commands.hpp"
 
 #include <noether/ensemble.hpp>
+#include <noether/error.hpp>
+#ifdef NOETHER_WITH_MPI
+#include "ensemble_mpi.hpp"
+#endif
 
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
 namespace noether::app {
+
+namespace {
+
+int print_report(const noether::EnsembleReport& report, const std::string& scene_file, const std::string& output,
+                 bool tty) {
+  if (tty) std::fprintf(stderr, "\n");
+  std::printf("scene                         %s\n", scene_file.c_str());
+  std::printf("samples                       %zu (%zu run here, %zu finished before)\n", report.samples, report.run,
+              report.skipped);
+  std::printf("outcomes                      %zu completed, %zu stopped by an event, %zu failed\n", report.completed,
+              report.stopped, report.failed);
+  std::printf("threads                       %u%s\n", report.threads,
+              report.ranks > 1 ? (" on rank 0, and " + std::to_string(report.ranks - 1) + " more ranks").c_str() : "");
+  std::printf("wall time                     %.3f s (%.1f samples/s; per sample %.4f s, of which set-up %.4f s)\n",
+              report.wall_seconds, report.wall_seconds > 0 ? static_cast<double>(report.run) / report.wall_seconds : 0.0,
+              report.run ? report.sample_seconds / static_cast<double>(report.run) : 0.0,
+              report.run ? report.setup_seconds / static_cast<double>(report.run) : 0.0);
+  std::printf("output                        %s\n", output.c_str());
+  return report.failed > 0 ? 3 : 0;
+}
+
+}  // namespace
 
 int ensemble(const std::string& scene_file, const std::vector<std::string>& overrides,
              const std::vector<std::string>& vary, const EnsembleCommand& command) {
@@ -21,23 +48,26 @@ int ensemble(const std::string& scene_file, const std::vector<std::string>& over
   options.resume = command.resume;
   options.overwrite = command.force;
   const bool tty = isatty(STDERR_FILENO) != 0;
-  const auto report = noether::run_ensemble(scene_file, overrides, options, command.output,
-                                            [tty](std::size_t done, std::size_t total) {
-                                              if (tty) std::fprintf(stderr, "\rensemble: %zu / %zu samples", done, total);
-                                            });
-  if (tty) std::fprintf(stderr, "\n");
-  std::printf("scene                         %s\n", scene_file.c_str());
-  std::printf("samples                       %zu (%zu run here, %zu finished before)\n", report.samples, report.run,
-              report.skipped);
-  std::printf("outcomes                      %zu completed, %zu stopped by an event, %zu failed\n", report.completed,
-              report.stopped, report.failed);
-  std::printf("threads                       %u\n", report.threads);
-  std::printf("wall time                     %.3f s (%.1f samples/s; per sample %.4f s, of which set-up %.4f s)\n",
-              report.wall_seconds, report.wall_seconds > 0 ? static_cast<double>(report.run) / report.wall_seconds : 0.0,
-              report.run ? report.sample_seconds / static_cast<double>(report.run) : 0.0,
-              report.run ? report.setup_seconds / static_cast<double>(report.run) : 0.0);
-  std::printf("output                        %s\n", command.output.c_str());
-  return report.failed > 0 ? 3 : 0;
+  auto lead = [&](noether::RemoteWorkers* remote) {
+    const auto report = noether::run_ensemble(scene_file, overrides, options, command.output,
+                                              [tty](std::size_t done, std::size_t total) {
+                                                if (tty) std::fprintf(stderr, "\rensemble: %zu / %zu samples", done, total);
+                                              },
+                                              remote);
+    return print_report(report, scene_file, command.output, tty);
+  };
+#ifdef NOETHER_WITH_MPI
+  if (launched_by_mpi()) {
+    if (command.threads == 0) options.threads = 1;  // one sample at a time per rank, rank 0 included
+    return mpi_ensemble(lead, scene_file, overrides, options, command.output);
+  }
+#else
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* n = std::getenv(v); n && std::atoi(n) > 1)
+      throw noether::Error("this noether was built without MPI (no libopenmpi-dev when it was configured): "
+                           "run the ensemble without mpirun, on one machine's threads");
+#endif
+  return lead(nullptr);
 }
 
 }  // namespace noether::app

@@ -162,16 +162,6 @@ std::string override_of(const Variation& v, double value) {
   return v.key + "=" + buf;
 }
 
-// What one sample left: written at its index by the main thread.
-struct SampleResult {
-  std::int8_t outcome = -1;  // 0 completed, 1 stopped by an event, 2 failed
-  std::string message;
-  std::vector<double> summary;  // kSummary order
-  State final_state;
-  double a = NAN, e = NAN, period = NAN;
-  double wall = 0.0, setup = 0.0;
-};
-
 const char* const kSummary[] = {"final_time",   "max_abs_energy_error", "max_rel_energy_error",
                                 "max_rel_angular_momentum_error", "min_distance", "steps",
                                 "potential_evaluations"};
@@ -380,13 +370,12 @@ class EnsembleFile {
 
 }  // namespace
 
-EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::vector<std::string>& overrides,
-                            const EnsembleOptions& options, const std::filesystem::path& output,
-                            const std::function<void(std::size_t, std::size_t)>& progress) {
-  const auto start = Clock::now();
+EnsemblePlan::EnsemblePlan(const std::filesystem::path& scene_file, std::vector<std::string> overrides_given,
+                           EnsembleOptions options_given)
+    : overrides(std::move(overrides_given)), options(std::move(options_given)) {
   if (options.vary.empty()) throw SceneError("ensemble: nothing varies; give at least one --vary KEY=DISTRIBUTION");
   const std::size_t grid = grid_size(options.vary);
-  std::size_t samples = options.samples;
+  samples = options.samples;
   const bool has_grid = std::any_of(options.vary.begin(), options.vary.end(),
                                     [](const Variation& v) { return v.kind == Variation::Kind::Grid; });
   if (samples == 0) {
@@ -397,14 +386,8 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
     throw SceneError("ensemble: --samples " + std::to_string(samples) + " is not a multiple of the grids' " +
                      std::to_string(grid) + " points");
   // The scene and every key checked before anything runs: sample 0's scene is built.
-  const Scene base = load_scene(scene_file, overrides);
-  {
-    std::vector<std::string> first = overrides;
-    const auto values = sample_values(options.vary, options.seed, 0);
-    for (std::size_t k = 0; k < options.vary.size(); ++k) first.push_back(override_of(options.vary[k], values[k]));
-    (void)parse_scene(base.text, base.file, first);
-  }
-  std::size_t pair_a = 0, pair_b = 1;
+  base = load_scene(scene_file, overrides);
+  (void)parse_scene(base.text, base.file, sample_overrides(0));
   if (!options.pair.empty()) {
     const auto comma = options.pair.find(',');
     if (comma == std::string::npos) throw SceneError("--pair '" + options.pair + "': expected two body names, a,b");
@@ -418,7 +401,109 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
   } else if (base.system.size() < 2) {
     pair_b = 0;
   }
-  EnsembleFile file(output, base, base.text, overrides, options, samples, pair_a, pair_b);
+}
+
+std::vector<std::string> EnsemblePlan::sample_overrides(std::size_t i) const {
+  std::vector<std::string> out = overrides;
+  const auto values = sample_values(options.vary, options.seed, i);
+  for (std::size_t k = 0; k < options.vary.size(); ++k) out.push_back(override_of(options.vary[k], values[k]));
+  return out;
+}
+
+SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const std::filesystem::path& output) const {
+  SampleResult r;
+  r.summary.assign(kSummaryCount, NAN);
+  const auto t0 = Clock::now();
+  try {
+    RunOptions run;
+    if (i < options.trajectories) {
+      run.output = output.parent_path() / (output.stem().string() + "-sample-" + std::to_string(i) + ".h5");
+      run.overwrite = true;
+    }
+    Simulation sim(parse_scene(base.text, base.file, sample_overrides(i)), registry, run);
+    r.setup = std::chrono::duration<double>(Clock::now() - t0).count();
+    try {
+      sim.integrate(sim.scene().run.t_end);
+    } catch (const IntegrationError& e) {
+      r.outcome = 2;
+      r.message = e.what();
+    }
+    const RunSummary s = sim.finish();
+    if (r.outcome < 0) {
+      r.outcome = s.stop_reason.empty() ? 0 : 1;
+      r.message = s.stop_reason;
+    }
+    r.summary = {s.final_state.t, s.max_abs_energy_error, s.max_rel_energy_error, s.max_rel_angular_momentum_error,
+                 s.min_distance, static_cast<double>(s.work.steps), static_cast<double>(s.work.potential_evaluations)};
+    r.final_state = s.final_state;
+    if (pair_a != pair_b) {
+      const System& sys = sim.scene().system;
+      const auto A = static_cast<Eigen::Index>(pair_a), B = static_cast<Eigen::Index>(pair_b);
+      const double ma = sys.body(pair_a).mass, mb = sys.body(pair_b).mass, mu = sys.G() * (ma + mb);
+      const RelativeState rel{s.final_state.x.col(B) - s.final_state.x.col(A),
+                              s.final_state.p.col(B) / mb - s.final_state.p.col(A) / ma};
+      try {
+        const OrbitalElements el = elements_from_state(rel, mu);
+        r.a = el.a, r.e = el.e, r.period = 2 * M_PI * std::sqrt(el.a * el.a * el.a / mu);
+      } catch (const std::domain_error&) {  // unbound: NaN
+      }
+    }
+  } catch (const Error& e) {  // a sample's scene or plugin refused: recorded, the rest go on
+    r.outcome = 2;
+    r.message = e.what();
+  } catch (const std::exception& e) {
+    r.outcome = 2;
+    r.message = std::string("unexpected error: ") + e.what();
+  }
+  r.wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  return r;
+}
+
+std::vector<double> SampleResult::pack() const {
+  std::vector<double> out{static_cast<double>(outcome), a, e, period, wall, setup};
+  out.insert(out.end(), summary.begin(), summary.end());
+  out.push_back(static_cast<double>(final_state.x.cols()));
+  out.push_back(static_cast<double>(final_state.R.size()));
+  out.push_back(final_state.t);
+  out.insert(out.end(), final_state.x.data(), final_state.x.data() + final_state.x.size());
+  out.insert(out.end(), final_state.p.data(), final_state.p.data() + final_state.p.size());
+  for (const auto& R : final_state.R) out.insert(out.end(), R.data(), R.data() + 9);
+  out.insert(out.end(), final_state.Pi.data(), final_state.Pi.data() + final_state.Pi.size());
+  return out;
+}
+
+SampleResult SampleResult::unpack(const std::vector<double>& in, std::string message) {
+  SampleResult r;
+  std::size_t k = 0;
+  auto next = [&] {
+    if (k >= in.size()) throw Error("ensemble: a sample's result arrived truncated");
+    return in[k++];
+  };
+  r.outcome = static_cast<std::int8_t>(next());
+  r.a = next(), r.e = next(), r.period = next(), r.wall = next(), r.setup = next();
+  for (std::size_t j = 0; j < kSummaryCount; ++j) r.summary.push_back(next());
+  const auto nb = static_cast<Eigen::Index>(next()), nr = static_cast<Eigen::Index>(next());
+  r.final_state.t = next();
+  r.final_state.x.resize(3, nb);
+  r.final_state.p.resize(3, nb);
+  r.final_state.Pi.resize(3, nr);
+  for (Eigen::Index j = 0; j < 3 * nb; ++j) r.final_state.x.data()[j] = next();
+  for (Eigen::Index j = 0; j < 3 * nb; ++j) r.final_state.p.data()[j] = next();
+  r.final_state.R.resize(static_cast<std::size_t>(nr));
+  for (auto& R : r.final_state.R)
+    for (int j = 0; j < 9; ++j) R.data()[j] = next();
+  for (Eigen::Index j = 0; j < 3 * nr; ++j) r.final_state.Pi.data()[j] = next();
+  r.message = std::move(message);
+  return r;
+}
+
+EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::vector<std::string>& overrides,
+                            const EnsembleOptions& options, const std::filesystem::path& output,
+                            const std::function<void(std::size_t, std::size_t)>& progress, RemoteWorkers* remote) {
+  const auto start = Clock::now();
+  const EnsemblePlan plan(scene_file, overrides, options);
+  const std::size_t samples = plan.samples;
+  EnsembleFile file(output, plan.base, plan.base.text, overrides, options, samples, plan.pair_a, plan.pair_b);
 
   EnsembleReport report;
   report.samples = samples;
@@ -429,7 +514,10 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
   unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, todo.size())));
   report.threads = threads;
+  report.ranks = remote ? remote->count() + 1 : 1;
 
+  // One dispenser of sample indices for the local threads and the remote workers alike (dynamic
+  // distribution: runs may differ in length by orders of magnitude).
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
   std::condition_variable ready;
@@ -441,55 +529,7 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
       const std::size_t t = next.fetch_add(1);
       if (t >= todo.size()) break;
       const std::size_t i = todo[t];
-      SampleResult r;
-      r.summary.assign(kSummaryCount, NAN);
-      const auto t0 = Clock::now();
-      try {
-        std::vector<std::string> mine = overrides;
-        const auto values = sample_values(options.vary, options.seed, i);
-        for (std::size_t k = 0; k < options.vary.size(); ++k) mine.push_back(override_of(options.vary[k], values[k]));
-        RunOptions run;
-        if (i < options.trajectories) {
-          run.output = output.parent_path() / (output.stem().string() + "-sample-" + std::to_string(i) + ".h5");
-          run.overwrite = true;
-        }
-        Simulation sim(parse_scene(base.text, base.file, mine), registry, run);
-        r.setup = std::chrono::duration<double>(Clock::now() - t0).count();
-        try {
-          sim.integrate(sim.scene().run.t_end);
-        } catch (const IntegrationError& e) {
-          r.outcome = 2;
-          r.message = e.what();
-        }
-        const RunSummary s = sim.finish();
-        if (r.outcome < 0) {
-          r.outcome = s.stop_reason.empty() ? 0 : 1;
-          r.message = s.stop_reason;
-        }
-        r.summary = {s.final_state.t, s.max_abs_energy_error, s.max_rel_energy_error, s.max_rel_angular_momentum_error,
-                     s.min_distance, static_cast<double>(s.work.steps),
-                     static_cast<double>(s.work.potential_evaluations)};
-        r.final_state = s.final_state;
-        if (pair_a != pair_b) {
-          const System& sys = sim.scene().system;
-          const auto A = static_cast<Eigen::Index>(pair_a), B = static_cast<Eigen::Index>(pair_b);
-          const double ma = sys.body(pair_a).mass, mb = sys.body(pair_b).mass, mu = sys.G() * (ma + mb);
-          const RelativeState rel{s.final_state.x.col(B) - s.final_state.x.col(A),
-                                  s.final_state.p.col(B) / mb - s.final_state.p.col(A) / ma};
-          try {
-            const OrbitalElements el = elements_from_state(rel, mu);
-            r.a = el.a, r.e = el.e, r.period = 2 * M_PI * std::sqrt(el.a * el.a * el.a / mu);
-          } catch (const std::domain_error&) {  // unbound: NaN
-          }
-        }
-      } catch (const Error& e) {  // a sample's scene or plugin refused: recorded, the rest go on
-        r.outcome = 2;
-        r.message = e.what();
-      } catch (const std::exception& e) {
-        r.outcome = 2;
-        r.message = std::string("unexpected error: ") + e.what();
-      }
-      r.wall = std::chrono::duration<double>(Clock::now() - t0).count();
+      SampleResult r = plan.run(i, registry, output);
       {
         std::lock_guard<std::mutex> lock(mutex);
         finished.emplace_back(i, std::move(r));
@@ -503,15 +543,39 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
   for (unsigned k = 0; k < threads; ++k) pool.emplace_back(worker);
 
   // The main thread writes: each result at its index, committed every 50 ms at most (two
-  // flushes: a few milliseconds), so a kill loses at most that much work.
+  // flushes: a few milliseconds), so a kill loses at most that much work. It also serves the
+  // remote workers.
   auto last_commit = Clock::now();
-  std::size_t written = 0;
+  std::size_t written = 0, remote_busy = 0, remote_stopped = 0;
+  const std::size_t remotes = remote ? remote->count() : 0;
+  std::vector<std::pair<std::size_t, SampleResult>> arrived;
+  std::vector<int> idle;
   for (;;) {
     std::deque<std::pair<std::size_t, SampleResult>> batch;
     {
       std::unique_lock<std::mutex> lock(mutex);
-      ready.wait_for(lock, std::chrono::milliseconds(200), [&] { return !finished.empty() || running.load() == 0; });
+      ready.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200),
+                     [&] { return !finished.empty() || running.load() == 0; });
       batch.swap(finished);
+    }
+    if (remote) {
+      arrived.clear();
+      idle.clear();
+      remote->poll(arrived, idle);
+      for (auto& item : arrived) {
+        batch.push_back(std::move(item));
+        --remote_busy;
+      }
+      for (int w : idle) {
+        const std::size_t t = next.fetch_add(1);
+        if (t < todo.size()) {
+          remote->assign(w, todo[t]);
+          ++remote_busy;
+        } else {
+          remote->assign(w, RemoteWorkers::kNone);
+          ++remote_stopped;
+        }
+      }
     }
     for (auto& [i, r] : batch) {
       file.write(i, sample_values(options.vary, options.seed, i), options.vary, r);
@@ -525,7 +589,7 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
       last_commit = Clock::now();
       if (progress) progress(report.skipped + written, samples);
     }
-    if (running.load() == 0) {
+    if (running.load() == 0 && remote_busy == 0 && remote_stopped == remotes) {
       std::lock_guard<std::mutex> lock(mutex);
       if (finished.empty()) break;
     }

@@ -1,7 +1,8 @@
 """ensemble.py NOETHER SOURCE_DIR WORK_DIR: `noether ensemble` (docs/ensembles.md).
 
-  1. The same ensemble with 1 and 2 threads gives the same file, every dataset bitwise (the
-     wall times under /timing excepted): samples draw from (seed, index) and land at their index.
+  1. The same ensemble with 1 and 2 threads, and with `mpirun -n 2`, gives the same file, every
+     dataset bitwise (the wall times under /timing excepted): samples draw from (seed, index)
+     and land at their index.
   2. Killed with SIGKILL at random moments (5 times) and resumed each time, an ensemble ends
      equal to an uninterrupted one: no sample lost, none run twice (resume runs only the samples
      without an outcome).
@@ -72,6 +73,23 @@ with h5py.File("one.h5") as f:
         failures.append(f"normal(9, 0.5) drew mean {spin.mean()}, sd {spin.std()}")
     if not np.isfinite(f["orbit/period"][()]).all():
         failures.append("the mutual orbit's period is missing")
+
+# 1b. Across processes: `mpirun -n 2` (oversubscribed where there are fewer cores) gives the same file.
+mpirun = "/usr/bin/mpirun"
+if os.path.exists(mpirun):
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    p = subprocess.run([mpirun, "-n", "2", noether, "ensemble", scene, *VARY, "--set", "run.t_end=4", "-o", "mpi.h5",
+                        "--samples", "128"], capture_output=True, text=True, env=env)
+    if p.returncode != 0 or "and 1 more ranks" not in p.stdout:
+        failures.append(f"mpirun -n 2: exit {p.returncode}: {p.stdout[-300:]} {p.stderr[-500:]}")
+    else:
+        same("one.h5", "mpi.h5", "1 thread vs mpirun -n 2")
+    p = subprocess.run([mpirun, "-n", "2", noether, "ensemble", scene, "--vary", "bodies.beta.mass=gauss(1, 2)",
+                        "--samples", "4", "-o", "mpi-refused.h5"], capture_output=True, text=True, env=env)
+    if p.returncode != 2 or "unknown distribution 'gauss'" not in p.stderr or os.path.exists("mpi-refused.h5"):
+        failures.append(f"mpirun with a bad --vary: exit {p.returncode}: {p.stderr[-300:]}")
+else:
+    failures.append("no /usr/bin/mpirun (openmpi-bin, installed by tools/install-deps.sh)")
 
 # 2. Kill and resume: 5 kills at random moments, each continuation resumed; a run that ends
 # before its kill starts the file afresh (the result must be the same whichever way it is made).

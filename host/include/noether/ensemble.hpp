@@ -6,6 +6,9 @@
 // the samples it finished.
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
+#include <noether/state.hpp>
+
+#include <cmath>
 
 #include <cstdint>
 #include <filesystem>
@@ -48,6 +51,7 @@ struct EnsembleOptions {
 
 struct EnsembleReport {
   std::size_t samples = 0, run = 0, skipped = 0;  // skipped: finished in an earlier (resumed) run
+  std::size_t ranks = 1;                          // processes (MPI), this one included
   std::size_t completed = 0, stopped = 0, failed = 0;
   double wall_seconds = 0.0;          // the whole ensemble
   double sample_seconds = 0.0;        // summed over the samples run (integration and set-up)
@@ -55,11 +59,51 @@ struct EnsembleReport {
   unsigned threads = 0;
 };
 
+// What one sample left (written at its index by the process that holds the file).
+struct SampleResult {
+  std::int8_t outcome = -1;  // 0 completed, 1 stopped by an event, 2 failed
+  std::string message;
+  std::vector<double> summary;  // final_time, max |ΔE|, max rel. |ΔE|, max rel. ΔL, min distance, steps, evaluations
+  State final_state;
+  double a = NAN, e = NAN, period = NAN;  // the pair's osculating mutual orbit at the end
+  double wall = 0.0, setup = 0.0;
+  // As numbers (all but the message), for sending between processes.
+  std::vector<double> pack() const;
+  static SampleResult unpack(const std::vector<double>& numbers, std::string message);
+};
+
+// An ensemble checked and ready: the scene, the overrides and the samples. Every process of an
+// MPI ensemble builds the same plan from the same command line.
+struct EnsemblePlan {
+  EnsemblePlan(const std::filesystem::path& scene_file, std::vector<std::string> overrides, EnsembleOptions options);
+  std::vector<std::string> sample_overrides(std::size_t index) const;  // the scene's and the sample's
+  // Runs sample `index` (with a registry of the calling thread's); failures are in the result.
+  SampleResult run(std::size_t index, PluginRegistry& registry, const std::filesystem::path& output) const;
+  Scene base;
+  std::vector<std::string> overrides;
+  EnsembleOptions options;
+  std::size_t samples = 0, pair_a = 0, pair_b = 1;
+};
+
+// Workers in other processes (MPI ranks), served by the process that writes the file.
+class RemoteWorkers {
+ public:
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  virtual ~RemoteWorkers() = default;
+  virtual std::size_t count() const = 0;
+  // Without blocking: the results that arrived, and the workers waiting for a sample.
+  virtual void poll(std::vector<std::pair<std::size_t, SampleResult>>& results, std::vector<int>& idle) = 0;
+  // Gives a worker a sample, or kNone: no more, stop.
+  virtual void assign(int worker, std::size_t index) = 0;
+};
+
 // Runs the ensemble of `scene_file` (with `overrides` applied to every sample) into `output`.
 // Every variation key and distribution is checked (and one sample's scene built) before any
 // sample runs. `progress` is called from the main thread with (samples finished, total).
+// `remote`: more workers in other processes (MPI), fed from the same queue of samples.
 EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::vector<std::string>& overrides,
                             const EnsembleOptions& options, const std::filesystem::path& output,
-                            const std::function<void(std::size_t, std::size_t)>& progress = {});
+                            const std::function<void(std::size_t, std::size_t)>& progress = {},
+                            RemoteWorkers* remote = nullptr);
 
 }  // namespace noether
