@@ -41,6 +41,15 @@ SUMMARY_KEYS = ["E0", "max_abs_energy_error", "max_rel_linear_momentum_error", "
                 "max_orthogonality_error", "closest_approach", "output_frames", "final_time", "steps"]
 
 
+def frames_complete(path):
+    """The complete frames of a file being written (0 while it does not exist or opens)."""
+    try:
+        with h5py.File(path, "r", locking=False) as f:
+            return int(f["frames_complete"][()])
+    except (OSError, KeyError):
+        return 0
+
+
 def summary_of(stdout):
     return json.loads(stdout)
 
@@ -67,11 +76,11 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
     while killed < kills:
         fresh = "--resume" not in command
         p = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        # A fresh run is killed only once its file exists (on a loaded machine starting can take
-        # longer than the whole run's share a kill waits).
-        deadline = time.monotonic() + 30
-        while fresh and not os.path.exists(part) and p.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.001)
+        # A fresh run is killed only once its file holds a complete frame (on a loaded machine
+        # starting can take longer than the whole run's share a kill waits).
+        deadline = time.monotonic() + 60
+        while fresh and frames_complete(part) == 0 and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.005)
         # Each kill lands within the first eighth of a whole run's time (a continuation has less
         # to do than the whole run), so KILLS of them leave work for the last continuation.
         time.sleep(random.uniform(0.02, 0.12) * duration)
