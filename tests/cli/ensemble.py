@@ -98,9 +98,24 @@ kills, resumed_with_work = 0, 0
 base = [noether, "ensemble", scene, *VARY, "--set", "run.t_end=4", "-o", "killed.h5", "--samples", "128",
         "--threads", "2"]
 args = base + ["--force"]
+def committed(path):
+    """Samples with an outcome in a file being written (0 while it does not exist or opens)."""
+    try:
+        with h5py.File(path, "r", locking=False) as f:
+            return int((f["outcome"][()] >= 0).sum())
+    except (OSError, KeyError):
+        return 0
+
+
 while kills < 5:
+    before = committed("killed.h5") if "--resume" in args else 0
     p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(rng.uniform(0.05, 0.15) * duration)
+    # Killed only after it committed something (on a loaded machine a kill at a random moment
+    # may otherwise always come before the first commit), then at a random moment.
+    deadline = time.monotonic() + 60
+    while committed("killed.h5") <= before and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.005)
+    time.sleep(rng.uniform(0.0, 0.1) * duration)
     if p.poll() is None:
         p.send_signal(signal.SIGKILL)
         kills += 1
