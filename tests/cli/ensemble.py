@@ -7,6 +7,7 @@
      equal to an uninterrupted one: no sample lost, none run twice (resume runs only the samples
      without an outcome).
   3. A sample whose integrator fails is recorded as failed with its message; the others run; exit 3.
+  (and --trajectories K writes the first K samples' full output files).
   4. Bad distributions and unknown keys are refused (exit 2) before any sample runs: no file.
 """
 import os
@@ -73,6 +74,22 @@ with h5py.File("one.h5") as f:
         failures.append(f"normal(9, 0.5) drew mean {spin.mean()}, sd {spin.std()}")
     if not np.isfinite(f["orbit/period"][()]).all():
         failures.append("the mutual orbit's period is missing")
+
+# 1a. --trajectories K: the first K samples' full output files end where /final says.
+p = subprocess.run([noether, "ensemble", scene, *VARY, "--set", "run.t_end=4", "-o", "traj.h5", "--samples", "8",
+                    "--trajectories", "2"], capture_output=True, text=True)
+with h5py.File("traj.h5") as f:
+    final = f["final/positions"][()]
+for i in range(3):
+    path = f"traj-sample-{i}.h5"
+    if i < 2 and not os.path.exists(path):
+        failures.append(f"--trajectories 2 wrote no {path}")
+    elif i < 2:
+        with h5py.File(path) as g:
+            if g["particles/bodies/position/value"][-1].tobytes() != final[i].tobytes():
+                failures.append(f"{path} does not end at /final/positions[{i}]")
+    elif os.path.exists(path):
+        failures.append(f"--trajectories 2 also wrote {path}")
 
 # 1b. Across processes: `mpirun -n 2` (oversubscribed where there are fewer cores) gives the same file.
 mpirun = "/usr/bin/mpirun"
