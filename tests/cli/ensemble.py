@@ -24,7 +24,7 @@ import numpy as np
 noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
 light = len(sys.argv) > 4 and sys.argv[4] == "light"
 N = "32" if light else "128"           # samples
-T_END = "run.t_end=1" if light else T_END
+T_END = "run.t_end=1" if light else "run.t_end=4"
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
 for name in os.listdir("."):
