@@ -187,6 +187,18 @@ struct Simulation::Impl {
     const PotentialEvaluator* evaluator = integrator->potential_evaluator();
     return evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
   }
+  // A new segment of statistics (set_state, and the replay of a resumed run): the next frame
+  // observed gives the references (E0, the momentum scales, what the scene conserves).
+  void new_segment() {
+    RunSummary& s = summary;
+    s.frames = 0;
+    s.interpolated_frames = 0;
+    s.max_abs_energy_error = s.max_rel_linear_momentum_error = 0.0;
+    s.max_rel_angular_momentum_error = s.max_orthogonality_error = 0.0;
+    s.min_gap = std::numeric_limits<double>::infinity();
+    s.min_gap_reach = 0.0;
+    s.min_gap_pair.clear();
+  }
   void make_observer() {
     observer = std::make_unique<RunObserver>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
       if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
@@ -305,13 +317,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   options.output.reset();
   auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, options));
   Impl& m = *sim->impl_;
-  m.summary.frames = 0;
-  m.summary.max_abs_energy_error = m.summary.max_rel_linear_momentum_error = 0.0;
-  m.summary.max_rel_angular_momentum_error = m.summary.max_orthogonality_error = 0.0;
-  m.summary.min_gap = std::numeric_limits<double>::infinity();
-  m.summary.min_gap_reach = 0.0;
-  m.summary.min_gap_pair.clear();
-  m.make_observer();
+  m.new_segment();
   Forces forces;
   forces.resize(m.scene.system);
   {  // frame 0 with its forces (what the scene conserves), the others with U alone
@@ -473,11 +479,7 @@ void Simulation::set_state(const State& s) {
   m.t_origin = s.t;
   m.steps_before = 0;
   m.integrator_at_state = false;
-  // A new segment: its first frame gives the references.
-  m.summary.frames = 0;
-  m.summary.interpolated_frames = 0;
-  m.summary.max_abs_energy_error = m.summary.max_rel_linear_momentum_error = 0.0;
-  m.summary.max_rel_angular_momentum_error = m.summary.max_orthogonality_error = 0.0;
+  m.new_segment();  // its first frame, below, gives the references
   Forces forces;
   forces.resize(sys);
   m.integrator->start(m.state);
