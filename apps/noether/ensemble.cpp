@@ -22,8 +22,8 @@ int print_report(const noether::EnsembleReport& report, const std::string& scene
   std::printf("scene                         %s\n", scene_file.c_str());
   std::printf("samples                       %zu (%zu run here, %zu finished before)\n", report.samples, report.run,
               report.skipped);
-  std::printf("outcomes                      %zu completed, %zu stopped by an event, %zu failed\n", report.completed,
-              report.stopped, report.failed);
+  std::printf("outcomes                      %zu completed, %zu stopped by an event, %zu failed; %zu untrustworthy\n",
+              report.completed, report.stopped, report.failed, report.untrustworthy);
   std::printf("threads                       %u%s\n", report.threads,
               report.ranks > 1 ? (" on rank 0, and " + std::to_string(report.ranks - 1) + " more ranks").c_str() : "");
   std::printf("wall time                     %.3f s (%.1f samples/s; per sample %.4f s, of which set-up %.4f s)\n",
@@ -31,6 +31,13 @@ int print_report(const noether::EnsembleReport& report, const std::string& scene
               report.run ? report.sample_seconds / static_cast<double>(report.run) : 0.0,
               report.run ? report.setup_seconds / static_cast<double>(report.run) : 0.0);
   std::printf("output                        %s\n", output.c_str());
+  if (report.untrustworthy > 0) {
+    std::fflush(stdout);
+    std::fprintf(stderr,
+                 "noether: %zu UNTRUSTWORTHY samples: they finished, but their verdict (run.trust) says not to trust "
+                 "them; /trustworthy is 0 and /message says why\n",
+                 report.untrustworthy);
+  }
   return report.failed > 0 ? 3 : 0;
 }
 

@@ -258,6 +258,10 @@ class EnsembleFile {
     string_attribute(timing, "description", "wall times: not results, they differ from run to run");
     H5Dclose(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}));
     H5Dclose(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}));
+    hid_t trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
+    string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
+                                           "-1 not run or failed");
+    H5Dclose(trust);
     H5Gclose(timing);
     check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
     std::filesystem::rename(partial_, path_, ec);
@@ -302,6 +306,7 @@ class EnsembleFile {
     put("orbit/a", i, &r.a, 1);
     put("orbit/e", i, &r.e, 1);
     put("orbit/period", i, &r.period, 1);
+    put("trustworthy", i, &r.trustworthy, 1, H5T_NATIVE_INT8);
     put("timing/wall_seconds", i, &r.wall, 1);
     put("timing/setup_seconds", i, &r.setup, 1);
     pending_.push_back({i, r.outcome});
@@ -433,6 +438,13 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
       r.outcome = s.stop_reason.empty() ? 0 : 1;
       r.message = s.stop_reason;
     }
+    // A sample that finished but cannot be trusted (run.trust) says so, as `noether run` does.
+    r.trustworthy = r.outcome == 2 ? -1 : s.verdict.trustworthy ? 1 : 0;
+    if (r.trustworthy == 0) {
+      std::string reasons;
+      for (const auto& why : s.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + why;
+      r.message += (r.message.empty() ? "" : "; ") + ("untrustworthy: " + reasons);
+    }
     r.summary = {s.final_state.t, s.max_abs_energy_error, s.max_rel_energy_error, s.max_rel_angular_momentum_error,
                  s.min_distance, static_cast<double>(s.work.steps), static_cast<double>(s.work.potential_evaluations)};
     r.final_state = s.final_state;
@@ -460,7 +472,7 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
 }
 
 std::vector<double> SampleResult::pack() const {
-  std::vector<double> out{static_cast<double>(outcome), a, e, period, wall, setup};
+  std::vector<double> out{static_cast<double>(outcome), static_cast<double>(trustworthy), a, e, period, wall, setup};
   out.insert(out.end(), summary.begin(), summary.end());
   out.push_back(static_cast<double>(final_state.x.cols()));
   out.push_back(static_cast<double>(final_state.R.size()));
@@ -480,6 +492,7 @@ SampleResult SampleResult::unpack(const std::vector<double>& in, std::string mes
     return in[k++];
   };
   r.outcome = static_cast<std::int8_t>(next());
+  r.trustworthy = static_cast<std::int8_t>(next());
   r.a = next(), r.e = next(), r.period = next(), r.wall = next(), r.setup = next();
   for (std::size_t j = 0; j < kSummaryCount; ++j) r.summary.push_back(next());
   const auto nb = static_cast<Eigen::Index>(next()), nr = static_cast<Eigen::Index>(next());
@@ -581,6 +594,7 @@ EnsembleReport run_ensemble(const std::filesystem::path& scene_file, const std::
       file.write(i, sample_values(options.vary, options.seed, i), options.vary, r);
       ++written;
       (r.outcome == 0 ? report.completed : r.outcome == 1 ? report.stopped : report.failed) += 1;
+      if (r.trustworthy == 0) ++report.untrustworthy;
       report.sample_seconds += r.wall;
       report.setup_seconds += r.setup;
     }

@@ -76,6 +76,8 @@ with h5py.File("one.h5") as f:
     spin = f["inputs/bodies.alpha.angular_velocity.2"][()]
     if not (abs(spin.mean() - 9) < 4 * 0.5 / np.sqrt(len(spin)) and 0.3 < spin.std() < 0.7):  # normal(9, 0.5)
         failures.append(f"normal(9, 0.5) drew mean {spin.mean()}, sd {spin.std()}")
+    if not (f["trustworthy"][()] == 1).all():
+        failures.append(f"trustworthy {f['trustworthy'][()]}")
     if not np.isfinite(f["orbit/period"][()]).all():
         failures.append("the mutual orbit's period is missing")
 
@@ -94,6 +96,17 @@ for i in range(3):
                 failures.append(f"{path} does not end at /final/positions[{i}]")
     elif os.path.exists(path):
         failures.append(f"--trajectories 2 also wrote {path}")
+
+# 1c. Samples that finish but cannot be trusted say so (a threshold no run meets).
+p = subprocess.run([noether, "ensemble", scene, *VARY, "--set", T_END, "--set", "run.trust.energy=1e-15", "-o",
+                    "untrusted.h5", "--samples", "4"], capture_output=True, text=True)
+with h5py.File("untrusted.h5") as f:
+    trust, outcome = f["trustworthy"][()], f["outcome"][()]
+    message = [m.decode() for m in f["message"][()]]
+if p.returncode != 0 or not (trust == 0).all() or not (outcome == 0).all() \
+        or not all(m.startswith("untrustworthy: relative energy error") for m in message) \
+        or "4 UNTRUSTWORTHY samples" not in p.stderr:
+    failures.append(f"untrustworthy samples: exit {p.returncode}, trustworthy {trust}, {message[:1]}, {p.stderr!r}")
 
 # 1b. Across processes: `mpirun -n 2` (oversubscribed where there are fewer cores) gives the same file.
 mpirun = "/usr/bin/mpirun"
@@ -164,9 +177,12 @@ p = subprocess.run([noether, "ensemble", scene, "--vary", "integrator.max_steps=
                    capture_output=True, text=True)
 with h5py.File("fail.h5") as f:
     outcome, steps = f["outcome"][()], f["inputs/integrator.max_steps"][()]
+    trust = f["trustworthy"][()]
     message = [m.decode() for m in f["message"][()]]
 if p.returncode != 3 or not ((outcome == 2) == (steps == 40)).all() or not (outcome == 0).any():
     failures.append(f"failing samples: exit {p.returncode}, outcomes {outcome}, max_steps {steps}")
+if not ((trust == -1) == (outcome == 2)).all():
+    failures.append(f"failed samples have no verdict: trustworthy {trust}, outcomes {outcome}")
 if not all("max_steps" in m for m, o in zip(message, outcome) if o == 2):
     failures.append(f"failed samples' messages {message}")
 

@@ -53,6 +53,7 @@ struct EnsembleReport {
   std::size_t samples = 0, run = 0, skipped = 0;  // skipped: finished in an earlier (resumed) run
   std::size_t ranks = 1;                          // processes (MPI), this one included
   std::size_t completed = 0, stopped = 0, failed = 0;
+  std::size_t untrustworthy = 0;  // finished, but their verdict (run.trust) says not to trust them
   double wall_seconds = 0.0;          // the whole ensemble
   double sample_seconds = 0.0;        // summed over the samples run (integration and set-up)
   double setup_seconds = 0.0;         // summed scene parsing and plugin set-up
@@ -67,6 +68,7 @@ struct SampleResult {
   State final_state;
   double a = NAN, e = NAN, period = NAN;  // the pair's osculating mutual orbit at the end
   double wall = 0.0, setup = 0.0;
+  std::int8_t trustworthy = -1;  // the verdict: 1, 0 (why: in message), −1 when it failed
   // As numbers (all but the message), for sending between processes.
   std::vector<double> pack() const;
   static SampleResult unpack(const std::vector<double>& numbers, std::string message);
