@@ -1,0 +1,56 @@
+#pragma once
+// Relative periodic orbits of the full body problem (docs/equations.md §19): states that an
+// integrator's map over a time T returns turned by an angle α about the total angular
+// momentum's axis, Rot(−α) Φ_T(s) = s. Φ_T is any integrator plugin through the stepping loop:
+// the continuous flow with an adaptive method (rk rkf78, cvode), or the LGVI's discrete map with
+// T = N h, whose periodic orbits are those of the symplectic map itself. Shooting (Newton on s
+// and α, T fixed) and the multipliers of D(Rot(−α) Φ_T) with the symmetry directions projected out.
+#include <noether/full_body_model.hpp>
+#include <noether/scene.hpp>
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+// Φ_T(s) by `integrator` (collisions and close approaches are not watched).
+State integrator_map(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T);
+
+// s turned by the rotation Q about the origin: x → Q x, γ → Q γ, R → Q R, Π unchanged.
+State rotated(const State& s, const Mat3& Q);
+
+struct RelativePeriodicOrbit {
+  State state;       // the barycentre at rest at the origin
+  double period = 0;
+  double angle = 0;  // α
+  Vec3 axis = Vec3::UnitZ();
+  double closure = 0;  // largest scaled component of the chart residual (19.1)
+  double initial_closure = 0;
+  int iterations = 0;
+};
+
+// Newton from (guess, T, α0): minimum-norm Gauss–Newton steps on (19.1) with L·k̂ held at the
+// guess's, halved until the residual falls, Jacobian by central differences of the map.
+RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
+                                                    const State& guess, double period, double angle,
+                                                    double tolerance = 1e-13, int max_iterations = 20);
+
+struct OrbitMultipliers {
+  std::vector<std::complex<double>> multipliers;  // of the reduced map (19.2), by modulus
+  double max_modulus = 0;
+  double invariance_defect = 0;
+  // ‖Mᵀ∇E − ∇E‖ / ‖∇E‖: whether the map conserves E (a flow) or not (a symplectic map, which
+  // conserves a modified energy); the energy and the flow are projected out only when it does.
+  double energy_defect = 0;
+  bool energy_conserved = false;
+  std::string verdict;  // "linearly stable" (every |μ| ≤ 1 + tol), "unstable" (> 1 + 100 tol), "undecided"
+};
+
+// The monodromy D(Rot(−α) Φ_T) by central differences, restricted to the barycentre-free
+// perturbations with L·k̂ (and, when the map conserves it, the energy) fixed, modulo the
+// rotations (and the flow).
+OrbitMultipliers relative_orbit_multipliers(const FullBodyModel& model, const PluginConfig& integrator,
+                                            const RelativePeriodicOrbit& orbit, double tolerance = 1e-6);
+
+}  // namespace noether

@@ -1,0 +1,16 @@
+#pragma once
+// A scene's text with another state: the scene's bodies (masses, shapes, inertia), units,
+// potential and integrator as it was run, each body's initial state replaced by `state`
+// (position, velocity, attitude as a matrix, body-frame angular velocity), and a run of
+// `t_end` with `frames` output frames (a fixed integrator step is shortened so that every frame is a whole number of steps). What `noether orbit equilibrium -o` writes.
+#include <noether/scene.hpp>
+#include <noether/state.hpp>
+
+#include <string>
+
+namespace noether {
+
+std::string scene_with_state(const Scene& scene, const State& state, double t_end, int frames,
+                             const std::string& description);
+
+}  // namespace noether
