@@ -72,11 +72,21 @@ struct OrbitOptions {
   bool choreography = false, refine = true;
   double max_residual = 1e-2;
   std::string out_dir = ".";
+  // equilibrium
+  std::string fix = "separation";  // separation | angular-momentum | rate
+  double value = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> pair;   // two body names or indices
+  std::vector<double> sweep;       // from, to, count
+  bool align = true;
+  int angle_turns = 0;  // whole turns added to the measured α (stability of rigid bodies)
 };
 int orbit_find(OrbitOptions options);
 int orbit_verify(const OrbitOptions& options);
 int orbit_stability(const OrbitOptions& options);
 int orbit_refine(const OrbitOptions& options);
+int orbit_equilibrium(const OrbitOptions& options);
+// orbit stability on a scene with rigid bodies: a relative periodic orbit of its integrator's map.
+int orbit_rigid_stability(const OrbitOptions& options);
 
 int check_potential(const std::string& scene_file, const std::vector<std::string>& overrides,
                     const noether::PotentialCheckOptions& options);

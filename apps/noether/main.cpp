@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
   ensemble_cmd->add_flag("--resume", ensemble.resume, "continue the ensemble in the output file: run only missing samples");
   ensemble_cmd->add_flag("--force", ensemble.force, "replace an existing output file");
 
-  auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine");
+  auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine; relative equilibria of rigid bodies");
   orbit_cmd->require_subcommand(1);
   noether::app::OrbitOptions orbit;
   auto* find_cmd = orbit_cmd->add_subcommand("find", "minimize a Fourier-discretized action from random starts");
@@ -136,7 +136,26 @@ int main(int argc, char** argv) {
   orbit_scene_cmds[0]->add_option("--tolerance", orbit.tolerance, "closure accepted (relative)")->capture_default_str();
   orbit_scene_cmds[1]->add_option("--tolerance", orbit.tolerance, "|lambda| <= 1 + tolerance is stable")->capture_default_str();
   orbit_scene_cmds[1]->add_option("--first-order", orbit.first_order, "also Vanderbei's first-order product with N steps");
+  orbit_scene_cmds[1]->add_option("--turns", orbit.angle_turns,
+                                  "rigid bodies: whole turns to add to the measured angle alpha")->capture_default_str();
   orbit_scene_cmds[2]->add_option("-o,--output", orbit.output, "refined scene (default: overwrite the input)");
+
+  auto* equilibrium_cmd = orbit_cmd->add_subcommand(
+      "equilibrium", "relative equilibrium of rigid bodies (locked, turning about the angular momentum) and its stability");
+  bool no_align = false;
+  equilibrium_cmd->add_option("scene", orbit.scene, "scene whose state is the first guess (YAML)")->required();
+  equilibrium_cmd->add_option("--set", orbit.overrides, "override a scene key")->take_all();
+  equilibrium_cmd->add_option("--fix", orbit.fix, "the member of the family: separation, angular-momentum or rate")
+      ->check(CLI::IsMember({"separation", "angular-momentum", "rate"}))->capture_default_str();
+  equilibrium_cmd->add_option("--value", orbit.value, "its value (default: the scene's)");
+  equilibrium_cmd->add_option("--pair", orbit.pair, "a,b: the bodies whose separation is fixed (default: the first two)")
+      ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--sweep", orbit.sweep, "from,to,count: a table along the family, each solution the next guess")
+      ->delimiter(',')->expected(3);
+  equilibrium_cmd->add_option("--tolerance", orbit.tolerance, "|Re lambda| <= tolerance x max(omega, |lambda|) is stable")
+      ->capture_default_str();
+  equilibrium_cmd->add_flag("--no-align", no_align, "keep the guess's attitudes (default: principal axes turned onto the angular momentum)");
+  equilibrium_cmd->add_option("-o,--output", orbit.output, "write the equilibrium as a scene (one period)");
 
   auto* check_cmd = app.add_subcommand(
       "check-potential",
@@ -166,6 +185,7 @@ int main(int argc, char** argv) {
   }
   orbit.bodies_given = bodies_opt->count() > 0;
   orbit.refine = !no_refine;
+  orbit.align = !no_align;
   spdlog::set_level(spdlog::level::from_str(level));
   try {
     if (*run_cmd) {
@@ -191,6 +211,7 @@ int main(int argc, char** argv) {
     if (*orbit_scene_cmds[0]) return noether::app::orbit_verify(orbit);
     if (*orbit_scene_cmds[1]) return noether::app::orbit_stability(orbit);
     if (*orbit_scene_cmds[2]) return noether::app::orbit_refine(orbit);
+    if (*equilibrium_cmd) return noether::app::orbit_equilibrium(orbit);
     if (*compare_cmd) return noether::app::compare(scene, overrides, runs, models, reference_model, spec_file, repeats, csv, h5, png,
                                      !no_plot, max_wall_time);
     if (*check_cmd) {

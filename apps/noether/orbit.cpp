@@ -62,6 +62,7 @@ int orbit_verify(const OrbitOptions& o) {
 }
 
 int orbit_stability(const OrbitOptions& o) {
+  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_stability(o);
   Eigen::VectorXd xi;
   double T;
   const auto model = orbit_model(o, xi, T);

@@ -1,0 +1,198 @@
+// noether orbit equilibrium, and noether orbit stability on scenes with rigid bodies: relative
+// equilibria and relative periodic orbits of the full body problem (docs/relative-equilibria.md,
+// docs/equations.md §18–19).
+#include "commands.hpp"
+
+#include <noether/error.hpp>
+#include <noether/relative_equilibrium.hpp>
+#include <noether/relative_periodic_orbit.hpp>
+#include <noether/scene.hpp>
+#include <noether/scene_with_state.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+namespace noether::app {
+
+namespace {
+
+std::size_t body_index(const noether::System& system, const std::string& name_or_index) {
+  const int i = system.index_of(name_or_index);
+  if (i >= 0) return static_cast<std::size_t>(i);
+  try {
+    std::size_t used = 0;
+    const long k = std::stol(name_or_index, &used);
+    if (used == name_or_index.size() && k >= 0 && static_cast<std::size_t>(k) < system.size())
+      return static_cast<std::size_t>(k);
+  } catch (const std::exception&) {
+  }
+  throw noether::SceneError("orbit equilibrium --pair: no body '" + name_or_index + "' in the scene (give names or indices)");
+}
+
+noether::EquilibriumFamily family(const std::string& fix) {
+  if (fix == "angular-momentum") return noether::EquilibriumFamily::angular_momentum;
+  if (fix == "rate") return noether::EquilibriumFamily::rate;
+  return noether::EquilibriumFamily::separation;
+}
+
+// The angle between a rigid body's long axis (least moment) and the line to the other body of
+// the pair, in degrees, folded into [0, 90].
+double long_axis_angle(const noether::System& system, const noether::State& s, std::size_t body, std::size_t other) {
+  const int r = system.rigid_index(body);
+  if (r < 0) return NAN;
+  Eigen::SelfAdjointEigenSolver<noether::Mat3> es(system.body(body).inertia);
+  const noether::Vec3 axis = s.R[static_cast<std::size_t>(r)] * es.eigenvectors().col(0);
+  const noether::Vec3 line = (s.x.col(static_cast<Eigen::Index>(other)) - s.x.col(static_cast<Eigen::Index>(body))).normalized();
+  return std::acos(std::min(1.0, std::abs(axis.dot(line)))) * 180 / std::numbers::pi;
+}
+
+// An equilibrium inside the bodies' bounding spheres is found all the same, and flagged.
+void warn_if_overlapping(const noether::RelativeEquilibrium& eq) {
+  if (eq.contact > 0 && eq.separation <= eq.contact)
+    std::printf("warning: the bodies' bounding spheres overlap here (separation %.6g <= %.6g, the sum of their radii): "
+                "the bodies may touch, and a series model may not converge; this equilibrium may not be physical\n",
+                eq.separation, eq.contact);
+}
+
+}  // namespace
+
+int orbit_equilibrium(const OrbitOptions& o) {
+  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+  noether::PluginRegistry registry;
+  const auto model = noether::FullBodyModel::from_scene(scene, registry);
+  noether::EquilibriumOptions options;
+  options.fix = family(o.fix);
+  options.value = o.value;
+  options.align = o.align;
+  if (!o.pair.empty()) {
+    options.body_a = body_index(scene.system, o.pair[0]);
+    options.body_b = body_index(scene.system, o.pair[1]);
+  }
+  const auto& sys = scene.system;
+  const std::string a = sys.size() > options.body_a ? sys.body(options.body_a).name : "",
+                    b = sys.size() > options.body_b ? sys.body(options.body_b).name : "";
+
+  if (!o.sweep.empty()) {  // a table along the family
+    const int count = static_cast<int>(o.sweep[2]);
+    if (count < 2 || !(o.sweep[0] > 0) || !(o.sweep[1] > 0))
+      throw noether::SceneError("orbit equilibrium --sweep from,to,count: positive values and a count of at least 2");
+    std::printf("%-14s %-14s %-14s %-16s %-16s %-10s %s\n", o.fix.c_str(), "rate", "period", "L.k", "linear", "energetic",
+                "frequencies (turning frame)");
+    noether::State guess = scene.initial;
+    int failures = 0;
+    for (int i = 0; i < count; ++i) {
+      options.value = o.sweep[0] + (o.sweep[1] - o.sweep[0]) * i / (count - 1);
+      const auto eq = noether::find_relative_equilibrium(model, guess, options);
+      warn_if_overlapping(eq);
+      if (!eq.converged) {
+        std::printf("%-14.8g not converged (residual %.1e)\n", options.value, eq.residual);
+        ++failures;
+        continue;
+      }
+      guess = eq.state;
+      const auto st = noether::linear_stability(model, eq, o.tolerance);
+      std::printf("%-14.8g %-14.8g %-14.8g %-16.10g %-16s %-10s", options.value, eq.rate, 2 * std::numbers::pi / eq.rate,
+                  eq.angular_momentum, st.verdict.c_str(), st.energetic_verdict == "energetically stable" ? "stable" :
+                  st.energetic_verdict == "undecided" ? "undecided" : ("index " + std::to_string(st.energetic_index)).c_str());
+      for (const auto& m : st.modes)
+        if (m.frequency > 0) std::printf(" %.6g", m.frequency);
+        else std::printf(" [%+.3g]", m.eigenvalue.real());
+      std::printf("\n");
+    }
+    return failures == 0 ? 0 : 1;
+  }
+
+  const auto eq = noether::find_relative_equilibrium(model, scene.initial, options);
+  std::printf("relative equilibrium from %s, %s fixed", o.scene.c_str(), o.fix.c_str());
+  if (options.fix == noether::EquilibriumFamily::separation) std::printf(" (%s-%s)", a.c_str(), b.c_str());
+  std::printf("\nNewton: %d iterations, largest scaled residual %.2e (%s)", eq.iterations, eq.residual,
+              eq.converged ? "converged" : "NOT converged");
+  if (eq.alignment > 0) std::printf("; guess's attitudes turned by up to %.3f deg onto the angular momentum", eq.alignment * 180 / std::numbers::pi);
+  std::printf("\n");
+  std::printf("axis k (total angular momentum)  [%.9f, %.9f, %.9f]\n", eq.axis.x(), eq.axis.y(), eq.axis.z());
+  std::printf("rate omega                       %.12g (period %.12g)\n", eq.rate, 2 * std::numbers::pi / eq.rate);
+  std::printf("separation %s-%s%*s%.12g\n", a.c_str(), b.c_str(), static_cast<int>(std::max<std::size_t>(1, 21 - a.size() - b.size())), "", eq.separation);
+  std::printf("angular momentum L.k             %.12g\n", eq.angular_momentum);
+  std::printf("energy                           %.12g\n", eq.energy);
+  if (sys.size() == 2)
+    for (std::size_t i = 0; i < 2; ++i)
+      if (sys.body(i).rigid && !std::isnan(long_axis_angle(sys, eq.state, i, 1 - i)))
+        std::printf("long axis of %-20s%.4f deg from the line of centres\n", sys.body(i).name.c_str(),
+                    long_axis_angle(sys, eq.state, i, 1 - i));
+  warn_if_overlapping(eq);
+  if (!eq.converged) {
+    std::fprintf(stderr, "noether: Newton did not converge (residual %.1e > %.1e): the scene's state may be too far from an "
+                 "equilibrium of this family; try another --fix or --value, or a guess closer to a locked state\n",
+                 eq.residual, options.tolerance);
+    return 1;
+  }
+  const auto st = noether::linear_stability(model, eq, o.tolerance);
+  std::printf("normal modes of the linearisation in the turning frame (symmetries projected out; invariance defect %.1e):\n",
+              st.invariance_defect);
+  std::printf("  %-16s %-16s %-12s %s\n", "frequency", "period", "Re lambda", "dominant motion");
+  for (const auto& m : st.modes)
+    std::printf("  %-16.10g %-16.10g %+-12.2e %s (%.0f %%)%s\n", m.frequency, m.frequency > 0 ? 2 * std::numbers::pi / m.frequency : INFINITY,
+                m.eigenvalue.real(), m.kind.c_str(), 100 * m.weight, st.planar ? (m.in_plane ? ", in-plane" : ", out of plane") : "");
+  std::printf("linear stability: %s", st.verdict.c_str());
+  if (st.planar) std::printf(" (in-plane: %s; out of plane: %s)", st.in_plane_verdict.c_str(), st.out_of_plane_verdict.c_str());
+  std::printf(", max |Re lambda| = %.2e x %.3g\n", st.max_real / st.scale, st.scale);
+  std::printf("energy-momentum test: %s (%d negative directions; lowest Hessian eigenvalue %.3e of the largest)\n",
+              st.energetic_verdict.c_str(), st.energetic_index, st.hessian_eigenvalues.empty() ? 0.0 : st.hessian_eigenvalues.front());
+  if (st.verdict == "linearly stable" && st.energetic_index > 0)
+    std::printf("note: stable only gyroscopically: any dissipation (tides) makes it unstable\n");
+  if (!o.output.empty()) {
+    char desc[200];
+    std::snprintf(desc, sizeof desc, "relative equilibrium of %s (noether orbit equilibrium): rate %.12g, period %.12g",
+                  o.scene.c_str(), eq.rate, 2 * std::numbers::pi / eq.rate);
+    std::ofstream file(o.output);
+    file << noether::scene_with_state(scene, eq.state, 2 * std::numbers::pi / eq.rate, 200, desc);
+    file.close();
+    if (!file) throw noether::OutputError("cannot write the equilibrium scene to " + o.output + "; choose a folder you can write");
+    std::printf("written: %s (one period)\n", o.output.c_str());
+  }
+  return 0;
+}
+
+int orbit_rigid_stability(const OrbitOptions& o) {
+  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+  noether::PluginRegistry registry;
+  const auto model = noether::FullBodyModel::from_scene(scene, registry);
+  const double T = o.period > 0 ? o.period : scene.run.t_end;
+  if (scene.system.size() < 2)
+    throw noether::SceneError("orbit stability of rigid bodies: relative periodic orbits need at least two bodies");
+  // α0: the turn of the first two bodies' line of centres about k̂ over one period.
+  const noether::Vec3 k = model.angular_momentum(scene.initial).normalized();
+  const noether::State end = noether::integrator_map(model, scene.integrator, scene.initial, T);
+  const auto line = [&](const noether::State& s) {
+    const noether::Vec3 d = s.x.col(1) - s.x.col(0);
+    return noether::Vec3(d - k * k.dot(d));
+  };
+  const noether::Vec3 a = line(scene.initial), b = line(end);
+  double alpha = std::atan2(a.cross(b).dot(k), a.dot(b));
+  if (o.angle_turns != 0) alpha += 2 * std::numbers::pi * o.angle_turns;
+  const auto orbit = noether::shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
+  std::printf("relative periodic orbit of %s on the map of %s over T = %.12g: closure %.2e -> %.2e in %d Newton steps, "
+              "turned by alpha = %.12g rad about k\n",
+              o.scene.c_str(), scene.integrator.plugin.c_str(), T, orbit.initial_closure, orbit.closure, orbit.iterations,
+              orbit.angle);
+  if (orbit.closure > 1e-9) {
+    std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e): the scene's state is not near a "
+                 "relative periodic orbit of period %.6g; try another --period\n", orbit.closure, T);
+    return 1;
+  }
+  const auto mu = noether::relative_orbit_multipliers(model, scene.integrator, orbit, o.tolerance);
+  std::printf("the map %s the energy (defect %.1e): projected out are the barycentre, L.k, the rotations%s "
+              "(invariance defect %.1e)\n",
+              mu.energy_conserved ? "conserves" : "does not conserve", mu.energy_defect,
+              mu.energy_conserved ? ", the energy and the flow" : "", mu.invariance_defect);
+  std::printf("multipliers, by modulus:\n");
+  for (auto m : mu.multipliers)
+    std::printf("  %+.10f %+.10fi   |mu| = %.12f\n", m.real(), m.imag(), std::abs(m));
+  std::printf("verdict: %s (tolerance %.1e)\n", mu.verdict.c_str(), o.tolerance);
+  return 0;
+}
+
+}  // namespace noether::app
