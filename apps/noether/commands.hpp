@@ -5,6 +5,7 @@
 
 #include <noether/scene.hpp>
 
+#include <complex>
 #include <cstdint>
 #include <limits>
 #include <ostream>
@@ -51,6 +52,15 @@ std::string script_dir();
 // when it cannot be run or fails. `shown` is the command,
 // for messages.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args, std::string& shown);
+// The data file drawn into a picture: PNG with the extension .csv (next to it).
+std::string csv_beside(const std::string& png);
+// Writes a spectrum (complex values, each with a label) to csv_beside(png) and draws it with
+// plot_spectrum.py: `kind` "multipliers" (unit circle) or "eigenvalues" (divided by `scale`, with
+// the imaginary axis). Prints "plot: PNG"; a picture that cannot be drawn is a note on stderr
+// (the CSV stays); a CSV that cannot be written throws OutputError.
+void plot_spectrum(const std::string& png, const std::vector<std::complex<double>>& values,
+                   const std::vector<std::string>& labels, const std::string& kind, double scale,
+                   double tolerance, const std::string& title);
 
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,
@@ -79,6 +89,8 @@ struct OrbitOptions {
   std::vector<double> sweep;       // from, to, count
   bool align = true;
   int angle_turns = 0;  // whole turns added to the measured α (stability of rigid bodies)
+  std::string plot;     // stability, equilibrium: the picture (PNG; its data as the .csv beside it)
+  std::vector<std::string> libration;  // equilibrium -o: NAME, DEG: that body turned about k̂
 };
 int orbit_find(OrbitOptions options);
 int orbit_verify(const OrbitOptions& options);

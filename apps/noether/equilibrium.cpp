@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
@@ -57,6 +58,44 @@ void warn_if_overlapping(const noether::RelativeEquilibrium& eq) {
                 eq.separation, eq.contact);
 }
 
+// --libration NAME,DEG: the equilibrium with that rigid body turned by DEG about k̂, keeping its
+// inertial angular velocity ω k̂, so that it librates; and the period of the in-plane mode its
+// libration dominates (the one to compare a run with).
+struct Librating {
+  noether::State state;
+  double period = 0;
+};
+Librating librating(const noether::System& system, const noether::RelativeEquilibrium& eq,
+                    const noether::EquilibriumStability& st, const std::vector<std::string>& spec) {
+  const std::size_t body = body_index(system, spec[0]);
+  const int r = system.rigid_index(body);
+  if (r < 0)
+    throw noether::SceneError("orbit equilibrium --libration: body '" + system.body(body).name +
+                              "' is a point mass; it has no attitude to librate");
+  double degrees = 0;
+  try {
+    degrees = std::stod(spec[1]);
+  } catch (const std::exception&) {
+    throw noether::SceneError("orbit equilibrium --libration NAME,DEG: '" + spec[1] + "' is not an angle in degrees");
+  }
+  if (!(std::abs(degrees) > 0 && std::abs(degrees) < 45))
+    throw noether::SceneError("orbit equilibrium --libration: give an angle between 0 and 45 degrees (not " + spec[1] +
+                              "): small amplitudes are what the linearisation predicts");
+  double frequency = 0;
+  for (const auto& m : st.modes)
+    if (m.kind == "libration of " + system.body(body).name && m.frequency > 0) frequency = m.frequency;
+  if (frequency == 0)
+    throw noether::SceneError("orbit equilibrium --libration: no oscillating mode of this equilibrium is dominated by the "
+                              "libration of '" + system.body(body).name + "' (see the modes above)");
+  const auto k = static_cast<std::size_t>(r);
+  const noether::Mat3& J = system.body(body).inertia;
+  Librating out{eq.state, 2 * std::numbers::pi / frequency};
+  const noether::Vec3 spin = eq.state.R[k] * J.inverse() * eq.state.Pi.col(r);  // inertial angular velocity
+  out.state.R[k] = Eigen::AngleAxisd(degrees * std::numbers::pi / 180, eq.axis).toRotationMatrix() * eq.state.R[k];
+  out.state.Pi.col(r) = J * out.state.R[k].transpose() * spin;
+  return out;
+}
+
 }  // namespace
 
 int orbit_equilibrium(const OrbitOptions& o) {
@@ -72,6 +111,8 @@ int orbit_equilibrium(const OrbitOptions& o) {
     options.body_b = body_index(scene.system, o.pair[1]);
   }
   const auto& sys = scene.system;
+  if (!o.libration.empty() && (o.output.empty() || !o.sweep.empty()))
+    throw noether::SceneError("orbit equilibrium --libration goes with -o OUT.yaml (the scene it writes), not with --sweep");
   const std::string a = sys.size() > options.body_a ? sys.body(options.body_a).name : "",
                     b = sys.size() > options.body_b ? sys.body(options.body_b).name : "";
 
@@ -83,6 +124,12 @@ int orbit_equilibrium(const OrbitOptions& o) {
                 "frequencies (turning frame)");
     noether::State guess = scene.initial;
     int failures = 0;
+    std::ofstream csv;  // --plot: one row per mode of each member
+    if (!o.plot.empty()) {
+      csv.open(csv_beside(o.plot));
+      csv.precision(12);
+      csv << "value,rate,linear,energetic,frequency,growth\n";
+    }
     for (int i = 0; i < count; ++i) {
       options.value = o.sweep[0] + (o.sweep[1] - o.sweep[0]) * i / (count - 1);
       const auto eq = noether::find_relative_equilibrium(model, guess, options);
@@ -97,10 +144,25 @@ int orbit_equilibrium(const OrbitOptions& o) {
       std::printf("%-14.8g %-14.8g %-14.8g %-16.10g %-16s %-10s", options.value, eq.rate, 2 * std::numbers::pi / eq.rate,
                   eq.angular_momentum, st.verdict.c_str(), st.energetic_verdict == "energetically stable" ? "stable" :
                   st.energetic_verdict == "undecided" ? "undecided" : ("index " + std::to_string(st.energetic_index)).c_str());
-      for (const auto& m : st.modes)
+      for (const auto& m : st.modes) {
         if (m.frequency > 0) std::printf(" %.6g", m.frequency);
         else std::printf(" [%+.3g]", m.eigenvalue.real());
+        if (csv.is_open())
+          csv << options.value << ',' << eq.rate << ',' << st.verdict << ',' << st.energetic_verdict << ','
+              << m.frequency << ',' << m.eigenvalue.real() << "\n";
+      }
       std::printf("\n");
+    }
+    if (csv.is_open()) {
+      csv.close();
+      if (!csv) throw noether::OutputError("cannot write " + csv_beside(o.plot) + " (the data of --plot); choose a folder you can write");
+      std::string shown;
+      if (run_plot_script("plot_equilibrium_sweep.py", {csv_beside(o.plot), o.plot, "--xlabel", o.fix, "--title",
+                                                         "relative equilibria of " + std::filesystem::path(o.scene).filename().string()}, shown))
+        std::printf("plot: %s\n", o.plot.c_str());
+      else
+        std::fprintf(stderr, "noether: could not draw %s (needs python3-matplotlib; command: %s)\n", o.plot.c_str(),
+                     shown.c_str());
     }
     return failures == 0 ? 0 : 1;
   }
@@ -143,15 +205,42 @@ int orbit_equilibrium(const OrbitOptions& o) {
               st.energetic_verdict.c_str(), st.energetic_index, st.hessian_eigenvalues.empty() ? 0.0 : st.hessian_eigenvalues.front());
   if (st.verdict == "linearly stable" && st.energetic_index > 0)
     std::printf("note: stable only gyroscopically: any dissipation (tides) makes it unstable\n");
+  if (!o.plot.empty()) {
+    std::vector<std::string> labels;  // each eigenvalue with Im λ ≥ 0 named by its mode
+    for (const auto& l : st.eigenvalues) {
+      const noether::NormalMode* nearest = nullptr;
+      for (const auto& m : st.modes)
+        if (!nearest || std::abs(std::abs(m.eigenvalue.imag()) - std::abs(l.imag())) <
+                            std::abs(std::abs(nearest->eigenvalue.imag()) - std::abs(l.imag())))
+          nearest = &m;
+      labels.push_back((l.imag() > 0 || (l.imag() == 0 && l.real() > 0)) && nearest ? nearest->kind : "");
+    }
+    plot_spectrum(o.plot, st.eigenvalues, labels, "eigenvalues", eq.rate, o.tolerance,
+                  "relative equilibrium of " + std::filesystem::path(o.scene).filename().string() + ": " + st.verdict);
+  }
   if (!o.output.empty()) {
-    char desc[200];
+    const double period = 2 * std::numbers::pi / eq.rate;
+    char desc[300];
     std::snprintf(desc, sizeof desc, "relative equilibrium of %s (noether orbit equilibrium): rate %.12g, period %.12g",
-                  o.scene.c_str(), eq.rate, 2 * std::numbers::pi / eq.rate);
+                  o.scene.c_str(), eq.rate, period);
+    noether::State state = eq.state;
+    double t_end = period;
+    int frames = 200;
+    std::string what = "one period";
+    if (!o.libration.empty()) {  // the body turned about k̂, librating; the run: four libration periods
+      const auto turned = librating(sys, eq, st, o.libration);
+      state = turned.state;
+      t_end = 4 * turned.period;
+      frames = 400;
+      std::snprintf(desc, sizeof desc, "relative equilibrium of %s (noether orbit equilibrium) with %s turned by %s deg: "
+                    "libration period %.12g", o.scene.c_str(), o.libration[0].c_str(), o.libration[1].c_str(), turned.period);
+      what = "four libration periods of " + o.libration[0];
+    }
     std::ofstream file(o.output);
-    file << noether::scene_with_state(scene, eq.state, 2 * std::numbers::pi / eq.rate, 200, desc);
+    file << noether::scene_with_state(scene, state, t_end, frames, desc);
     file.close();
     if (!file) throw noether::OutputError("cannot write the equilibrium scene to " + o.output + "; choose a folder you can write");
-    std::printf("written: %s (one period)\n", o.output.c_str());
+    std::printf("written: %s (%s)\n", o.output.c_str(), what.c_str());
   }
   return 0;
 }
@@ -192,6 +281,11 @@ int orbit_rigid_stability(const OrbitOptions& o) {
   for (auto m : mu.multipliers)
     std::printf("  %+.10f %+.10fi   |mu| = %.12f\n", m.real(), m.imag(), std::abs(m));
   std::printf("verdict: %s (tolerance %.1e)\n", mu.verdict.c_str(), o.tolerance);
+  if (!o.plot.empty())
+    plot_spectrum(o.plot, mu.multipliers, {}, "multipliers", 1.0, o.tolerance,
+                  "relative periodic orbit of " + std::filesystem::path(o.scene).filename().string() + " (" +
+                      scene.integrator.plugin + "): " +
+                      mu.verdict);
   return 0;
 }
 

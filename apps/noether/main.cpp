@@ -136,6 +136,7 @@ int main(int argc, char** argv) {
   orbit_scene_cmds[0]->add_option("--tolerance", orbit.tolerance, "closure accepted (relative)")->capture_default_str();
   orbit_scene_cmds[1]->add_option("--tolerance", orbit.tolerance, "|lambda| <= 1 + tolerance is stable")->capture_default_str();
   orbit_scene_cmds[1]->add_option("--first-order", orbit.first_order, "also Vanderbei's first-order product with N steps");
+  orbit_scene_cmds[1]->add_option("--plot", orbit.plot, "PNG: the multipliers and the unit circle; data in the .csv beside it");
   orbit_scene_cmds[1]->add_option("--turns", orbit.angle_turns,
                                   "rigid bodies: whole turns to add to the measured angle alpha")->capture_default_str();
   orbit_scene_cmds[2]->add_option("-o,--output", orbit.output, "refined scene (default: overwrite the input)");
@@ -156,6 +157,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   equilibrium_cmd->add_flag("--no-align", no_align, "keep the guess's attitudes (default: principal axes turned onto the angular momentum)");
   equilibrium_cmd->add_option("-o,--output", orbit.output, "write the equilibrium as a scene (one period)");
+  equilibrium_cmd->add_option("--libration", orbit.libration,
+                              "NAME,DEG: with -o, that body turned by DEG about the axis, librating (four libration periods)")
+      ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--plot", orbit.plot,
+                              "PNG: the eigenvalues (or, with --sweep, the modes along the family); data in the .csv beside it");
 
   auto* check_cmd = app.add_subcommand(
       "check-potential",

@@ -1,6 +1,7 @@
 // noether orbit find | verify | stability | refine: periodic orbits (docs/periodic-orbits.md).
 #include "commands.hpp"
 
+#include <noether/error.hpp>
 #include <noether/least_action.hpp>
 #include <noether/periodic_orbit.hpp>
 #include <noether/scene.hpp>
@@ -82,6 +83,13 @@ int orbit_stability(const OrbitOptions& o) {
                 s1.max_unprojected, s1.max_projected);
   }
   std::printf("verdict: %s (tolerance %.1e)\n", s.verdict.c_str(), o.tolerance);
+  if (!o.plot.empty()) {  // the in-plane multipliers (the projected-out ones, 0, left out)
+    std::vector<std::complex<double>> shown;
+    for (auto l : s.multipliers)
+      if (std::abs(l) > 1e-9) shown.push_back(l);
+    plot_spectrum(o.plot, shown, {}, "multipliers", 1.0, o.tolerance,
+                  "in-plane multipliers of " + std::filesystem::path(o.scene).filename().string() + ": " + s.verdict);
+  }
   return 0;
 }
 
@@ -98,7 +106,10 @@ int orbit_refine(const OrbitOptions& o) {
   std::printf("closure %.3e -> %.3e in %d Newton steps (as orbit verify measures it); period %.15g -> %.15g\n",
               before, after, r.iterations, T, r.period);
   const std::string out = o.output.empty() ? o.scene : o.output;
-  std::ofstream(out) << noether::orbit_scene(model, r.xi0, r.period, "refined by noether orbit refine from " + o.scene);
+  std::ofstream file(out);
+  file << noether::orbit_scene(model, r.xi0, r.period, "refined by noether orbit refine from " + o.scene);
+  file.close();
+  if (!file) throw noether::OutputError("cannot write the refined scene to " + out + "; choose a folder you can write");
   std::printf("written: %s\n", out.c_str());
   return after <= 1e-10 ? 0 : 1;
 }

@@ -3,7 +3,12 @@
 // through a shell; by Debian's /usr/bin/python3 when the PATH's has no matplotlib.
 #include "commands.hpp"
 
+#include <noether/error.hpp>
+
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <spawn.h>
 #include <sys/wait.h>
 
@@ -45,6 +50,38 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     return spawn("/usr/bin/python3") == 0;
   }
   return status == 0;
+}
+
+std::string csv_beside(const std::string& png) {
+  return std::filesystem::path(png).replace_extension(".csv").string();
+}
+
+void plot_spectrum(const std::string& png, const std::vector<std::complex<double>>& values,
+                   const std::vector<std::string>& labels, const std::string& kind, double scale,
+                   double tolerance, const std::string& title) {
+  const std::string csv = csv_beside(png);
+  std::ofstream file(csv);
+  file.precision(17);
+  file << "re,im,label\n";
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    std::string label = i < labels.size() ? labels[i] : "";
+    std::replace(label.begin(), label.end(), ',', ';');  // one CSV field
+    file << values[i].real() << ',' << values[i].imag() << ',' << label << "\n";
+  }
+  file.close();
+  if (!file) throw noether::OutputError("cannot write " + csv + " (the data of --plot); choose a folder you can write");
+  char number[32];
+  std::snprintf(number, sizeof number, "%.17g", scale);
+  const std::string scale_text = number;
+  std::snprintf(number, sizeof number, "%.3g", tolerance);
+  std::string shown;
+  if (run_plot_script("plot_spectrum.py", {csv, png, "--kind", kind, "--scale", scale_text, "--tolerance", number,
+                                           "--title", title}, shown))
+    std::printf("plot: %s\n", png.c_str());
+  else
+    std::fprintf(stderr, "noether: could not draw %s (needs python3-matplotlib; command: %s); its data: %s\n",
+                 png.c_str(), shown.c_str(), csv.c_str());
 }
 
 }  // namespace noether::app
