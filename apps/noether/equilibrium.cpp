@@ -9,6 +9,7 @@
 #include <noether/scene.hpp>
 #include <noether/scene_with_state.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -245,6 +246,68 @@ int orbit_equilibrium(const OrbitOptions& o) {
   return 0;
 }
 
+namespace {
+
+// The frames a relative periodic orbit's scene is written with: about the scene's own count and,
+// for a fixed step h with T = N h, a divisor of N, so that scene_with_state keeps h (the discrete
+// orbit of the LGVI is one of the map with that step).
+int orbit_frames(const noether::Scene& scene, double T) {
+  const int target = static_cast<int>(std::clamp(std::round(T / scene.run.output_every), 1.0, 1e4));
+  if (!scene.integrator.params.has("step")) return target;
+  const double steps = T / scene.integrator.params.at("step").as_double();
+  const long N = std::lround(steps);
+  if (N < 1 || std::abs(steps - static_cast<double>(N)) > 1e-9 * steps) return target;
+  for (long f = std::min<long>(target, N); f > 1; --f)
+    if (N % f == 0) return static_cast<int>(f);
+  return 1;
+}
+
+}  // namespace
+
+int orbit_rigid_verify(const OrbitOptions& o) {
+  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+  noether::PluginRegistry registry;
+  const auto model = noether::FullBodyModel::from_scene(scene, registry);
+  const double T = o.period > 0 ? o.period : scene.run.t_end;
+  const auto c = noether::relative_closure(model, scene.integrator, scene.initial, T);
+  const double E0 = model.energy(scene.initial), E1 = model.energy(c.end);
+  std::printf("relative periodic orbit of %s on the map of %s over T = %.12g: turned by alpha = %.12g rad about k\n",
+              o.scene.c_str(), scene.integrator.plugin.c_str(), T, c.angle);
+  std::printf("closure (scaled, as orbit refine measures it)  %.3e\n", c.closure);
+  std::printf("energy                                         %.15g -> %.15g (relative change %.2e)\n", E0, E1,
+              std::abs(E1 - E0) / std::max(std::abs(E0), 1e-300));
+  if (c.closure <= o.tolerance) return 0;
+  std::fflush(stdout);  // the numbers, then why they fail
+  std::fprintf(stderr, "noether: the orbit does not close up to a turn: closure %.3e > tolerance %.1e (wrong period, or "
+               "not a relative periodic orbit; try noether orbit refine)\n", c.closure, o.tolerance);
+  return 1;
+}
+
+int orbit_rigid_refine(const OrbitOptions& o) {
+  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+  noether::PluginRegistry registry;
+  const auto model = noether::FullBodyModel::from_scene(scene, registry);
+  const double T = o.period > 0 ? o.period : scene.run.t_end;
+  const double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;
+  const auto orbit = noether::shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
+  std::printf("closure %.3e -> %.3e in %d Newton steps on the map of %s (T = %.12g held, L.k held, turned by alpha = "
+              "%.12g rad)\n", orbit.initial_closure, orbit.closure, orbit.iterations, scene.integrator.plugin.c_str(), T,
+              orbit.angle);
+  if (orbit.closure > 1e-9) {
+    std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e); nothing written: the scene's "
+                 "state is not near a relative periodic orbit of period %.6g (try another --period)\n", orbit.closure, T);
+    return 1;
+  }
+  const std::string out = o.output.empty() ? o.scene : o.output;
+  std::ofstream file(out);
+  file << noether::scene_with_state(scene, orbit.state, T, orbit_frames(scene, T),
+                                    "relative periodic orbit refined by noether orbit refine from " + o.scene);
+  file.close();
+  if (!file) throw noether::OutputError("cannot write the refined scene to " + out + "; choose a folder you can write");
+  std::printf("written: %s\n", out.c_str());
+  return 0;
+}
+
 int orbit_rigid_stability(const OrbitOptions& o) {
   const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
   noether::PluginRegistry registry;
@@ -253,14 +316,7 @@ int orbit_rigid_stability(const OrbitOptions& o) {
   if (scene.system.size() < 2)
     throw noether::SceneError("orbit stability of rigid bodies: relative periodic orbits need at least two bodies");
   // α0: the turn of the first two bodies' line of centres about k̂ over one period.
-  const noether::Vec3 k = model.angular_momentum(scene.initial).normalized();
-  const noether::State end = noether::integrator_map(model, scene.integrator, scene.initial, T);
-  const auto line = [&](const noether::State& s) {
-    const noether::Vec3 d = s.x.col(1) - s.x.col(0);
-    return noether::Vec3(d - k * k.dot(d));
-  };
-  const noether::Vec3 a = line(scene.initial), b = line(end);
-  double alpha = std::atan2(a.cross(b).dot(k), a.dot(b));
+  double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;
   if (o.angle_turns != 0) alpha += 2 * std::numbers::pi * o.angle_turns;
   const auto orbit = noether::shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
   std::printf("relative periodic orbit of %s on the map of %s over T = %.12g: closure %.2e -> %.2e in %d Newton steps, "

@@ -47,6 +47,7 @@ void print_multipliers(const std::vector<std::complex<double>>& list) {
 }  // namespace
 
 int orbit_verify(const OrbitOptions& o) {
+  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_verify(o);
   Eigen::VectorXd xi;
   double T;
   const auto model = orbit_model(o, xi, T);
@@ -94,6 +95,7 @@ int orbit_stability(const OrbitOptions& o) {
 }
 
 int orbit_refine(const OrbitOptions& o) {
+  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_refine(o);
   Eigen::VectorXd xi;
   double T;
   const auto model = orbit_model(o, xi, T);

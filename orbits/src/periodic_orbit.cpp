@@ -20,8 +20,9 @@ OrbitModel OrbitModel::from_scene(const Scene& scene, PluginRegistry& registry) 
   const System& system = scene.system;
   if (system.size() < 1) throw SceneError("periodic orbits need at least one body");
   if (system.rigid_count() > 0)
-    throw SceneError("periodic orbits: point masses only for now; body '" +
-                     system.body(system.body_of_rigid(0)).name + "' is rigid");
+    throw SceneError("least-action orbits: point masses only; body '" + system.body(system.body_of_rigid(0)).name +
+                     "' is rigid (for rigid bodies: noether orbit equilibrium for relative equilibria, orbit "
+                     "verify / refine / stability for relative periodic orbits)");
   OrbitModel m;
   m.system = system;
   m.potentials = scene.potentials;

@@ -55,6 +55,25 @@ State rotated(const State& s, const Mat3& Q) {
   return out;
 }
 
+RelativeClosure relative_closure(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T) {
+  if (model.n() < 2) throw SceneError("relative periodic orbit: needs at least two bodies (a line of centres to turn)");
+  if (!(T > 0)) throw SceneError("relative periodic orbit: the period must be positive");
+  const State base = barycentric(model, s);
+  const Vec3 L = model.angular_momentum(base);
+  if (!(L.norm() > 0)) throw SceneError("relative periodic orbit: the state has no angular momentum to turn about");
+  const Vec3 k = L.normalized();
+  RelativeClosure out;
+  out.end = integrator_map(model, integrator, base, T);
+  const auto line = [&](const State& x) {
+    const Vec3 d = x.x.col(1) - x.x.col(0);
+    return Vec3(d - k * k.dot(d));
+  };
+  const Vec3 a = line(base), b = line(out.end);
+  out.angle = std::atan2(a.cross(b).dot(k), a.dot(b));
+  out.closure = orbit_chart(model, base, T).local(rotated(out.end, exp_so3(-out.angle * k))).cwiseAbs().maxCoeff();
+  return out;
+}
+
 RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
                                                     const State& guess, double period, double angle,
                                                     double tolerance, int max_iterations) {

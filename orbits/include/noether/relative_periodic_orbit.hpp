@@ -20,6 +20,14 @@ State integrator_map(const FullBodyModel& model, const PluginConfig& integrator,
 // s turned by the rotation Q about the origin: x → Q x, γ → Q γ, R → Q R, Π unchanged.
 State rotated(const State& s, const Mat3& Q);
 
+// How far the map returns a state from itself, up to a turn about k̂ (19.1), without Newton.
+struct RelativeClosure {
+  double angle = 0;    // α: the turn of the first two bodies' line of centres about k̂ over T, in (−π, π]
+  double closure = 0;  // the largest scaled component of local(Rot(−α) Φ_T(s)), as the shooting measures it
+  State end;           // Φ_T(s)
+};
+RelativeClosure relative_closure(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T);
+
 struct RelativePeriodicOrbit {
   State state;       // the barycentre at rest at the origin
   double period = 0;
