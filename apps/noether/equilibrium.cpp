@@ -333,9 +333,12 @@ int orbit_rigid_stability(const OrbitOptions& o) {
               "(invariance defect %.1e)\n",
               mu.energy_conserved ? "conserves" : "does not conserve", mu.energy_defect,
               mu.energy_conserved ? ", the energy and the flow" : "", mu.invariance_defect);
-  std::printf("multipliers, by modulus:\n");
+  // A multiplier e^{iθ} on the unit circle is an oscillation of frequency (θ + 2πk)/T in the
+  // frame turning with the orbit; k = 0 is printed (the monodromy cannot tell k).
+  std::printf("multipliers, by modulus (arg/T: the frequency modulo 2 pi/T = %.6g):\n", 2 * std::numbers::pi / T);
   for (auto m : mu.multipliers)
-    std::printf("  %+.10f %+.10fi   |mu| = %.12f\n", m.real(), m.imag(), std::abs(m));
+    std::printf("  %+.10f %+.10fi   |mu| = %.12f   arg/T = %.6g\n", m.real(), m.imag(), std::abs(m),
+                std::abs(std::arg(m)) / T);
   std::printf("verdict: %s (tolerance %.1e)\n", mu.verdict.c_str(), o.tolerance);
   if (!o.plot.empty())
     plot_spectrum(o.plot, mu.multipliers, {}, "multipliers", 1.0, o.tolerance,
