@@ -21,8 +21,8 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "Error", "SceneError", "PluginError",
-           "IntegrationError", "OutputError", "__version__"]
+__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "relative_equilibrium", "Error",
+           "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
 
 def plugins():
@@ -36,6 +36,37 @@ def _scene_text(scene):
     """(text, name) of a scene given as a dict: JSON is YAML, so the scene reader reads it as
     it reads a file, with the same checks and messages."""
     return json.dumps(scene, indent=1), "<dict>"
+
+
+def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None, align=True, tolerance=1e-6):
+    """The relative equilibrium nearest to a scene's state and its stability, as
+    `noether orbit equilibrium` finds them (docs/relative-equilibria.md).
+
+      scene      a path to a YAML scene, or a dict of its keys: its state is the first guess
+      set        overrides, as for Simulation
+      fix        the member of the family: "separation" (of `pair`), "angular-momentum" (L·k̂)
+                 or "rate" (ω); value: its value (None: the scene's own)
+      pair       two body names (default: the first two bodies)
+      align      turn the guess's principal axes onto k̂ and the line of centres first
+      tolerance  |Re λ| ≤ tolerance × max(ω, |λ|) counts as stable
+
+    Returns a dict: converged, residual, iterations, rate, period, axis, separation,
+    angular_momentum, energy, overlapping (the bounding spheres), the state (positions,
+    velocities, attitudes, angular_velocities in the body frame), scene (YAML text of one period,
+    for Simulation.from_yaml) and, when converged, modes (a list of dicts: frequency, period,
+    growth, motion, share, in_plane), eigenvalues (complex), verdict, in_plane_verdict,
+    out_of_plane_verdict, energetic_verdict, energetic_index and invariance_defect. Raises
+    SceneError for a scene without one (no angular momentum, an external field)."""
+    overrides = [set] if isinstance(set, str) else list(set)
+    pair = list(pair) if pair is not None else []
+    value = None if value is None else float(value)
+    if isinstance(scene, dict):
+        text, name = _scene_text(scene)
+        return _noether.relative_equilibrium("", text, name, overrides, fix, value, pair, align, float(tolerance))
+    if isinstance(scene, (str, os.PathLike)):
+        return _noether.relative_equilibrium(os.fspath(scene), "", "", overrides, fix, value, pair, align,
+                                             float(tolerance))
+    raise TypeError("relative_equilibrium(scene): a path to a YAML scene, or a dict of its keys")
 
 
 class Simulation:

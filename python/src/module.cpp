@@ -1,6 +1,7 @@
 // noether._noether: the Python bindings of the host library (docs/python.md). The Python package
 // noether (python/noether/__init__.py) wraps these in the API users see.
 #include "python_potential.hpp"
+#include "relative_equilibrium.hpp"
 
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
@@ -362,6 +363,13 @@ PYBIND11_MODULE(_noether, m) {
 
   m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
   m.def("compare", &compare);
+  m.def("relative_equilibrium",
+        [](const std::string& file, const std::string& text, const std::string& name,
+           const std::vector<std::string>& overrides, const std::string& fix, std::optional<double> value,
+           const std::vector<std::string>& pair, bool align, double tolerance) {
+          return noether::python::relative_equilibrium(registry(), file, text, name, overrides, fix, value, pair, align,
+                                                       tolerance);
+        });
 
   py::class_<PySimulation>(m, "_Simulation")
       .def_static("from_text", &PySimulation::from_text)
