@@ -36,7 +36,21 @@ def main():
     with open(a.csv, newline="") as f:
         rows = list(csv.DictReader(f))
     z = [complex(float(r["re"]), float(r["im"])) for r in rows]
-    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    wide = a.kind == "multipliers" and max([0.0] + [abs(w) for w in z]) > 3
+    if wide:  # large multipliers: the unit circle up close, and log |μ| against arg μ beside it
+        fig, (ax, side) = plt.subplots(1, 2, figsize=(10, 5))
+        side.axhline(0, color="0.6", lw=0.8)
+        for w in z:
+            if abs(w) > 0:
+                side.plot(math.degrees(math.atan2(w.imag, w.real)), math.log10(abs(w)), "o", ms=6,
+                          color="tab:red" if abs(w) > 1 + a.tolerance else "tab:blue",
+                          mfc=None if abs(w) > 1 + a.tolerance else "none")
+        side.set_xlim(-190, 190)
+        side.set_xlabel("arg μ [deg]")
+        side.set_ylabel("log10 |μ|")
+        side.grid(lw=0.3)
+    else:
+        fig, ax = plt.subplots(figsize=(5.5, 5.5))
     if a.kind == "multipliers":
         t = [2 * math.pi * k / 400 for k in range(401)]
         ax.plot([math.cos(s) for s in t], [math.sin(s) for s in t], color="0.6", lw=0.8, label="unit circle")
@@ -44,7 +58,7 @@ def main():
         ax.set_xlabel("Re μ")
         ax.set_ylabel("Im μ")
         ax.set_aspect("equal")
-        reach = max([1.1] + [abs(w) * 1.1 for w in z])
+        reach = 1.5 if wide else max([1.1] + [abs(w) * 1.1 for w in z])
     else:
         z = [w / a.scale for w in z]
         ax.axvline(0, color="0.6", lw=0.8, label="imaginary axis")
@@ -72,7 +86,7 @@ def main():
     ax.set_ylim(-reach, reach)
     ax.grid(lw=0.3)
     ax.legend(fontsize=7, loc="upper right")
-    ax.set_title(a.title, fontsize=8)
+    (fig.suptitle if wide else ax.set_title)(a.title, fontsize=8)
     fig.tight_layout()
     fig.savefig(a.png, dpi=90)
 
