@@ -54,6 +54,10 @@ std::string script_dir();
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args, std::string& shown);
 // The data file drawn into a picture: PNG with the extension .csv (next to it).
 std::string csv_beside(const std::string& png);
+// run_plot_script(script, args) drawing `png`: prints "plot: PNG", or a note on stderr naming the
+// command and the data kept (`data`) when the picture cannot be drawn. False then.
+bool draw_plot(const std::string& script, const std::vector<std::string>& args, const std::string& png,
+               const std::string& data);
 // Writes a spectrum (complex values, each with a label) to csv_beside(png) and draws it with
 // plot_spectrum.py: `kind` "multipliers" (unit circle) or "eigenvalues" (divided by `scale`, with
 // the imaginary axis). Prints "plot: PNG"; a picture that cannot be drawn is a note on stderr

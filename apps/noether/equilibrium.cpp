@@ -157,13 +157,9 @@ int orbit_equilibrium(const OrbitOptions& o) {
     if (csv.is_open()) {
       csv.close();
       if (!csv) throw noether::OutputError("cannot write " + csv_beside(o.plot) + " (the data of --plot); choose a folder you can write");
-      std::string shown;
-      if (run_plot_script("plot_equilibrium_sweep.py", {csv_beside(o.plot), o.plot, "--xlabel", o.fix, "--title",
-                                                         "relative equilibria of " + std::filesystem::path(o.scene).filename().string()}, shown))
-        std::printf("plot: %s\n", o.plot.c_str());
-      else
-        std::fprintf(stderr, "noether: could not draw %s (needs python3-matplotlib; command: %s)\n", o.plot.c_str(),
-                     shown.c_str());
+      draw_plot("plot_equilibrium_sweep.py", {csv_beside(o.plot), o.plot, "--xlabel", o.fix, "--title",
+                                               "relative equilibria of " + std::filesystem::path(o.scene).filename().string()},
+                o.plot, csv_beside(o.plot));
     }
     return failures == 0 ? 0 : 1;
   }

@@ -52,6 +52,18 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
   return status == 0;
 }
 
+bool draw_plot(const std::string& script, const std::vector<std::string>& args, const std::string& png,
+               const std::string& data) {
+  std::string shown;
+  if (run_plot_script(script, args, shown)) {
+    std::printf("plot: %s\n", png.c_str());
+    return true;
+  }
+  std::fprintf(stderr, "noether: could not draw %s (needs python3-matplotlib; command: %s); its data: %s\n", png.c_str(),
+               shown.c_str(), data.c_str());
+  return false;
+}
+
 std::string csv_beside(const std::string& png) {
   return std::filesystem::path(png).replace_extension(".csv").string();
 }
@@ -75,13 +87,8 @@ void plot_spectrum(const std::string& png, const std::vector<std::complex<double
   std::snprintf(number, sizeof number, "%.17g", scale);
   const std::string scale_text = number;
   std::snprintf(number, sizeof number, "%.3g", tolerance);
-  std::string shown;
-  if (run_plot_script("plot_spectrum.py", {csv, png, "--kind", kind, "--scale", scale_text, "--tolerance", number,
-                                           "--title", title}, shown))
-    std::printf("plot: %s\n", png.c_str());
-  else
-    std::fprintf(stderr, "noether: could not draw %s (needs python3-matplotlib; command: %s); its data: %s\n",
-                 png.c_str(), shown.c_str(), csv.c_str());
+  draw_plot("plot_spectrum.py", {csv, png, "--kind", kind, "--scale", scale_text, "--tolerance", number, "--title", title},
+            png, csv);
 }
 
 }  // namespace noether::app
