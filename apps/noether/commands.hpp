@@ -91,6 +91,7 @@ struct OrbitOptions {
   double value = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> pair;   // two body names or indices
   std::vector<double> sweep;       // from, to, count
+  std::string sweep_key;           // a scene key the sweep varies instead (the family member held)
   bool align = true;
   int angle_turns = 0;  // whole turns added to the measured α (stability of rigid bodies)
   std::string plot;     // stability, equilibrium: the picture (PNG; its data as the .csv beside it)

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace noether::app {
@@ -112,6 +113,8 @@ int orbit_equilibrium(const OrbitOptions& o) {
     options.body_b = body_index(scene.system, o.pair[1]);
   }
   const auto& sys = scene.system;
+  if (!o.sweep_key.empty() && o.sweep.empty())
+    throw noether::SceneError("orbit equilibrium --sweep-key KEY goes with --sweep FROM,TO,COUNT (the values of KEY)");
   if (!o.libration.empty() && (o.output.empty() || !o.sweep.empty()))
     throw noether::SceneError("orbit equilibrium --libration goes with -o OUT.yaml (the scene it writes), not with --sweep");
   const std::string a = sys.size() > options.body_a ? sys.body(options.body_a).name : "",
@@ -119,9 +122,12 @@ int orbit_equilibrium(const OrbitOptions& o) {
 
   if (!o.sweep.empty()) {  // a table along the family
     const int count = static_cast<int>(o.sweep[2]);
-    if (count < 2 || !(o.sweep[0] > 0) || !(o.sweep[1] > 0))
-      throw noether::SceneError("orbit equilibrium --sweep from,to,count: positive values and a count of at least 2");
-    std::printf("%-14s %-14s %-14s %-16s %-16s %-10s %s\n", o.fix.c_str(), "rate", "period", "L.k", "linear", "energetic",
+    const bool over_key = !o.sweep_key.empty();  // the scene key varies, the family member is held
+    if (count < 2 || (!over_key && (!(o.sweep[0] > 0) || !(o.sweep[1] > 0))))
+      throw noether::SceneError("orbit equilibrium --sweep from,to,count: a count of at least 2, and positive values of " +
+                                o.fix + " (or --sweep-key KEY to vary a scene key)");
+    const std::string column = over_key ? o.sweep_key : o.fix;
+    std::printf("%-14s %-14s %-14s %-16s %-16s %-10s %s\n", column.c_str(), "rate", "period", "L.k", "linear", "energetic",
                 "frequencies (turning frame)");
     noether::State guess = scene.initial;
     int failures = 0;
@@ -132,24 +138,43 @@ int orbit_equilibrium(const OrbitOptions& o) {
       csv << "value,rate,linear,energetic,frequency,growth\n";
     }
     for (int i = 0; i < count; ++i) {
-      options.value = o.sweep[0] + (o.sweep[1] - o.sweep[0]) * i / (count - 1);
-      const auto eq = noether::find_relative_equilibrium(model, guess, options);
+      const double value = o.sweep[0] + (o.sweep[1] - o.sweep[0]) * i / (count - 1);
+      // --sweep-key: the scene made again with KEY = value; the previous member is the guess
+      // (the first member's, the scene's own state), and the fixed quantity keeps its value.
+      std::optional<noether::FullBodyModel> varied;
+      if (over_key) {
+        auto overrides = o.overrides;
+        char text[40];
+        std::snprintf(text, sizeof text, "%.17g", value);
+        overrides.push_back(o.sweep_key + "=" + text);
+        const noether::Scene member = noether::load_scene(o.scene, overrides);
+        varied.emplace(noether::FullBodyModel::from_scene(member, registry));
+        if (i == 0) guess = member.initial;
+      } else {
+        options.value = value;
+      }
+      const noether::FullBodyModel& m_model = varied ? *varied : model;
+      const auto eq = noether::find_relative_equilibrium(m_model, guess, options);
+      if (over_key && i == 0 && std::isnan(options.value))  // hold the first member's value
+        options.value = options.fix == noether::EquilibriumFamily::separation ? eq.separation
+                        : options.fix == noether::EquilibriumFamily::rate     ? eq.rate
+                                                                              : eq.angular_momentum;
       warn_if_overlapping(eq);
       if (!eq.converged) {
-        std::printf("%-14.8g not converged (residual %.1e)\n", options.value, eq.residual);
+        std::printf("%-14.8g not converged (residual %.1e)\n", value, eq.residual);
         ++failures;
         continue;
       }
       guess = eq.state;
-      const auto st = noether::linear_stability(model, eq, o.tolerance);
-      std::printf("%-14.8g %-14.8g %-14.8g %-16.10g %-16s %-10s", options.value, eq.rate, 2 * std::numbers::pi / eq.rate,
+      const auto st = noether::linear_stability(m_model, eq, o.tolerance);
+      std::printf("%-14.8g %-14.8g %-14.8g %-16.10g %-16s %-10s", value, eq.rate, 2 * std::numbers::pi / eq.rate,
                   eq.angular_momentum, st.verdict.c_str(), st.energetic_verdict == "energetically stable" ? "stable" :
                   st.energetic_verdict == "undecided" ? "undecided" : ("index " + std::to_string(st.energetic_index)).c_str());
       for (const auto& m : st.modes) {
         if (m.frequency > 0) std::printf(" %.6g", m.frequency);
         else std::printf(" [%+.3g]", m.eigenvalue.real());
         if (csv.is_open())
-          csv << options.value << ',' << eq.rate << ',' << st.verdict << ',' << st.energetic_verdict << ','
+          csv << value << ',' << eq.rate << ',' << st.verdict << ',' << st.energetic_verdict << ','
               << m.frequency << ',' << m.eigenvalue.real() << "\n";
       }
       std::printf("\n");
@@ -157,7 +182,7 @@ int orbit_equilibrium(const OrbitOptions& o) {
     if (csv.is_open()) {
       csv.close();
       if (!csv) throw noether::OutputError("cannot write " + csv_beside(o.plot) + " (the data of --plot); choose a folder you can write");
-      draw_plot("plot_equilibrium_sweep.py", {csv_beside(o.plot), o.plot, "--xlabel", o.fix, "--title",
+      draw_plot("plot_equilibrium_sweep.py", {csv_beside(o.plot), o.plot, "--xlabel", column, "--title",
                                                "relative equilibria of " + std::filesystem::path(o.scene).filename().string()},
                 o.plot, csv_beside(o.plot));
     }

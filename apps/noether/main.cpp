@@ -153,6 +153,8 @@ int main(int argc, char** argv) {
       ->delimiter(',')->expected(2);
   equilibrium_cmd->add_option("--sweep", orbit.sweep, "from,to,count: a table along the family, each solution the next guess")
       ->delimiter(',')->expected(3);
+  equilibrium_cmd->add_option("--sweep-key", orbit.sweep_key,
+                              "KEY: --sweep varies this scene key (a mass, a semi-axis) with the --fix quantity held");
   equilibrium_cmd->add_option("--tolerance", orbit.tolerance, "|Re lambda| <= tolerance x max(omega, |lambda|) is stable")
       ->capture_default_str();
   equilibrium_cmd->add_flag("--no-align", no_align, "keep the guess's attitudes (default: principal axes turned onto the angular momentum)");
