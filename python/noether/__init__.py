@@ -52,8 +52,9 @@ def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None,
 
     Returns a dict: converged, residual, iterations, rate, period, axis, separation,
     angular_momentum, energy, overlapping (the bounding spheres), the state (positions,
-    velocities, attitudes, angular_velocities in the body frame), scene (YAML text of one period,
-    for Simulation.from_yaml) and, when converged, modes (a list of dicts: frequency, period,
+    velocities, attitudes, angular_velocities in the body frame; where Newton ended when it did
+    not converge) and, when converged, scene (YAML text of one period, for
+    Simulation.from_yaml), modes (a list of dicts: frequency, period,
     growth, motion, share, in_plane), eigenvalues (complex), verdict, in_plane_verdict,
     out_of_plane_verdict, energetic_verdict, energetic_index and invariance_defect. Raises
     SceneError for a scene without one (no angular momentum, an external field)."""

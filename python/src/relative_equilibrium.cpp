@@ -85,11 +85,11 @@ py::dict relative_equilibrium(PluginRegistry& registry, const std::string& file,
   out["velocities"] = columns_as_rows(v);
   out["attitudes"] = R;
   out["angular_velocities"] = columns_as_rows(omega);
+  if (!eq.converged) return out;  // the state Newton ended on, for a look; no scene, no modes
   char desc[200];
   std::snprintf(desc, sizeof desc, "relative equilibrium (noether.relative_equilibrium): rate %.12g, period %.12g",
                 eq.rate, 2 * std::numbers::pi / eq.rate);
   out["scene"] = scene_with_state(scene, eq.state, 2 * std::numbers::pi / eq.rate, 200, desc);
-  if (!eq.converged) return out;
   py::list modes;
   for (const auto& m : st.modes) {
     py::dict d;
