@@ -100,6 +100,15 @@ int main(int argc, char** argv) {
   ensemble_cmd->add_flag("--resume", ensemble.resume, "continue the ensemble in the output file: run only missing samples");
   ensemble_cmd->add_flag("--force", ensemble.force, "replace an existing output file");
 
+  const CLI::Validator positive(
+      [](std::string& v) -> std::string {
+        try {
+          if (std::stod(v) > 0) return {};
+        } catch (const std::exception&) {
+        }
+        return "must be a positive number, not " + v;
+      },
+      "> 0");
   auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine; relative equilibria of rigid bodies");
   orbit_cmd->require_subcommand(1);
   noether::app::OrbitOptions orbit;
@@ -110,7 +119,7 @@ int main(int argc, char** argv) {
   find_cmd->add_option("--scene", orbit.scene,
                        "take the bodies, G and potential from this scene instead (point masses, planar)");
   find_cmd->add_option("--set", orbit.overrides, "override a key of --scene")->take_all();
-  find_cmd->add_option("--period", orbit.period, "period T of the orbits sought (default 2 pi)");
+  find_cmd->add_option("--period", orbit.period, "period T of the orbits sought (default 2 pi)")->check(positive);
   find_cmd->add_option("--modes", orbit.modes, "Fourier modes per coordinate")->capture_default_str();
   find_cmd->add_option("--points", orbit.points, "quadrature points (default: 100, or more than 2 × modes)");
   find_cmd->add_flag("--choreography", orbit.choreography, "all bodies on one curve, z_j(t) = z(t + 2 pi j/n)");
@@ -128,7 +137,7 @@ int main(int argc, char** argv) {
                             std::pair{"refine", "Newton (shooting) on the initial state and period"}}) {
     auto* c = orbit_cmd->add_subcommand(name, help);
     c->add_option("scene", orbit.scene, "scene of the orbit (YAML)")->required();
-    c->add_option("--period", orbit.period, "period (default: the scene's run.t_end)");
+    c->add_option("--period", orbit.period, "period (default: the scene's run.t_end)")->check(positive);
     c->add_option("--set", orbit.overrides, "override a scene key")->take_all();
     c->add_option("--rtol", orbit.rtol, "relative tolerance of the rkf78 integration")->capture_default_str();
     orbit_scene_cmds.push_back(c);
