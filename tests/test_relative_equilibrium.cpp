@@ -231,3 +231,50 @@ TEST(RelativeEquilibrium, RefusesWhatHasNoRelativeEquilibrium) {
   same.body_b = 0;
   EXPECT_THROW(find_relative_equilibrium(model, s.initial, same), SceneError);
 }
+
+// Three point masses at the corners of an equilateral triangle turning at ω (Lagrange 1772): an
+// equilibrium for any masses. With β = (m1 m2 + m2 m3 + m3 m1)/M², its in-plane eigenvalues are
+// λ² = x ω² with x² + x + 27β/4 = 0, plus ±iω, and out of the plane ±iω; linearly stable exactly
+// when 27β < 1 (Gascheau 1843, Routh 1875). The generic solver and linearisation, point masses in
+// 3-D, against that, on both sides of the threshold.
+TEST(RelativeEquilibrium, LagrangeTriangleMatchesRouthsCriterion) {
+  auto registry = test::bundled_plugins();
+  const double m3 = 1e-3;
+  // The m2 at which 27β = 1 (m1 = 1): 27(m2 + m2 m3 + m3) = (1 + m2 + m3)², the smaller root.
+  const double b = 2 * (1 + m3) - 27 * (1 + m3), c = (1 + m3) * (1 + m3) - 27 * m3;
+  const double m2_critical = (-b - std::sqrt(b * b - 4 * c)) / 2;
+  for (const double m2 : {1.0, 0.01, 0.97 * m2_critical, 1.03 * m2_critical}) {
+    const double M = 1 + m2 + m3, beta = (m2 + m2 * m3 + m3) / (M * M);
+    std::ostringstream scene;
+    scene.precision(17);
+    scene << "G: 1\nbodies:\n";
+    const double masses[3] = {1, m2, m3};
+    for (int k = 0; k < 3; ++k) {  // unit triangle; velocities a guess (the solver sets them)
+      const double angle = 2 * M_PI * k / 3;
+      scene << "  - {name: b" << k << ", mass: " << masses[k] << ", position: [" << std::cos(angle) << ", "
+            << std::sin(angle) << ", 0], velocity: [" << -std::sin(angle) << ", " << std::cos(angle) << ", 0]}\n";
+    }
+    scene << "potential: {plugin: point-mass}\nintegrator: {plugin: rk}\nrun: {t_end: 1, output_every: 1}\n";
+    const Scene s = parse_scene(scene.str(), "lagrange.yaml");
+    const auto model = FullBodyModel::from_scene(s, registry);
+    const auto eq = find_relative_equilibrium(model, s.initial);
+    ASSERT_TRUE(eq.converged) << "m2 = " << m2;
+    const auto st = linear_stability(model, eq);
+    const double w = eq.rate;
+    // The predicted spectrum, each matched to a computed eigenvalue.
+    std::vector<std::complex<double>> expected{{0, w}, {0, -w}, {0, w}, {0, -w}};
+    const std::complex<double> disc = std::sqrt(std::complex<double>(1 - 27 * beta));
+    for (const auto x : {(-1.0 + disc) / 2.0, (-1.0 - disc) / 2.0})
+      for (const double sign : {1.0, -1.0}) expected.push_back(sign * std::sqrt(x) * w);
+    ASSERT_EQ(st.eigenvalues.size(), expected.size()) << "m2 = " << m2;
+    std::vector<std::complex<double>> left = st.eigenvalues;
+    for (const auto& e : expected) {
+      auto nearest = std::min_element(left.begin(), left.end(), [&](auto p, auto q) { return std::abs(p - e) < std::abs(q - e); });
+      EXPECT_NEAR(std::abs(*nearest - e), 0.0, 1e-6 * w) << "m2 = " << m2 << ", expected " << e << ", nearest " << *nearest;
+      left.erase(nearest);
+    }
+    EXPECT_EQ(st.verdict, 27 * beta < 1 ? "linearly stable" : "unstable") << "m2 = " << m2 << ", 27 beta = " << 27 * beta;
+    std::printf("Lagrange m = (1, %.6g, %g): 27 beta = %.4f, verdict %s, max |Re lambda| / omega = %.3g\n", m2, m3,
+                27 * beta, st.verdict.c_str(), st.max_real / w);
+  }
+}
