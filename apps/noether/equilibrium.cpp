@@ -267,24 +267,6 @@ int orbit_equilibrium(const OrbitOptions& o) {
   return 0;
 }
 
-namespace {
-
-// The frames a relative periodic orbit's scene is written with: about the scene's own count and,
-// for a fixed step h with T = N h, a divisor of N, so that scene_with_state keeps h (the discrete
-// orbit of the LGVI is one of the map with that step).
-int orbit_frames(const noether::Scene& scene, double T) {
-  const int target = static_cast<int>(std::clamp(std::round(T / scene.run.output_every), 1.0, 1e4));
-  if (!scene.integrator.params.has("step")) return target;
-  const double steps = T / scene.integrator.params.at("step").as_double();
-  const long N = std::lround(steps);
-  if (N < 1 || std::abs(steps - static_cast<double>(N)) > 1e-9 * steps) return target;
-  for (long f = std::min<long>(target, N); f > 1; --f)
-    if (N % f == 0) return static_cast<int>(f);
-  return 1;
-}
-
-}  // namespace
-
 int orbit_rigid_verify(const OrbitOptions& o) {
   const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
   noether::PluginRegistry registry;
@@ -321,7 +303,7 @@ int orbit_rigid_refine(const OrbitOptions& o) {
   }
   const std::string out = o.output.empty() ? o.scene : o.output;
   std::ofstream file(out);
-  file << noether::scene_with_state(scene, orbit.state, T, orbit_frames(scene, T),
+  file << noether::scene_with_state(scene, orbit.state, T, noether::frames_keeping_step(scene, T),
                                     "relative periodic orbit refined by noether orbit refine from " + o.scene);
   file.close();
   if (!file) throw noether::OutputError("cannot write the refined scene to " + out + "; choose a folder you can write");

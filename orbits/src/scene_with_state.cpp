@@ -69,4 +69,15 @@ std::string scene_with_state(const Scene& scene, const State& state, double t_en
   return scene_as_run(out);
 }
 
+int frames_keeping_step(const Scene& scene, double t_end) {
+  const int target = static_cast<int>(std::clamp(std::round(t_end / scene.run.output_every), 1.0, 1e4));
+  if (!scene.integrator.params.has("step")) return target;
+  const double steps = t_end / scene.integrator.params.at("step").as_double();
+  const long N = std::lround(steps);
+  if (N < 1 || std::abs(steps - static_cast<double>(N)) > 1e-9 * steps) return target;
+  for (long f = std::min<long>(target, N); f > 1; --f)
+    if (N % f == 0) return static_cast<int>(f);
+  return 1;
+}
+
 }  // namespace noether

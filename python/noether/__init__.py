@@ -21,7 +21,8 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "relative_equilibrium", "Error",
+__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "relative_equilibrium",
+           "relative_periodic_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
 
@@ -68,6 +69,34 @@ def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None,
         return _noether.relative_equilibrium(os.fspath(scene), "", "", overrides, fix, value, pair, align,
                                              float(tolerance))
     raise TypeError("relative_equilibrium(scene): a path to a YAML scene, or a dict of its keys")
+
+
+def relative_periodic_orbit(scene, set=(), period=None, turns=0, tolerance=1e-6):
+    """A relative periodic orbit of a scene's own integrator near its state, and its multipliers,
+    as `noether orbit refine` and `orbit stability` find them for rigid bodies
+    (docs/relative-equilibria.md): a state that the integrator's map over `period` (default
+    run.t_end) returns turned about the total angular momentum. With `lgvi` it is an orbit of
+    the discrete map (the period a whole number of steps).
+
+      scene      a path to a YAML scene, or a dict of its keys: its state is the first guess
+      set        overrides, as for Simulation
+      turns      whole turns added to the measured turn of the line of centres
+      tolerance  |μ| ≤ 1 + tolerance counts as stable
+
+    Returns a dict: period, angle (α), axis, initial_closure, closure, iterations, converged
+    (closure ≤ 1e-9), integrator and, when converged, multipliers (complex, by modulus),
+    max_modulus, verdict, energy_conserved (the map conserves E: projected out), energy_defect,
+    invariance_defect and scene (YAML text of one period, the step kept, for
+    Simulation.from_yaml)."""
+    overrides = [set] if isinstance(set, str) else list(set)
+    period = None if period is None else float(period)
+    if isinstance(scene, dict):
+        text, name = _scene_text(scene)
+        return _noether.relative_periodic_orbit("", text, name, overrides, period, int(turns), float(tolerance))
+    if isinstance(scene, (str, os.PathLike)):
+        return _noether.relative_periodic_orbit(os.fspath(scene), "", "", overrides, period, int(turns),
+                                                float(tolerance))
+    raise TypeError("relative_periodic_orbit(scene): a path to a YAML scene, or a dict of its keys")
 
 
 class Simulation:

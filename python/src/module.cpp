@@ -2,6 +2,7 @@
 // noether (python/noether/__init__.py) wraps these in the API users see.
 #include "python_potential.hpp"
 #include "relative_equilibrium.hpp"
+#include "relative_periodic_orbit.hpp"
 
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
@@ -369,6 +370,12 @@ PYBIND11_MODULE(_noether, m) {
            const std::vector<std::string>& pair, bool align, double tolerance) {
           return noether::python::relative_equilibrium(registry(), file, text, name, overrides, fix, value, pair, align,
                                                        tolerance);
+        });
+  m.def("relative_periodic_orbit",
+        [](const std::string& file, const std::string& text, const std::string& name,
+           const std::vector<std::string>& overrides, std::optional<double> period, int turns, double tolerance) {
+          return noether::python::relative_periodic_orbit(registry(), file, text, name, overrides, period, turns,
+                                                          tolerance);
         });
 
   py::class_<PySimulation>(m, "_Simulation")
