@@ -329,6 +329,7 @@ EquilibriumStability linear_stability(const FullBodyModel& model, const Relative
     mode.frequency = zero_mode ? 0.0 : std::abs(l.imag()) > z ? std::abs(l.imag()) : 0.0;
     mode.kind = zero_mode ? "neutral (a further symmetry of the model)" : best->first;
     mode.weight = best->second / total;
+    mode.shape = v.normalized();
     const double out_share = out_of_plane / total;
     mode.in_plane = out_share <= 1e-6;
     if (out_share > 1e-6 && out_share < 1 - 1e-6) st.planar = false;

@@ -4,6 +4,7 @@
 #include <noether/stepping.hpp>
 
 #include "differences.hpp"
+#include "relative_orbit_support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,9 @@
 
 namespace noether {
 
+using detail::barycentric;
 using detail::complement;
+using detail::orbit_chart;
 using detail::jacobian_by_differences;
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -23,18 +26,6 @@ class NullObserver final : public Observer {
  public:
   void observe(const State&, const Forces&, bool) override {}
 };
-
-// The state with its barycentre at rest at the origin.
-State barycentric(const FullBodyModel& model, State s) {
-  const Vec3 c = model.barycentre(s), vc = model.barycentre_velocity(s);
-  s.x.colwise() -= c;
-  for (std::size_t i = 0; i < model.n(); ++i) s.p.col(static_cast<Index>(i)) -= model.system.body(i).mass * vc;
-  return s;
-}
-
-PhaseChart orbit_chart(const FullBodyModel& model, const State& s, double period) {
-  return PhaseChart(model.system, s, std::max(1e-300, s.x.colwise().norm().maxCoeff()), 2 * std::numbers::pi / period);
-}
 
 }  // namespace
 

@@ -61,6 +61,7 @@ struct NormalMode {
   std::string kind;      // the dominant motion: "libration of beta", "tilt of alpha", "orbit (in-plane)", ...
   double weight = 0;     // the share of that motion in the (scaled) eigenvector
   bool in_plane = false; // no motion out of the plane ⟂ k̂ (to 1e-6)
+  Eigen::VectorXcd shape;  // the eigenvector, unit norm, in equilibrium_chart's coordinates
 };
 
 struct EquilibriumStability {
