@@ -96,6 +96,7 @@ struct OrbitOptions {
   int angle_turns = 0;  // whole turns added to the measured α (stability of rigid bodies)
   std::string plot;     // stability, equilibrium: the picture (PNG; its data as the .csv beside it)
   std::vector<std::string> libration;  // equilibrium -o: NAME, DEG: that body turned about k̂
+  std::vector<std::string> lyapunov;   // equilibrium: NAME, DEG: the Lyapunov orbit of NAME's libration
 };
 int orbit_find(OrbitOptions options);
 int orbit_verify(const OrbitOptions& options);

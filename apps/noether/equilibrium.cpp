@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include <noether/error.hpp>
+#include <noether/lyapunov_orbit.hpp>
 #include <noether/relative_equilibrium.hpp>
 #include <noether/relative_periodic_orbit.hpp>
 #include <noether/scene.hpp>
@@ -60,6 +61,29 @@ void warn_if_overlapping(const noether::RelativeEquilibrium& eq) {
                 eq.separation, eq.contact);
 }
 
+// The oscillating mode dominated by BODY's libration (--libration, --lyapunov).
+const noether::NormalMode& libration_mode(const noether::System& system, const noether::EquilibriumStability& st,
+                                          std::size_t body, const std::string& option) {
+  for (const auto& m : st.modes)
+    if (m.kind == "libration of " + system.body(body).name && m.frequency > 0) return m;
+  throw noether::SceneError("orbit equilibrium " + option + ": no oscillating mode of this equilibrium is dominated by the "
+                            "libration of '" + system.body(body).name + "' (see the modes above)");
+}
+
+// A libration amplitude in degrees from NAME,DEG, checked.
+double libration_degrees(const std::string& text, const std::string& option) {
+  double degrees = 0;
+  try {
+    degrees = std::stod(text);
+  } catch (const std::exception&) {
+    throw noether::SceneError("orbit equilibrium " + option + " NAME,DEG: '" + text + "' is not an angle in degrees");
+  }
+  if (!(std::abs(degrees) > 0 && std::abs(degrees) < 45))
+    throw noether::SceneError("orbit equilibrium " + option + ": give an angle between 0 and 45 degrees (not " + text +
+                              "): small amplitudes are what the linearisation predicts");
+  return degrees;
+}
+
 // --libration NAME,DEG: the equilibrium with that rigid body turned by DEG about k̂, keeping its
 // inertial angular velocity ω k̂, so that it librates; and the period of the in-plane mode its
 // libration dominates (the one to compare a run with).
@@ -74,21 +98,8 @@ Librating librating(const noether::System& system, const noether::RelativeEquili
   if (r < 0)
     throw noether::SceneError("orbit equilibrium --libration: body '" + system.body(body).name +
                               "' is a point mass; it has no attitude to librate");
-  double degrees = 0;
-  try {
-    degrees = std::stod(spec[1]);
-  } catch (const std::exception&) {
-    throw noether::SceneError("orbit equilibrium --libration NAME,DEG: '" + spec[1] + "' is not an angle in degrees");
-  }
-  if (!(std::abs(degrees) > 0 && std::abs(degrees) < 45))
-    throw noether::SceneError("orbit equilibrium --libration: give an angle between 0 and 45 degrees (not " + spec[1] +
-                              "): small amplitudes are what the linearisation predicts");
-  double frequency = 0;
-  for (const auto& m : st.modes)
-    if (m.kind == "libration of " + system.body(body).name && m.frequency > 0) frequency = m.frequency;
-  if (frequency == 0)
-    throw noether::SceneError("orbit equilibrium --libration: no oscillating mode of this equilibrium is dominated by the "
-                              "libration of '" + system.body(body).name + "' (see the modes above)");
+  const double degrees = libration_degrees(spec[1], "--libration");
+  const double frequency = libration_mode(system, st, body, "--libration").frequency;
   const auto k = static_cast<std::size_t>(r);
   const noether::Mat3& J = system.body(body).inertia;
   Librating out{eq.state, 2 * std::numbers::pi / frequency};
@@ -96,6 +107,64 @@ Librating librating(const noether::System& system, const noether::RelativeEquili
   out.state.R[k] = Eigen::AngleAxisd(degrees * std::numbers::pi / 180, eq.axis).toRotationMatrix() * eq.state.R[k];
   out.state.Pi.col(r) = J * out.state.R[k].transpose() * spin;
   return out;
+}
+
+// --lyapunov NAME,DEG: the Lyapunov orbit of NAME's libration (19.3) on the scene's integrator,
+// its multipliers, and with -o the orbit as a scene of one period.
+int lyapunov(const OrbitOptions& o, const noether::Scene& scene, const noether::FullBodyModel& model,
+             const noether::RelativeEquilibrium& eq, const noether::EquilibriumStability& st) {
+  const auto& sys = scene.system;
+  const std::size_t body = body_index(sys, o.lyapunov[0]);
+  if (sys.rigid_index(body) < 0)
+    throw noether::SceneError("orbit equilibrium --lyapunov: body '" + sys.body(body).name +
+                              "' is a point mass; it has no attitude to librate");
+  const double degrees = std::abs(libration_degrees(o.lyapunov[1], "--lyapunov"));
+  const auto& mode = libration_mode(sys, st, body, "--lyapunov");
+  const auto ly = noether::lyapunov_orbit(model, scene.integrator, eq, mode, degrees * std::numbers::pi / 180);
+  std::printf("Lyapunov orbit of the libration of %s, amplitude %s deg, on the map of %s: closure %.2e -> %.2e in %d "
+              "Newton steps\n", sys.body(body).name.c_str(), o.lyapunov[1].c_str(), scene.integrator.plugin.c_str(),
+              ly.orbit.initial_closure, ly.orbit.closure, ly.orbit.iterations);
+  std::printf("period                           %.12g (linear %.12g; relative %+.3e)\n", ly.orbit.period,
+              ly.linear_period, ly.orbit.period / ly.linear_period - 1);
+  std::printf("turned by                        %.12g rad about k\n", ly.orbit.angle);
+  noether::Scene written = scene;
+  if (ly.steps > 0) {
+    std::printf("steps                            %ld of %.12g (the step follows the period)\n", ly.steps, ly.step);
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", ly.step);
+    written.integrator.params.set("step", noether::Params::scalar(text));
+  }
+  if (ly.orbit.closure > 1e-9) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "noether: the Lyapunov orbit did not close to 1e-9 (closure %.1e); nothing written: try a "
+                 "smaller amplitude, or with an adaptive integrator a smaller rtol (its error bounds the closure: "
+                 "rtol 1e-13 closes to ~1e-11)\n", ly.orbit.closure);
+    return 1;
+  }
+  const auto mu = noether::lyapunov_multipliers(model, scene.integrator, ly, o.tolerance);
+  std::printf("multipliers (the map %s the energy):", mu.energy_conserved ? "conserves" : "does not conserve");
+  for (auto m : mu.multipliers) std::printf(" %.6g%+.6gi", m.real(), m.imag());
+  if (!mu.family.empty()) {
+    std::printf("; the family's pair at 1, not judged:");
+    for (auto m : mu.family) std::printf(" %.6g%+.6gi", m.real(), m.imag());
+  }
+  std::printf("\nverdict                          %s (max |mu| = %.10f)\n", mu.verdict.c_str(), mu.max_modulus);
+  if (!o.plot.empty())
+    plot_spectrum(o.plot, mu.multipliers, {}, "multipliers", 1.0, o.tolerance,
+                  "Lyapunov orbit of the libration of " + sys.body(body).name + ": " + mu.verdict);
+  if (!o.output.empty()) {
+    char desc[300];
+    std::snprintf(desc, sizeof desc, "Lyapunov orbit of the libration of %s, amplitude %s deg (noether orbit equilibrium "
+                  "--lyapunov from %s): period %.12g", sys.body(body).name.c_str(), o.lyapunov[1].c_str(),
+                  o.scene.c_str(), ly.orbit.period);
+    std::ofstream file(o.output);
+    file << noether::scene_with_state(written, ly.orbit.state, ly.orbit.period,
+                                      noether::frames_keeping_step(written, ly.orbit.period), desc);
+    file.close();
+    if (!file) throw noether::OutputError("cannot write the orbit's scene to " + o.output + "; choose a folder you can write");
+    std::printf("written: %s (one period of the orbit)\n", o.output.c_str());
+  }
+  return 0;
 }
 
 }  // namespace
@@ -115,6 +184,8 @@ int orbit_equilibrium(const OrbitOptions& o) {
   const auto& sys = scene.system;
   if (!o.sweep_key.empty() && o.sweep.empty())
     throw noether::SceneError("orbit equilibrium --sweep-key KEY goes with --sweep FROM,TO,COUNT (the values of KEY)");
+  if (!o.lyapunov.empty() && (!o.sweep.empty() || !o.libration.empty()))
+    throw noether::SceneError("orbit equilibrium --lyapunov goes with neither --sweep nor --libration");
   if (!o.libration.empty() && (o.output.empty() || !o.sweep.empty()))
     throw noether::SceneError("orbit equilibrium --libration goes with -o OUT.yaml (the scene it writes), not with --sweep");
   const std::string a = sys.size() > options.body_a ? sys.body(options.body_a).name : "",
@@ -227,7 +298,7 @@ int orbit_equilibrium(const OrbitOptions& o) {
               st.energetic_verdict.c_str(), st.energetic_index, st.hessian_eigenvalues.empty() ? 0.0 : st.hessian_eigenvalues.front());
   if (st.verdict == "linearly stable" && st.energetic_index > 0)
     std::printf("note: stable only gyroscopically: any dissipation (tides) makes it unstable\n");
-  if (!o.plot.empty()) {
+  if (!o.plot.empty() && o.lyapunov.empty()) {  // (with --lyapunov: the orbit's multipliers)
     std::vector<std::string> labels;  // each eigenvalue with Im λ ≥ 0 named by its mode
     for (const auto& l : st.eigenvalues) {
       const noether::NormalMode* nearest = nullptr;
@@ -240,6 +311,7 @@ int orbit_equilibrium(const OrbitOptions& o) {
     plot_spectrum(o.plot, st.eigenvalues, labels, "eigenvalues", eq.rate, o.tolerance,
                   "relative equilibrium of " + std::filesystem::path(o.scene).filename().string() + ": " + st.verdict);
   }
+  if (!o.lyapunov.empty()) return lyapunov(o, scene, model, eq, st);
   if (!o.output.empty()) {
     const double period = 2 * std::numbers::pi / eq.rate;
     char desc[300];

@@ -171,6 +171,10 @@ int main(int argc, char** argv) {
   equilibrium_cmd->add_option("--libration", orbit.libration,
                               "NAME,DEG: with -o, that body turned by DEG about the axis, librating (four libration periods)")
       ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--lyapunov", orbit.lyapunov,
+                              "NAME,DEG: the periodic orbit of that body's libration at that amplitude, on the scene's "
+                              "integrator; with -o, written as a scene of one period")
+      ->delimiter(',')->expected(2);
   equilibrium_cmd->add_option("--plot", orbit.plot,
                               "PNG: the eigenvalues (or, with --sweep, the modes along the family); data in the .csv beside it");
 

@@ -5,6 +5,7 @@
 #include "differences.hpp"
 #include "relative_orbit_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -13,6 +14,42 @@ namespace noether {
 
 using Eigen::Index;
 using Eigen::VectorXd;
+
+namespace {
+
+// `integrator` with its step replaced (step > 0).
+PluginConfig with_step(const PluginConfig& integrator, double step) {
+  PluginConfig c = integrator;
+  if (step > 0) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", step);
+    c.params.set("step", Params::scalar(text));
+  }
+  return c;
+}
+
+}  // namespace
+
+PluginConfig lyapunov_integrator(const PluginConfig& integrator, const LyapunovOrbit& orbit) {
+  return with_step(integrator, orbit.step);
+}
+
+OrbitMultipliers lyapunov_multipliers(const FullBodyModel& model, const PluginConfig& integrator,
+                                      const LyapunovOrbit& orbit, double tolerance) {
+  OrbitMultipliers mu = relative_orbit_multipliers(model, lyapunov_integrator(integrator, orbit), orbit.orbit, tolerance);
+  if (mu.energy_conserved) return mu;
+  auto& m = mu.multipliers;
+  for (int k = 0; k < 2 && !m.empty(); ++k) {
+    const auto nearest = std::min_element(m.begin(), m.end(), [](auto a, auto b) { return std::abs(a - 1.0) < std::abs(b - 1.0); });
+    if (std::abs(*nearest - 1.0) > 1e-3) break;
+    mu.family.push_back(*nearest);
+    m.erase(nearest);
+  }
+  mu.max_modulus = m.empty() ? 0.0 : std::abs(m.front());
+  mu.verdict = mu.max_modulus <= 1 + tolerance ? "linearly stable"
+               : mu.max_modulus > 1 + 100 * tolerance ? "unstable" : "undecided";
+  return mu;
+}
 
 LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& integrator, const RelativeEquilibrium& eq,
                              const NormalMode& mode, double amplitude, double tolerance, int max_iterations) {
@@ -57,15 +94,7 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
   // A fixed step: N steps per period, held while T moves.
   const bool fixed_step = integrator.params.has("step");
   if (fixed_step) out.steps = std::max(1L, std::lround(T0 / integrator.params.at("step").as_double()));
-  const auto config = [&](double T) {
-    PluginConfig c = integrator;
-    if (fixed_step) {
-      char text[40];
-      std::snprintf(text, sizeof text, "%.17g", T / static_cast<double>(out.steps));
-      c.params.set("step", Params::scalar(text));
-    }
-    return c;
-  };
+  const auto config = [&](double T) { return with_step(integrator, fixed_step ? T / static_cast<double>(out.steps) : 0); };
   const PhaseChart chart = detail::orbit_chart(model, guess, T0);
   const Index d = chart.dimension();
   const Vec3 k = model.angular_momentum(guess).normalized();

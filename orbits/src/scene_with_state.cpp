@@ -59,6 +59,7 @@ std::string scene_with_state(const Scene& scene, const State& state, double t_en
   run.set("output_every", number(t_end / frames));
   for (auto& [key, value] : root) {
     if (key == "run") value = run;
+    if (key == "integrator") value = scene.integrator.params;  // as the caller may have changed it (a step)
     // A fixed step: the nearest shorter one that puts a whole number of steps in every frame.
     if (key == "integrator" && value.is_map() && value.has("step")) {
       const double per_frame = std::max(1.0, std::ceil(t_end / frames / value.at("step").as_double() - 1e-9));

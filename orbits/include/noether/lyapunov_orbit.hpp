@@ -24,4 +24,14 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
                              const NormalMode& mode, double amplitude, double tolerance = 1e-12,
                              int max_iterations = 30);
 
+// The integrator the orbit belongs to: `integrator` with the step T/N for a fixed-step method.
+PluginConfig lyapunov_integrator(const PluginConfig& integrator, const LyapunovOrbit& orbit);
+
+// The orbit's multipliers (19.2). On a map that conserves E the energy and the flow are projected
+// out; on one that does not (the LGVI conserves a modified energy) the family and the phase leave
+// a pair at 1 — a Jordan block, split by the differencing into 1 ± O(√ε) — which is set apart as
+// `family` (when within 1e-3 of 1) and the verdict is taken over the others.
+OrbitMultipliers lyapunov_multipliers(const FullBodyModel& model, const PluginConfig& integrator,
+                                      const LyapunovOrbit& orbit, double tolerance = 1e-6);
+
 }  // namespace noether

@@ -53,6 +53,9 @@ struct OrbitMultipliers {
   double energy_defect = 0;
   bool energy_conserved = false;
   std::string verdict;  // "linearly stable" (every |μ| ≤ 1 + tol), "unstable" (> 1 + 100 tol), "undecided"
+  // Set apart, not judged: a Lyapunov orbit's pair at 1 on a map that does not conserve E (its
+  // family and its phase; lyapunov_multipliers).
+  std::vector<std::complex<double>> family;
 };
 
 // The monodromy D(Rot(−α) Φ_T) by central differences, restricted to the barycentre-free
