@@ -107,6 +107,7 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
   // u = (δ, α, τ), T = T0 (1 + τ): the closure (19.1), L·k̂ held, nothing added along the mode.
   const auto residual = [&](const VectorXd& u) {
     const double T = T0 * (1 + u[d + 1]);
+    if (!(T > 0.1 * T0)) return VectorXd(VectorXd::Constant(d + 2, NAN));  // a step too far: rejected, halved
     const State start = chart.retract(u.head(d));
     const State end = integrator_map(model, config(T), start, T);
     VectorXd r(d + 2);
