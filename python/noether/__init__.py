@@ -22,7 +22,7 @@ from .output import Output, read
 from .compare import Table, compare
 
 __all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "relative_equilibrium",
-           "relative_periodic_orbit", "Error",
+           "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
 
@@ -97,6 +97,27 @@ def relative_periodic_orbit(scene, set=(), period=None, turns=0, tolerance=1e-6)
         return _noether.relative_periodic_orbit(os.fspath(scene), "", "", overrides, period, int(turns),
                                                 float(tolerance))
     raise TypeError("relative_periodic_orbit(scene): a path to a YAML scene, or a dict of its keys")
+
+
+def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
+    """The periodic orbit of a rigid body's libration at an amplitude (degrees), grown out of the
+    libration mode of the relative equilibrium nearest to the scene's state, on the scene's own
+    integrator, as `noether orbit equilibrium --lyapunov BODY,DEG` finds it
+    (docs/relative-equilibria.md, docs/equations.md (19.3)). With a fixed-step integrator the
+    number of steps per period is held and the step follows the period.
+
+    Returns a dict: period, linear_period (2π/ν of the mode), angle (α), initial_closure,
+    closure, iterations, converged, step and steps (0 for adaptive integrators) and, when
+    converged, multipliers (complex), family (the pair at 1 set apart, on a map that does not
+    conserve E), verdict and scene (YAML text of one period, for Simulation.from_yaml)."""
+    overrides = [set] if isinstance(set, str) else list(set)
+    if isinstance(scene, dict):
+        text, name = _scene_text(scene)
+        return _noether.lyapunov_orbit("", text, name, overrides, str(body), float(degrees), float(tolerance))
+    if isinstance(scene, (str, os.PathLike)):
+        return _noether.lyapunov_orbit(os.fspath(scene), "", "", overrides, str(body), float(degrees),
+                                       float(tolerance))
+    raise TypeError("lyapunov_orbit(scene): a path to a YAML scene, or a dict of its keys")
 
 
 class Simulation:

@@ -3,6 +3,7 @@
 #include "python_potential.hpp"
 #include "relative_equilibrium.hpp"
 #include "relative_periodic_orbit.hpp"
+#include "lyapunov_orbit.hpp"
 
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
@@ -370,6 +371,11 @@ PYBIND11_MODULE(_noether, m) {
            const std::vector<std::string>& pair, bool align, double tolerance) {
           return noether::python::relative_equilibrium(registry(), file, text, name, overrides, fix, value, pair, align,
                                                        tolerance);
+        });
+  m.def("lyapunov_orbit",
+        [](const std::string& file, const std::string& text, const std::string& name,
+           const std::vector<std::string>& overrides, const std::string& body, double degrees, double tolerance) {
+          return noether::python::lyapunov_orbit(registry(), file, text, name, overrides, body, degrees, tolerance);
         });
   m.def("relative_periodic_orbit",
         [](const std::string& file, const std::string& text, const std::string& name,
