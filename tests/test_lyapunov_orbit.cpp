@@ -30,11 +30,6 @@ Scene tiny_moon() {
       "tiny-moon.yaml");
 }
 
-PluginConfig integrator(const std::string& yaml) {
-  const Params p = parse_params(yaml, "test");
-  return PluginConfig{p.at("plugin").as_string(), p};
-}
-
 // The fixed step that puts N steps in the mode's linear period.
 double ly_step_guess(const NormalMode& mode, int N) { return 2 * M_PI / mode.frequency / N; }
 
@@ -47,11 +42,9 @@ TEST(LyapunovOrbit, LibrationPeriodGrowsWithAmplitudeAsThePendulums) {
   const auto eq = find_relative_equilibrium(model, s.initial);
   ASSERT_TRUE(eq.converged);
   const auto st = linear_stability(model, eq);
-  const NormalMode* libration = nullptr;
-  for (const auto& m : st.modes)
-    if (m.kind == "libration of moon") libration = &m;
+  const NormalMode* libration = libration_mode(st, "moon");
   ASSERT_NE(libration, nullptr);
-  const auto flow = integrator("{plugin: rk, method: rkf78, rtol: 1e-13, atol: 1e-16}");
+  const auto flow = test::plugin_config("{plugin: rk, method: rkf78, rtol: 1e-13, atol: 1e-16}");
   double T_flow = 0;
   for (const double theta0 : {0.025, 0.05, 0.1}) {
     const auto ly = lyapunov_orbit(model, flow, eq, *libration, theta0);
@@ -69,7 +62,7 @@ TEST(LyapunovOrbit, LibrationPeriodGrowsWithAmplitudeAsThePendulums) {
   // to round-off, and its period converges to the flow's at order 2.
   std::vector<double> error;
   for (const int N : {200, 400, 800}) {
-    const auto lgvi = integrator("{plugin: lgvi, step: " + std::to_string(ly_step_guess(*libration, N)) + "}");
+    const auto lgvi = test::plugin_config("{plugin: lgvi, step: " + std::to_string(ly_step_guess(*libration, N)) + "}");
     const auto ly = lyapunov_orbit(model, lgvi, eq, *libration, 0.05);
     error.push_back(ly.orbit.period - T_flow);
     std::printf("LGVI N = %ld (h = %.4f): closure %.1e in %d Newton steps, T - T_flow = %.3e\n", ly.steps, ly.step,

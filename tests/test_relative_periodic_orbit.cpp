@@ -29,11 +29,6 @@ Scene point_and_ellipsoid() {
       "point-ellipsoid.yaml");
 }
 
-PluginConfig integrator(const std::string& yaml) {
-  const Params p = parse_params(yaml, "test");
-  return PluginConfig{p.at("plugin").as_string(), p};
-}
-
 // The largest distance from a continuous multiplier to the nearest discrete one.
 double multiplier_error(const std::vector<std::complex<double>>& continuous, const std::vector<std::complex<double>>& discrete) {
   double worst = 0;
@@ -60,7 +55,7 @@ TEST(RelativePeriodicOrbit, DiscreteLgviOrbitClosesAndItsMultipliersConvergeAtTh
   ASSERT_EQ(continuous.size(), 8u);  // point mass + rigid body: 4 modes
 
   // The continuous flow by rkf78: the same orbit (the equilibrium) and multipliers.
-  const auto flow = integrator("{plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-16}");
+  const auto flow = test::plugin_config("{plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-16}");
   const auto orbit = shoot_relative_periodic_orbit(model, flow, eq.state, T, eq.rate * T, 1e-11);
   EXPECT_LT(orbit.closure, 1e-11);
   EXPECT_NEAR(orbit.angle, eq.rate * T, 1e-9);
@@ -79,7 +74,7 @@ TEST(RelativePeriodicOrbit, DiscreteLgviOrbitClosesAndItsMultipliersConvergeAtTh
       std::ostringstream spec;
       spec.precision(17);
       spec << "{plugin: lgvi, step: " << T / steps << (order == 4 ? ", order: 4}" : "}");
-      const auto lgvi = integrator(spec.str());
+      const auto lgvi = test::plugin_config(spec.str());
       const auto discrete = shoot_relative_periodic_orbit(model, lgvi, eq.state, T, eq.rate * T);
       const auto m = relative_orbit_multipliers(model, lgvi, discrete);
       const double error = multiplier_error(continuous, m.multipliers);

@@ -15,6 +15,12 @@ inline std::string source_path(const std::string& relative) {
 // A registry of the plugins built in this tree only (no NOETHER_PLUGIN_PATH, no install).
 inline PluginRegistry bundled_plugins() { return PluginRegistry({NOETHER_TEST_PLUGIN_DIR}); }
 
+// An integrator's configuration from YAML text, as a scene's `integrator:` gives one.
+inline PluginConfig plugin_config(const std::string& yaml) {
+  const Params p = parse_params(yaml, "test");
+  return PluginConfig{p.at("plugin").as_string(), p};
+}
+
 inline Scene dumbbell_scene(const std::vector<std::string>& overrides = {}) {
   return load_scene(source_path("examples/dumbbells.yaml"), overrides);
 }

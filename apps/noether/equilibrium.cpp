@@ -64,8 +64,7 @@ void warn_if_overlapping(const noether::RelativeEquilibrium& eq) {
 // The oscillating mode dominated by BODY's libration (--libration, --lyapunov).
 const noether::NormalMode& libration_mode(const noether::System& system, const noether::EquilibriumStability& st,
                                           std::size_t body, const std::string& option) {
-  for (const auto& m : st.modes)
-    if (m.kind == "libration of " + system.body(body).name && m.frequency > 0) return m;
+  if (const auto* mode = noether::libration_mode(st, system.body(body).name)) return *mode;
   throw noether::SceneError("orbit equilibrium " + option + ": no oscillating mode of this equilibrium is dominated by the "
                             "libration of '" + system.body(body).name + "' (see the modes above)");
 }
@@ -127,18 +126,15 @@ int lyapunov(const OrbitOptions& o, const noether::Scene& scene, const noether::
   std::printf("period                           %.12g (linear %.12g; relative %+.3e)\n", ly.orbit.period,
               ly.linear_period, ly.orbit.period / ly.linear_period - 1);
   std::printf("turned by                        %.12g rad about k\n", ly.orbit.angle);
-  noether::Scene written = scene;
-  if (ly.steps > 0) {
+  if (ly.steps > 0)
     std::printf("steps                            %ld of %.12g (the step follows the period)\n", ly.steps, ly.step);
-    char text[40];
-    std::snprintf(text, sizeof text, "%.17g", ly.step);
-    written.integrator.params.set("step", noether::Params::scalar(text));
-  }
-  if (ly.orbit.closure > 1e-9) {
+  noether::Scene written = scene;  // with the orbit's step
+  written.integrator = noether::lyapunov_integrator(scene.integrator, ly);
+  if (!ly.orbit.closed()) {
     std::fflush(stdout);
-    std::fprintf(stderr, "noether: the Lyapunov orbit did not close to 1e-9 (closure %.1e); nothing written: try a "
+    std::fprintf(stderr, "noether: the Lyapunov orbit did not close to %.0e (closure %.1e); nothing written: try a "
                  "smaller amplitude, or with an adaptive integrator a smaller rtol (its error bounds the closure: "
-                 "rtol 1e-13 closes to ~1e-11)\n", ly.orbit.closure);
+                 "rtol 1e-13 closes to ~1e-11)\n", noether::RelativePeriodicOrbit::closed_tolerance, ly.orbit.closure);
     return 1;
   }
   const auto mu = noether::lyapunov_multipliers(model, scene.integrator, ly, o.tolerance);
@@ -339,11 +335,26 @@ int orbit_equilibrium(const OrbitOptions& o) {
   return 0;
 }
 
-int orbit_rigid_verify(const OrbitOptions& o) {
-  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+namespace {
+
+// What orbit verify, refine and stability work on for a scene with rigid bodies: the scene, its
+// model, and the period T (--period, or the scene's run.t_end).
+struct RigidOrbitProblem {
+  noether::Scene scene;
   noether::PluginRegistry registry;
-  const auto model = noether::FullBodyModel::from_scene(scene, registry);
-  const double T = o.period > 0 ? o.period : scene.run.t_end;
+  noether::FullBodyModel model;
+  double period;
+  explicit RigidOrbitProblem(const OrbitOptions& o)
+      : scene(noether::load_scene(o.scene, o.overrides)),
+        model(noether::FullBodyModel::from_scene(scene, registry)),
+        period(o.period > 0 ? o.period : scene.run.t_end) {}
+};
+
+}  // namespace
+
+int orbit_rigid_verify(const OrbitOptions& o) {
+  const RigidOrbitProblem problem(o);
+  const auto& [scene, registry, model, T] = problem;
   const auto c = noether::relative_closure(model, scene.integrator, scene.initial, T);
   const double E0 = model.energy(scene.initial), E1 = model.energy(c.end);
   std::printf("relative periodic orbit of %s on the map of %s over T = %.12g: turned by alpha = %.12g rad about k\n",
@@ -359,16 +370,14 @@ int orbit_rigid_verify(const OrbitOptions& o) {
 }
 
 int orbit_rigid_refine(const OrbitOptions& o) {
-  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
-  noether::PluginRegistry registry;
-  const auto model = noether::FullBodyModel::from_scene(scene, registry);
-  const double T = o.period > 0 ? o.period : scene.run.t_end;
+  const RigidOrbitProblem problem(o);
+  const auto& [scene, registry, model, T] = problem;
   const double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;
   const auto orbit = noether::shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
   std::printf("closure %.3e -> %.3e in %d Newton steps on the map of %s (T = %.12g held, L.k held, turned by alpha = "
               "%.12g rad)\n", orbit.initial_closure, orbit.closure, orbit.iterations, scene.integrator.plugin.c_str(), T,
               orbit.angle);
-  if (orbit.closure > 1e-9) {
+  if (!orbit.closed()) {
     std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e); nothing written: the scene's "
                  "state is not near a relative periodic orbit of period %.6g (try another --period)\n", orbit.closure, T);
     return 1;
@@ -384,12 +393,8 @@ int orbit_rigid_refine(const OrbitOptions& o) {
 }
 
 int orbit_rigid_stability(const OrbitOptions& o) {
-  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
-  noether::PluginRegistry registry;
-  const auto model = noether::FullBodyModel::from_scene(scene, registry);
-  const double T = o.period > 0 ? o.period : scene.run.t_end;
-  if (scene.system.size() < 2)
-    throw noether::SceneError("orbit stability of rigid bodies: relative periodic orbits need at least two bodies");
+  const RigidOrbitProblem problem(o);
+  const auto& [scene, registry, model, T] = problem;
   // α0: the turn of the first two bodies' line of centres about k̂ over one period.
   double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;
   if (o.angle_turns != 0) alpha += 2 * std::numbers::pi * o.angle_turns;
@@ -398,7 +403,7 @@ int orbit_rigid_stability(const OrbitOptions& o) {
               "turned by alpha = %.12g rad about k\n",
               o.scene.c_str(), scene.integrator.plugin.c_str(), T, orbit.initial_closure, orbit.closure, orbit.iterations,
               orbit.angle);
-  if (orbit.closure > 1e-9) {
+  if (!orbit.closed()) {
     std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e): the scene's state is not near a "
                  "relative periodic orbit of period %.6g; try another --period\n", orbit.closure, T);
     return 1;

@@ -86,14 +86,4 @@ VectorXd PhaseChart::rotation_generator(const Vec3& e, const Vec3& frame) const 
   return g.cwiseQuotient(scale_);
 }
 
-std::string PhaseChart::component_name(Index i) const {
-  static const char* axis = "xyz";
-  const std::string a(1, axis[i % 3]);
-  if (i < 3 * n_) return "x" + a + " " + system_->body(static_cast<std::size_t>(i / 3)).name;
-  if (i < 6 * n_) return "v" + a + " " + system_->body(static_cast<std::size_t>(i / 3 - n_)).name;
-  const auto k = static_cast<std::size_t>((i - 6 * n_) / 3);
-  if (i < 6 * n_ + 3 * r_) return "eta" + a + " " + system_->body(system_->body_of_rigid(k)).name;
-  return "Pi" + a + " " + system_->body(system_->body_of_rigid(k - static_cast<std::size_t>(r_))).name;
-}
-
 }  // namespace noether

@@ -200,6 +200,12 @@ RelativeEquilibrium find_relative_equilibrium(const FullBodyModel& model, const 
   return out;
 }
 
+const NormalMode* libration_mode(const EquilibriumStability& stability, const std::string& body) {
+  for (const auto& m : stability.modes)
+    if (m.kind == "libration of " + body && m.frequency > 0) return &m;
+  return nullptr;
+}
+
 PhaseChart equilibrium_chart(const FullBodyModel& model, const RelativeEquilibrium& eq) {
   State base = eq.state;
   base.p.setZero();  // velocities in the turning frame: zero at the equilibrium
@@ -212,14 +218,11 @@ EquilibriumStability linear_stability(const FullBodyModel& model, const Relative
   const PhaseChart chart = equilibrium_chart(model, eq);
   const Vec3 W = eq.rate * eq.axis;  // the frame's angular velocity
   const Index d = chart.dimension();
-  const auto& workspace = model.workspace;
 
   // The vector field of the turning frame (18.3) in the chart's scaled coordinates.
   const auto field = [&](const VectorXd& delta) {
     const State s = chart.retract(delta);
-    Forces f;
-    f.resize(sys);
-    model.potential->evaluate(s, f, *workspace);
+    const Forces f = model.forces(s);
     VectorXd dot(d);
     for (std::size_t i = 0; i < sys.size(); ++i) {
       const auto j = static_cast<Index>(i);
@@ -346,9 +349,7 @@ EquilibriumStability linear_stability(const FullBodyModel& model, const Relative
   // the Hessian at a critical point), differenced once more.
   const auto gradient = [&](const VectorXd& delta) {
     const State s = chart.retract(delta);
-    Forces f;
-    f.resize(sys);
-    model.potential->evaluate(s, f, *workspace);
+    const Forces f = model.forces(s);
     VectorXd g(d);
     for (std::size_t i = 0; i < sys.size(); ++i) {
       const auto j = static_cast<Index>(i);

@@ -1,4 +1,5 @@
 #include "lyapunov_orbit.hpp"
+#include "state_arrays.hpp"
 
 #include <noether/error.hpp>
 #include <noether/lyapunov_orbit.hpp>
@@ -15,16 +16,6 @@
 namespace py = pybind11;
 
 namespace noether::python {
-
-namespace {
-
-py::array_t<std::complex<double>> complex_array(const std::vector<std::complex<double>>& z) {
-  py::array_t<std::complex<double>> out(static_cast<py::ssize_t>(z.size()));
-  for (std::size_t i = 0; i < z.size(); ++i) out.mutable_at(static_cast<py::ssize_t>(i)) = z[i];
-  return out;
-}
-
-}  // namespace
 
 py::dict lyapunov_orbit(PluginRegistry& registry, const std::string& file, const std::string& text,
                         const std::string& name, const std::vector<std::string>& overrides, const std::string& body,
@@ -45,12 +36,10 @@ py::dict lyapunov_orbit(PluginRegistry& registry, const std::string& file, const
     const auto eq = find_relative_equilibrium(model, scene.initial);
     if (!eq.converged) throw SceneError("lyapunov_orbit: no relative equilibrium found near the scene's state");
     const auto st = linear_stability(model, eq, tolerance);
-    const NormalMode* mode = nullptr;
-    for (const auto& m : st.modes)
-      if (m.kind == "libration of " + body && m.frequency > 0) mode = &m;
+    const NormalMode* mode = libration_mode(st, body);
     if (!mode) throw SceneError("lyapunov_orbit: no oscillating mode is dominated by the libration of '" + body + "'");
     ly = noether::lyapunov_orbit(model, scene.integrator, eq, *mode, degrees * std::numbers::pi / 180);
-    if (ly.orbit.closure <= 1e-9) mu = lyapunov_multipliers(model, scene.integrator, ly, tolerance);
+    if (ly.orbit.closed()) mu = lyapunov_multipliers(model, scene.integrator, ly, tolerance);
   }
   out["period"] = ly.orbit.period;
   out["linear_period"] = ly.linear_period;
@@ -58,10 +47,10 @@ py::dict lyapunov_orbit(PluginRegistry& registry, const std::string& file, const
   out["initial_closure"] = ly.orbit.initial_closure;
   out["closure"] = ly.orbit.closure;
   out["iterations"] = ly.orbit.iterations;
-  out["converged"] = ly.orbit.closure <= 1e-9;
+  out["converged"] = ly.orbit.closed();
   out["step"] = ly.step;
   out["steps"] = ly.steps;
-  if (ly.orbit.closure > 1e-9) return out;
+  if (!ly.orbit.closed()) return out;
   out["multipliers"] = complex_array(mu.multipliers);
   out["family"] = complex_array(mu.family);
   out["verdict"] = mu.verdict;

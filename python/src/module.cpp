@@ -3,6 +3,7 @@
 #include "python_potential.hpp"
 #include "relative_equilibrium.hpp"
 #include "relative_periodic_orbit.hpp"
+#include "state_arrays.hpp"
 #include "lyapunov_orbit.hpp"
 
 #include <noether/compare.hpp>
@@ -24,6 +25,7 @@
 
 namespace py = pybind11;
 using noether::State;
+using noether::python::rows;
 
 namespace {
 
@@ -34,15 +36,6 @@ noether::PluginRegistry& registry() {
 }
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-// Columns of a 3×n Eigen matrix as an (n, 3) array (a copy: the state moves on).
-py::array_t<double> rows(const Eigen::Matrix3Xd& m, const std::vector<double>* scale = nullptr) {
-  py::array_t<double> out({static_cast<py::ssize_t>(m.cols()), py::ssize_t{3}});
-  auto v = out.mutable_unchecked<2>();
-  for (Eigen::Index i = 0; i < m.cols(); ++i)
-    for (int a = 0; a < 3; ++a) v(i, a) = scale ? m(a, i) / (*scale)[static_cast<std::size_t>(i)] : m(a, i);
-  return out;
-}
 
 // An (n, 3) array into the columns of a 3×n matrix, checked.
 void set_rows(Eigen::Matrix3Xd& m, const py::handle& value, const char* what) {
@@ -104,28 +97,12 @@ class PySimulation {
 
   py::array_t<double> positions() const { return rows(sim_->state().x); }
   py::array_t<double> momenta() const { return rows(sim_->state().p); }
-  py::array_t<double> velocities() const {
-    std::vector<double> m;
-    for (const auto& b : system().bodies()) m.push_back(b.mass);
-    return rows(sim_->state().p, &m);
-  }
+  py::array_t<double> velocities() const { return noether::python::velocities(system(), sim_->state()); }
   py::array_t<double> angular_momenta() const { return rows(sim_->state().Pi); }
   py::array_t<double> angular_velocities() const {  // Ω_k = J_k⁻¹ Π_k, body frame
-    const State& s = sim_->state();
-    Eigen::Matrix3Xd omega(3, s.Pi.cols());
-    for (Eigen::Index k = 0; k < s.Pi.cols(); ++k)
-      omega.col(k) = system().body(system().body_of_rigid(static_cast<std::size_t>(k))).inertia_inverse * s.Pi.col(k);
-    return rows(omega);
+    return noether::python::angular_velocities(system(), sim_->state());
   }
-  py::array_t<double> attitudes() const {
-    const State& s = sim_->state();
-    py::array_t<double> out({static_cast<py::ssize_t>(s.R.size()), py::ssize_t{3}, py::ssize_t{3}});
-    auto v = out.mutable_unchecked<3>();
-    for (std::size_t k = 0; k < s.R.size(); ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) v(static_cast<py::ssize_t>(k), r, c) = s.R[k](r, c);
-    return out;
-  }
+  py::array_t<double> attitudes() const { return noether::python::attitudes(sim_->state()); }
   py::array_t<double> quaternions() const {
     const State& s = sim_->state();
     py::array_t<double> out({static_cast<py::ssize_t>(s.R.size()), py::ssize_t{4}});

@@ -1,4 +1,5 @@
 #include "python_potential.hpp"
+#include "state_arrays.hpp"
 
 #include <noether/error.hpp>
 
@@ -40,15 +41,7 @@ void PythonPotential::evaluate(const State& state, Forces& forces, Workspace&) c
   py::gil_scoped_acquire gil;
   const std::size_t bodies = static_cast<std::size_t>(state.x.cols()), rigid = state.R.size();
   const auto nb = static_cast<py::ssize_t>(bodies), nr = static_cast<py::ssize_t>(rigid);
-  py::array_t<double> x({nb, py::ssize_t{3}});
-  auto xv = x.mutable_unchecked<2>();
-  for (py::ssize_t i = 0; i < nb; ++i)
-    for (py::ssize_t a = 0; a < 3; ++a) xv(i, a) = state.x(a, i);
-  py::array_t<double> R({nr, py::ssize_t{3}, py::ssize_t{3}});
-  auto Rv = R.mutable_unchecked<3>();
-  for (py::ssize_t k = 0; k < nr; ++k)
-    for (py::ssize_t r = 0; r < 3; ++r)
-      for (py::ssize_t c = 0; c < 3; ++c) Rv(k, r, c) = state.R[static_cast<std::size_t>(k)](r, c);
+  const py::array_t<double> x = rows(state.x), R = attitudes(state);
   py::object result;
   try {
     result = function_(x, R);

@@ -1,4 +1,5 @@
 #include "relative_equilibrium.hpp"
+#include "state_arrays.hpp"
 
 #include <noether/error.hpp>
 #include <noether/relative_equilibrium.hpp>
@@ -17,14 +18,6 @@ namespace py = pybind11;
 namespace noether::python {
 
 namespace {
-
-py::array_t<double> columns_as_rows(const Eigen::Matrix3Xd& m) {
-  py::array_t<double> out({static_cast<py::ssize_t>(m.cols()), py::ssize_t{3}});
-  auto v = out.mutable_unchecked<2>();
-  for (Eigen::Index i = 0; i < m.cols(); ++i)
-    for (int a = 0; a < 3; ++a) v(i, a) = m(a, i);
-  return out;
-}
 
 std::size_t index_of(const System& system, const std::string& name) {
   const int i = system.index_of(name);
@@ -71,20 +64,10 @@ py::dict relative_equilibrium(PluginRegistry& registry, const std::string& file,
   out["energy"] = eq.energy;
   out["overlapping"] = eq.contact > 0 && eq.separation <= eq.contact;
   // The state, as Simulation shows one: positions, velocities, attitudes, body-frame Ω.
-  const System& sys = scene.system;
-  Eigen::Matrix3Xd v = eq.state.p, omega(3, eq.state.Pi.cols());
-  for (std::size_t i = 0; i < sys.size(); ++i) v.col(static_cast<Eigen::Index>(i)) /= sys.body(i).mass;
-  for (Eigen::Index k = 0; k < omega.cols(); ++k)
-    omega.col(k) = sys.body(sys.body_of_rigid(static_cast<std::size_t>(k))).inertia_inverse * eq.state.Pi.col(k);
-  py::array_t<double> R({static_cast<py::ssize_t>(eq.state.R.size()), py::ssize_t{3}, py::ssize_t{3}});
-  auto r = R.mutable_unchecked<3>();
-  for (std::size_t k = 0; k < eq.state.R.size(); ++k)
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) r(static_cast<py::ssize_t>(k), a, b) = eq.state.R[k](a, b);
-  out["positions"] = columns_as_rows(eq.state.x);
-  out["velocities"] = columns_as_rows(v);
-  out["attitudes"] = R;
-  out["angular_velocities"] = columns_as_rows(omega);
+  out["positions"] = rows(eq.state.x);
+  out["velocities"] = velocities(scene.system, eq.state);
+  out["attitudes"] = attitudes(eq.state);
+  out["angular_velocities"] = angular_velocities(scene.system, eq.state);
   if (!eq.converged) return out;  // the state Newton ended on, for a look; no scene, no modes
   char desc[200];
   std::snprintf(desc, sizeof desc, "relative equilibrium (noether.relative_equilibrium): rate %.12g, period %.12g",
@@ -102,9 +85,7 @@ py::dict relative_equilibrium(PluginRegistry& registry, const std::string& file,
     modes.append(d);
   }
   out["modes"] = modes;
-  py::array_t<std::complex<double>> lambda(static_cast<py::ssize_t>(st.eigenvalues.size()));
-  for (std::size_t i = 0; i < st.eigenvalues.size(); ++i) lambda.mutable_at(static_cast<py::ssize_t>(i)) = st.eigenvalues[i];
-  out["eigenvalues"] = lambda;
+  out["eigenvalues"] = complex_array(st.eigenvalues);
   out["verdict"] = st.verdict;
   out["in_plane_verdict"] = st.in_plane_verdict;
   out["out_of_plane_verdict"] = st.out_of_plane_verdict;

@@ -1,4 +1,5 @@
 #include "relative_periodic_orbit.hpp"
+#include "state_arrays.hpp"
 
 #include <noether/error.hpp>
 #include <noether/relative_periodic_orbit.hpp>
@@ -29,7 +30,7 @@ py::dict relative_periodic_orbit(PluginRegistry& registry, const std::string& fi
     // α0: the line of centres' turn over T, plus whole turns (as `orbit stability --turns`).
     const double alpha = relative_closure(model, scene.integrator, scene.initial, T).angle + 2 * std::numbers::pi * turns;
     orbit = shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
-    if (orbit.closure <= 1e-9) mu = relative_orbit_multipliers(model, scene.integrator, orbit, tolerance);
+    if (orbit.closed()) mu = relative_orbit_multipliers(model, scene.integrator, orbit, tolerance);
   }
   py::dict out;
   out["period"] = T;
@@ -38,12 +39,10 @@ py::dict relative_periodic_orbit(PluginRegistry& registry, const std::string& fi
   out["initial_closure"] = orbit.initial_closure;
   out["closure"] = orbit.closure;
   out["iterations"] = orbit.iterations;
-  out["converged"] = orbit.closure <= 1e-9;
+  out["converged"] = orbit.closed();
   out["integrator"] = scene.integrator.plugin;
-  if (orbit.closure > 1e-9) return out;  // no orbit: no multipliers, no scene
-  py::array_t<std::complex<double>> m(static_cast<py::ssize_t>(mu.multipliers.size()));
-  for (std::size_t i = 0; i < mu.multipliers.size(); ++i) m.mutable_at(static_cast<py::ssize_t>(i)) = mu.multipliers[i];
-  out["multipliers"] = m;
+  if (!orbit.closed()) return out;  // no orbit: no multipliers, no scene
+  out["multipliers"] = complex_array(mu.multipliers);
   out["max_modulus"] = mu.max_modulus;
   out["verdict"] = mu.verdict;
   out["energy_conserved"] = mu.energy_conserved;

@@ -12,7 +12,6 @@
 
 #include <Eigen/Dense>
 
-#include <string>
 #include <vector>
 
 namespace noether {
@@ -48,9 +47,6 @@ class PhaseChart {
   // η_k = R_kᵀ e, δΠ_k = 0 (body-frame momenta do not change). `frame` is the angular velocity of
   // the frame the velocities are measured in (zero: inertial).
   Eigen::VectorXd rotation_generator(const Vec3& e, const Vec3& frame = Vec3::Zero()) const;
-
-  // The name of the block a component belongs to, for reports ("x beta", "eta alpha", ...).
-  std::string component_name(Eigen::Index i) const;
 
  private:
   const System* system_;

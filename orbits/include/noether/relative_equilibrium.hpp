@@ -91,6 +91,9 @@ struct EquilibriumStability {
 EquilibriumStability linear_stability(const FullBodyModel& model, const RelativeEquilibrium& equilibrium,
                                       double tolerance = 1e-6);
 
+// The oscillating mode that `body`'s libration dominates (kind "libration of BODY"), or nullptr.
+const NormalMode* libration_mode(const EquilibriumStability& stability, const std::string& body);
+
 // The chart the equilibrium's linearisation is written in (length: the largest distance from
 // the barycentre; rate: ω).
 PhaseChart equilibrium_chart(const FullBodyModel& model, const RelativeEquilibrium& equilibrium);

@@ -36,6 +36,10 @@ struct RelativePeriodicOrbit {
   double closure = 0;  // largest scaled component of the chart residual (19.1)
   double initial_closure = 0;
   int iterations = 0;
+  // Closed: the shooting converged (what the commands write and judge; the residual of a flow
+  // with rtol 1e-13 is ~1e-11, of the LGVI's map ~1e-13).
+  static constexpr double closed_tolerance = 1e-9;
+  bool closed() const { return closure <= closed_tolerance; }
 };
 
 // Newton from (guess, T, α0): minimum-norm Gauss–Newton steps on (19.1) with L·k̂ held at the
