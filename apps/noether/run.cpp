@@ -8,6 +8,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <unistd.h>
 #include <iostream>
 
 namespace noether::app {
@@ -33,10 +34,23 @@ void print_shapes(const noether::Scene& scene, std::ostream& out) {
 
 namespace {
 
-// SIGINT and SIGTERM ask the run to stop after its current step (the stepping loop reads the
-// flag); a second one of either ends the process at once (SA_RESETHAND).
+// SIGINT and SIGTERM ask the run to stop after its current step, or a continuation to stop
+// reading its file between blocks (both read the flag); a second one of either ends the process
+// at once (SA_RESETHAND). Whatever phase the run is in, it has kStopGrace seconds to end
+// cleanly: past them (a call that does not return, such as HDF5 inside a damaged file), SIGALRM
+// ends the process with 128 + the signal, the output as its last flush left it.
+constexpr unsigned kStopGrace = 20;
 volatile std::sig_atomic_t g_signal = 0;
-extern "C" void on_stop_signal(int signal) { g_signal = signal; }
+extern "C" void on_stop_signal(int signal) {
+  g_signal = signal;
+  alarm(kStopGrace);
+}
+extern "C" void on_stop_grace_over(int) {
+  static const char message[] =
+      "noether: the run did not stop within 20 s of the signal; ended without finishing its output\n";
+  [[maybe_unused]] const auto written = write(STDERR_FILENO, message, sizeof message - 1);
+  _exit(128 + (g_signal > 0 ? g_signal : SIGTERM));
+}
 
 void install_stop_handlers() {
   struct sigaction action {};
@@ -45,6 +59,10 @@ void install_stop_handlers() {
   action.sa_flags = SA_RESETHAND;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  struct sigaction grace {};
+  grace.sa_handler = on_stop_grace_over;
+  sigemptyset(&grace.sa_mask);
+  sigaction(SIGALRM, &grace, nullptr);
 }
 
 }  // namespace
@@ -67,7 +85,13 @@ int run(const std::string& scene_file, const std::string& output_given,
     if (resume.empty()) {
       sim = std::make_unique<noether::Simulation>(noether::load_scene(scene_file, overrides), registry, options);
     } else {
-      sim = noether::Simulation::resume(resume, registry, options, resume_t_end);
+      try {
+        sim = noether::Simulation::resume(resume, registry, options, resume_t_end);
+      } catch (const noether::Error& e) {
+        if (g_signal == 0) throw;
+        std::cerr << "noether: " << (g_signal == SIGINT ? "SIGINT" : "SIGTERM") << ": " << e.what() << "\n";
+        return 128 + g_signal;
+      }
       resumed_at = sim->time();
     }
     const noether::Scene& scene = sim->scene();

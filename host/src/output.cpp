@@ -3,6 +3,9 @@
 #include <noether/version.hpp>
 
 #include "h5_helpers.hpp"
+#include "io/checkpointed.hpp"
+#include "io/checksum.hpp"
+#include "io/file_access.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -13,6 +16,7 @@
 #include <cstdio>
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace noether {
@@ -182,7 +186,7 @@ int create_partial(const fs::path& partial, const fs::path& path) {
 
 // Moves the finished layout to `path`: replacing the claimed file, or only if no other
 // process created `path` meanwhile.
-void publish(const fs::path& partial, const fs::path& path, bool replace) {
+void publish_file(const fs::path& partial, const fs::path& path, bool replace) {
   if (replace) {
     if (::rename(partial.c_str(), path.c_str()) != 0)
       throw OutputError("cannot replace " + path.string() + ": " + std::strerror(errno));
@@ -206,7 +210,10 @@ void publish(const fs::path& partial, const fs::path& path, bool replace) {
 }  // namespace
 
 struct H5Writer::Impl {
-  int lock = -1;  // the descriptor holding the output's lock (claim_output)
+  int lock = -1;     // the descriptor holding the output's lock (claim_output)
+  int claimed = -1;  // the existing file's, held until the new one replaces it
+  fs::path path, partial;  // where the file goes, and the hidden name it is built under
+  bool published = false;
   hid_t file = -1;
   OutputOptions options;
   Clock::time_point last_flush = Clock::now();
@@ -223,6 +230,9 @@ struct H5Writer::Impl {
   Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr,
   *integrator_checkpoint = nullptr;
   std::unique_ptr<Series<std::int64_t>> step_series, work_series;
+  // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame
+  // (io/checkpointed.hpp), so that a continued run finds a damaged frame before it trusts it.
+  std::unique_ptr<Series<std::uint64_t>> checksum_series;
   std::size_t buffered = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
@@ -247,8 +257,21 @@ struct H5Writer::Impl {
   void resize_series(hsize_t frames) {
     step_series->resize(frames);
     work_series->resize(frames);
+    checksum_series->resize(frames);
     for (auto& s : doubles) s->resize(frames);
     allocated = frames;
+  }
+  // Flushes the file, having first extended it to HDF5's end of allocation: the superblock the
+  // flush writes records that address, and HDF5 refuses to open a file shorter than it says
+  // ("truncated file"), which a kill between the superblock and the last block of metadata
+  // would otherwise leave.
+  void flush_file(const char* what) {
+    haddr_t eoa = 0;
+    struct stat st {};
+    if (H5Fget_eoa(file, &eoa) >= 0 && ::fstat(lock, &st) == 0 && static_cast<haddr_t>(st.st_size) < eoa &&
+        ::ftruncate(lock, static_cast<off_t>(eoa)) != 0)
+      throw OutputError(std::string("cannot extend the output file while ") + what + ": " + std::strerror(errno));
+    check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
   }
   void write_complete(std::int64_t frames) {
     check(H5Dwrite(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames),
@@ -258,6 +281,7 @@ struct H5Writer::Impl {
     doubles.clear();
     step_series.reset();
     work_series.reset();
+    checksum_series.reset();
     for (auto& [name, records] : step_records) H5Dclose(records.dataset);
     step_records.clear();
     if (integrator_group >= 0) H5Gclose(integrator_group);
@@ -284,31 +308,47 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become OutputError, not stderr noise
   Impl& m = *impl_;
   m.options = options;
-  const int claimed = claim_output(path, options);
-  const fs::path partial = partial_name(path);
+  m.path = path;
+  m.claimed = claim_output(path, options);
+  m.partial = partial_name(path);
   try {
-    m.lock = create_partial(partial, path);
-    m.file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    m.lock = create_partial(m.partial, path);
+    m.file = H5Fcreate(m.partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
     if (m.file < 0)
       throw OutputError("cannot create the output file " + path.string() + system_reason() +
                         " (does its folder exist, and is it writable?)");
     create_layout(scene);
-    publish(partial, path, claimed >= 0);
+    if (!options.defer_publish) publish();
   } catch (...) {
-    if (m.file >= 0) {
-      m.close_datasets();
-      H5Fclose(m.file);
-      m.file = -1;
-    }
-    if (m.lock >= 0) {
-      ::unlink(partial.c_str());
-      ::close(m.lock);
-      m.lock = -1;
-    }
-    if (claimed >= 0) ::close(claimed);
+    abandon();
     throw;
   }
-  if (claimed >= 0) ::close(claimed);
+}
+
+void H5Writer::publish() {
+  Impl& m = *impl_;
+  if (m.published) return;
+  m.flush_file("flushing the output file");
+  publish_file(m.partial, m.path, m.claimed >= 0);
+  m.published = true;
+  if (m.claimed >= 0) ::close(m.claimed);
+  m.claimed = -1;
+}
+
+void H5Writer::abandon() {
+  Impl& m = *impl_;
+  if (m.file >= 0) {
+    m.close_datasets();
+    H5Fclose(m.file);
+    m.file = -1;
+  }
+  if (m.lock >= 0) {
+    if (!m.published) ::unlink(m.partial.c_str());
+    ::close(m.lock);
+    m.lock = -1;
+  }
+  if (m.claimed >= 0) ::close(m.claimed);
+  m.claimed = -1;
 }
 
 void H5Writer::create_layout(const Scene& scene) {
@@ -334,17 +374,20 @@ void H5Writer::create_layout(const Scene& scene) {
 
   hid_t parameters = make_group(m.file, "parameters");
   string_attribute(parameters, "scene_file", scene.file);
-  {  // where the scene was, so that a continued run finds its shape files from any folder
-    std::error_code ec;
-    const fs::path absolute = scene.file.empty() ? fs::path() : fs::absolute(scene.file, ec);
-    string_attribute(parameters, "scene_path", ec ? scene.file : absolute.string());
-  }
+  // Where the scene was, so that a continued run finds its shape files from any folder.
+  std::error_code ec;
+  const fs::path absolute = scene.file.empty() ? fs::path() : fs::absolute(scene.file, ec);
+  const std::string scene_path = ec ? scene.file : absolute.string();
+  string_attribute(parameters, "scene_path", scene_path);
   string_dataset(parameters, "scene", scene.text, "the scene file's text, as given");
   string_dataset(parameters, "scene_as_run", scene_as_run(scene),
                  "the scene as run: after the --set overrides (YAML)");
   std::string overrides;
   for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
   string_attribute(parameters, "overrides", overrides);
+  // What a continued run rebuilds its scene from, checksummed (io/run_record.cpp).
+  numeric_attribute<std::uint64_t>(parameters, "checksum", H5T_NATIVE_UINT64,
+                                   {io::scene_checksum(scene.text, scene_path, overrides, options.custom_potential)});
   std::string potentials;
   for (const auto& p : scene.potentials) potentials += (potentials.empty() ? "" : "+") + p.plugin;
   string_attribute(parameters, "potential", options.custom_potential ? "python (given in code, not the scene's)" : potentials);
@@ -504,6 +547,19 @@ void H5Writer::create_layout(const Scene& scene) {
   string_attribute(m.work_series->dataset, "description",
                    "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, "
                    "frames interpolated between the method's steps");
+  {
+    std::vector<std::string> columns;
+    for (const auto& c : io::kCheckpointed) columns.push_back(c.path);
+    m.checksum_series = std::make_unique<Series<std::uint64_t>>(
+        checkpoint, "checksum", H5T_NATIVE_UINT64, std::vector<hsize_t>{io::kCheckpointedCount}, m.allocated, 0);
+    string_attribute(m.checksum_series->dataset, "description",
+                     "checksum64 of each frame of the series named in `columns`, seeded with the frame's index "
+                     "(0: the series is absent); `noether run --resume` verifies every frame it reads");
+    std::string joined;
+    for (const auto& c : columns) joined += (joined.empty() ? "" : "\n") + c;
+    string_attribute(m.checksum_series->dataset, "columns", joined);
+  }
+  if (!options.resumed.empty()) string_attribute(checkpoint, "resumed", options.resumed);
   H5Gclose(checkpoint);
 
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
@@ -522,11 +578,12 @@ void H5Writer::create_layout(const Scene& scene) {
                      "run that ended; after a killed run, read series[:frames_complete]");
     m.write_complete(0);
   }
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing");
+  m.flush_file("flushing the output file");
 }
 
 H5Writer::~H5Writer() {
-  if (impl_ && impl_->file >= 0) {
+  if (!impl_) return;
+  if (impl_->file >= 0 && impl_->published) {
     try {
       flush();
     } catch (...) {
@@ -535,19 +592,31 @@ H5Writer::~H5Writer() {
       impl_->resize_series(frames_written_);
     } catch (...) {
     }
-    impl_->close_datasets();
-    H5Fclose(impl_->file);
   }
-  if (impl_ && impl_->lock >= 0) ::close(impl_->lock);
+  abandon();  // an unpublished file is removed; the path keeps what it held
 }
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
                            const std::vector<double>& integrator_checkpoint) {
   Impl& m = *impl_;
+  using namespace io;
+  // Column c of /checkpoint/checksum: checksum64 of this frame of kCheckpointed[c], seeded with
+  // the frame's index (the bytes the reader will read back: the state, U, work, wall time).
+  const std::uint64_t seed = frames_written_ + m.buffered;
+  std::uint64_t sums[kCheckpointedCount] = {};
+  const auto sum = [seed](const void* data, std::size_t bytes) { return checksum64(data, bytes, seed); };
+  const std::size_t nb = m.n_bodies, nr = m.n_rigid;
   m.step->push(&work.steps);
   const std::int64_t counters[5] = {work.steps, work.potential_evaluations, work.newton_iterations,
                                     work.rejected_steps, interpolated_frames};
+  sums[kTime] = sum(&state.t, sizeof(double));
+  sums[kPosition] = sum(state.x.data(), 3 * nb * sizeof(double));
+  sums[kMomentum] = sum(state.p.data(), 3 * nb * sizeof(double));
+  sums[kPotential] = sum(&d.potential, sizeof(double));
+  sums[kWork] = sum(counters, sizeof counters);
+  sums[kWall] = sum(&wall_seconds, sizeof(double));
+  if (m.integrator_checkpoint) sums[kIntegrator] = sum(integrator_checkpoint.data(), integrator_checkpoint.size() * sizeof(double));
   m.work_series->push(counters);
   m.wall_time->push(&wall_seconds);
   if (m.integrator_checkpoint) {
@@ -574,7 +643,10 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) frame_[9 * k + static_cast<std::size_t>(3 * r + c)] = state.R[k](r, c);
     m.exact_attitude->push(frame_.data());
+    sums[kAttitude] = sum(frame_.data(), 9 * nr * sizeof(double));
+    sums[kSpin] = sum(state.Pi.data(), 3 * nr * sizeof(double));
   }
+  m.checksum_series->push(sums);
   m.energy->push(&d.energy);
   m.kinetic_translational->push(&d.kinetic_translational);
   m.kinetic_rotational->push(&d.kinetic_rotational);
@@ -594,18 +666,19 @@ void H5Writer::flush() {
   const hsize_t first = frames_written_, needed = first + m.buffered;
   if (needed > m.allocated) {  // grow: the only metadata change while frames are written
     m.resize_series(std::max<hsize_t>(needed, 2 * m.allocated));
-    check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+    m.flush_file("flushing the output file");
   }
   // The frames first, then the counter that makes them part of the file: a kill before the
   // second flush leaves the counter at the previous block.
   m.step->write(first);
   m.work_series->write(first);
+  m.checksum_series->write(first);
   for (auto& s : m.doubles) s->write(first);
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  m.flush_file("flushing the output file");
   frames_written_ = needed;
   m.buffered = 0;
   m.write_complete(static_cast<std::int64_t>(frames_written_));
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  m.flush_file("flushing the output file");
   m.last_flush = Clock::now();
 }
 
@@ -634,7 +707,7 @@ void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
   }
   H5Gclose(group);
   H5Gclose(parameters);
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
+  m.flush_file("flushing the output file");
 }
 
 void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
@@ -642,18 +715,6 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
   for (const auto& series : records) {
     const hsize_t width = std::max<std::size_t>(1, series.width), rows = series.values.size() / width;
     auto found = m.step_records.find(series.name);
-    if (found == m.step_records.end() && m.integrator_group < 0 &&
-        H5Lexists(m.file, "integrator", H5P_DEFAULT) > 0)  // a continued run's file
-      m.integrator_group = H5Gopen2(m.file, "integrator", H5P_DEFAULT);
-    if (found == m.step_records.end() && m.integrator_group >= 0 &&
-        H5Lexists(m.integrator_group, series.name.c_str(), H5P_DEFAULT) > 0) {
-      hid_t d = H5Dopen2(m.integrator_group, series.name.c_str(), H5P_DEFAULT);
-      hid_t space = H5Dget_space(d);
-      hsize_t dims[2] = {0, 0};
-      H5Sget_simple_extent_dims(space, dims, nullptr);
-      H5Sclose(space);
-      found = m.step_records.emplace(series.name, Impl::StepRecords{d, dims[1], dims[0]}).first;
-    }
     if (found == m.step_records.end()) {  // /integrator/<name> [row][width], extendible
       if (m.integrator_group < 0) m.integrator_group = make_group(m.file, "integrator");
       const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width},
@@ -696,6 +757,10 @@ void H5Writer::set_verdict(const std::string& verdict, const std::string& reason
 
 void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::string& outcome) {
   Impl& m = *impl_;
+  if (!m.published) {  // never published (a continuation that failed before it began): nothing to finish
+    abandon();
+    return;
+  }
   flush();
   hid_t g = make_group(m.file, "work");
   numeric_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, {work.steps});
@@ -706,6 +771,8 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   numeric_attribute<std::int64_t>(g, "rejected_steps", H5T_NATIVE_INT64, {work.rejected_steps});
   numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
   string_attribute(g, "outcome", outcome);
+  numeric_attribute<std::uint64_t>(g, "outcome_checksum", H5T_NATIVE_UINT64,
+                                   {io::checksum64(outcome.data(), outcome.size())});
   if (!m.verdict.empty()) {
     string_attribute(g, "verdict", m.verdict);
     string_attribute(g, "verdict_reasons", m.verdict_reasons);
@@ -715,193 +782,11 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   H5Gclose(g);
   m.resize_series(frames_written_);
   m.close_datasets();
+  m.flush_file("closing the output file");
   check(H5Fclose(m.file), "closing the output file");
   m.file = -1;
   ::close(m.lock);
   m.lock = -1;
-}
-
-// Continuing a run -------------------------------------------------------------------------
-
-H5Writer::H5Writer(const RecordedRun& run, const Scene& scene, OutputOptions options)
-    : impl_(std::make_unique<Impl>()) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  Impl& m = *impl_;
-  m.options = options;
-  const fs::path& path = run.file;
-  if (fs::is_symlink(fs::symlink_status(path)))
-    throw OutputError(path.string() + " is a symbolic link; noether does not write through links");
-  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  const int fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
-  if (fd < 0) throw OutputError("cannot open " + path.string() + " to continue it: " + std::strerror(errno));
-  m.lock = lock_or_refuse(fd, path);
-  m.file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (m.file < 0) {
-    ::close(m.lock);
-    m.lock = -1;
-    throw OutputError("cannot open " + path.string() + " as HDF5 to continue it" + system_reason());
-  }
-  try {
-    open_layout(run, scene);
-  } catch (...) {
-    m.close_datasets();
-    H5Fclose(m.file);
-    m.file = -1;
-    ::close(m.lock);
-    m.lock = -1;
-    throw;
-  }
-}
-
-void H5Writer::open_layout(const RecordedRun& run, const Scene& scene) {
-  Impl& m = *impl_;
-  m.n_bodies = run.bodies;
-  m.n_rigid = run.rigid;
-  for (const auto& b : scene.system.bodies()) m.masses.push_back(b.mass);
-  auto open = [&m](const char* path) {
-    m.doubles.push_back(std::make_unique<Series<double>>(m.file, path, H5T_NATIVE_DOUBLE));
-    return m.doubles.back().get();
-  };
-  m.step_series = std::make_unique<Series<std::int64_t>>(m.file, "/particles/bodies/position/step", H5T_NATIVE_INT64);
-  m.step = m.step_series.get();
-  m.work_series = std::make_unique<Series<std::int64_t>>(m.file, "/checkpoint/work", H5T_NATIVE_INT64);
-  m.time = open("/particles/bodies/position/time");
-  m.position = open("/particles/bodies/position/value");
-  m.velocity = open("/particles/bodies/velocity/value");
-  if (m.n_rigid > 0) {
-    m.orientation = open("/particles/bodies/orientation/value");
-    m.angular_momentum = open("/particles/bodies/angular_momentum/value");
-    m.exact_attitude = open("/checkpoint/attitude");
-  }
-  m.energy = open("/observables/energy/value");
-  m.kinetic_translational = open("/observables/kinetic_energy_translational/value");
-  m.kinetic_rotational = open("/observables/kinetic_energy_rotational/value");
-  m.potential_energy = open("/observables/potential_energy/value");
-  m.orthogonality = open("/observables/orthogonality_error/value");
-  m.linear_momentum_total = open("/observables/linear_momentum/value");
-  m.angular_momentum_total = open("/observables/angular_momentum/value");
-  m.exact_momentum = open("/checkpoint/linear_momentum");
-  m.wall_time = open("/checkpoint/wall_time");
-  if (H5Lexists(m.file, "/checkpoint/integrator", H5P_DEFAULT) > 0) m.integrator_checkpoint = open("/checkpoint/integrator");
-  m.allocated = m.step_series->frames();
-  m.complete = check_id(H5Dopen2(m.file, "/frames_complete", H5P_DEFAULT), "/frames_complete");
-  frames_written_ = static_cast<std::size_t>(run.frames);
-
-  // The outcome is written again at the end; the scene as run records what changed (--t-end).
-  if (H5Lexists(m.file, "work", H5P_DEFAULT) > 0) check(H5Ldelete(m.file, "work", H5P_DEFAULT), "removing /work");
-  hid_t parameters = check_id(H5Gopen2(m.file, "parameters", H5P_DEFAULT), "/parameters");
-  std::string overrides;
-  for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
-  remove_attribute(parameters, "overrides");
-  string_attribute(parameters, "overrides", overrides);
-  remove_attribute(parameters, "t_end");
-  scalar_attribute(parameters, "t_end", scene.run.t_end);
-  if (H5Lexists(parameters, "scene_as_run", H5P_DEFAULT) > 0) H5Ldelete(parameters, "scene_as_run", H5P_DEFAULT);
-  string_dataset(parameters, "scene_as_run", scene_as_run(scene), "the scene as run: after the --set overrides (YAML)");
-  H5Gclose(parameters);
-  // Each continuation, in order: "frame N at t = T".
-  hid_t checkpoint = check_id(H5Gopen2(m.file, "checkpoint", H5P_DEFAULT), "/checkpoint");
-  std::string resumes = read_string(checkpoint, "resumed", false);
-  char line[128];
-  std::snprintf(line, sizeof line, "frame %lld at t = %.17g", static_cast<long long>(run.frames - 1),
-                run.time[static_cast<std::size_t>(run.frames - 1)]);
-  resumes += (resumes.empty() ? "" : "\n") + std::string(line);
-  remove_attribute(checkpoint, "resumed");
-  string_attribute(checkpoint, "resumed", resumes);
-  H5Gclose(checkpoint);
-  check(H5Fflush(m.file, H5F_SCOPE_GLOBAL), "flushing the output file");
-}
-
-State RecordedRun::state(std::size_t frame) const {
-  State s;
-  const auto nb = static_cast<Eigen::Index>(bodies), nr = static_cast<Eigen::Index>(rigid);
-  s.t = time[frame];
-  s.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data() + 3 * bodies * frame, 3, nb);
-  s.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data() + 3 * bodies * frame, 3, nb);
-  s.Pi = Eigen::Map<const Eigen::Matrix3Xd>(Pi.data() + 3 * rigid * frame, 3, nr);
-  s.R.resize(rigid);
-  for (std::size_t k = 0; k < rigid; ++k)
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) s.R[k](r, c) = R[9 * (rigid * frame + k) + static_cast<std::size_t>(3 * r + c)];
-  return s;
-}
-
-std::vector<double> RecordedRun::integrator_at(std::size_t frame) const {
-  const auto first = integrator.begin() + static_cast<std::ptrdiff_t>(integrator_width * frame);
-  return std::vector<double>(first, first + static_cast<std::ptrdiff_t>(integrator_width));
-}
-
-WorkCounters RecordedRun::work_at(std::size_t frame) const {
-  const std::int64_t* w = work.data() + 5 * frame;
-  return WorkCounters{w[0], w[1], w[2], w[3]};
-}
-
-std::int64_t RecordedRun::interpolated_at(std::size_t frame) const { return work[5 * frame + 4]; }
-
-RecordedRun read_recorded_run(const fs::path& path) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw OutputError(path.string() + ": no such file");
-  RecordedRun run;
-  run.file = path;
-  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0) throw OutputError(path.string() + " is not an HDF5 file noether can read" + system_reason());
-  try {
-    if (H5Lexists(file, "parameters", H5P_DEFAULT) <= 0 || H5Lexists(file, "frames_complete", H5P_DEFAULT) <= 0)
-      throw OutputError(path.string() + " is not a noether run's output (no /parameters or /frames_complete)");
-    if (H5Lexists(file, "checkpoint", H5P_DEFAULT) <= 0)
-      throw OutputError(path.string() + " has no /checkpoint: it was written by an older noether, "
-                                        "which did not keep the exact state; it cannot be continued");
-    hid_t parameters = H5Gopen2(file, "parameters", H5P_DEFAULT);
-    run.scene_text = read_string(parameters, "scene", true);
-    run.scene_path = read_string(parameters, "scene_path", false);
-    if (run.scene_path.empty()) run.scene_path = read_string(parameters, "scene_file", false);
-    const std::string overrides = read_string(parameters, "overrides", false);
-    if (H5Aexists(parameters, "custom_potential") > 0) {
-      int custom = 0;
-      hid_t a = H5Aopen(parameters, "custom_potential", H5P_DEFAULT);
-      H5Aread(a, H5T_NATIVE_INT, &custom);
-      H5Aclose(a);
-      run.custom_potential = custom != 0;
-    }
-    H5Gclose(parameters);
-    run.overrides = lines_of(overrides);
-    if (H5Lexists(file, "work", H5P_DEFAULT) > 0) {
-      hid_t work = H5Gopen2(file, "work", H5P_DEFAULT);
-      run.outcome = read_string(work, "outcome", false);
-      H5Gclose(work);
-    }
-    hid_t complete = H5Dopen2(file, "frames_complete", H5P_DEFAULT);
-    check(H5Dread(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &run.frames), "reading /frames_complete");
-    H5Dclose(complete);
-    if (run.frames < 1)
-      throw OutputError(path.string() + " holds no complete frame (the run was killed before its first block "
-                                        "was written); start it again");
-    const auto n = static_cast<hsize_t>(run.frames);
-    run.time = read_frames<double>(file, "/particles/bodies/position/time", H5T_NATIVE_DOUBLE, n);
-    run.x = read_frames<double>(file, "/particles/bodies/position/value", H5T_NATIVE_DOUBLE, n);
-    run.p = read_frames<double>(file, "/checkpoint/linear_momentum", H5T_NATIVE_DOUBLE, n);
-    run.bodies = run.x.size() / (3 * n);
-    if (H5Lexists(file, "/checkpoint/attitude", H5P_DEFAULT) > 0) {
-      run.R = read_frames<double>(file, "/checkpoint/attitude", H5T_NATIVE_DOUBLE, n);
-      run.Pi = read_frames<double>(file, "/particles/bodies/angular_momentum/value", H5T_NATIVE_DOUBLE, n);
-      run.rigid = run.R.size() / (9 * n);
-    }
-    run.U = read_frames<double>(file, "/observables/potential_energy/value", H5T_NATIVE_DOUBLE, n);
-    run.work = read_frames<std::int64_t>(file, "/checkpoint/work", H5T_NATIVE_INT64, n);
-    if (run.work.size() != 5 * n) throw OutputError(path.string() + ": /checkpoint/work is not [frame][5]");
-    run.wall_seconds = read_frames<double>(file, "/checkpoint/wall_time", H5T_NATIVE_DOUBLE, n);
-    if (H5Lexists(file, "/checkpoint/integrator", H5P_DEFAULT) > 0) {
-      run.integrator = read_frames<double>(file, "/checkpoint/integrator", H5T_NATIVE_DOUBLE, n);
-      run.integrator_width = run.integrator.size() / n;
-    }
-  } catch (...) {
-    H5Fclose(file);
-    throw;
-  }
-  H5Fclose(file);
-  return run;
 }
 
 }  // namespace noether

@@ -4,6 +4,10 @@
 #include <noether/stepping.hpp>
 
 #include "h5_helpers.hpp"
+#include "io/checksum.hpp"
+#include "io/file_access.hpp"
+#include "io/read_probe.hpp"
+#include "io/run_record.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -204,6 +208,21 @@ struct Simulation::Impl {
       if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
     });
   }
+  // The output file's options; `continuation`: a resumed run's new file, which replaces the
+  // old one once the recorded frames are in.
+  OutputOptions output_options(bool continuation) const {
+    const Scene& sc = scene;
+    OutputOptions output;
+    output.checkpoint_width = integrator->checkpoint().size();
+    output.custom_potential = custom_potential;
+    output.overwrite = continuation || options.overwrite;
+    output.defer_publish = continuation;
+    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
+    const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
+    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
+    if (!continuation && !sc.file.empty() && std::filesystem::exists(sc.file)) output.inputs.push_back(sc.file);
+    return output;
+  }
   void finish_output(const std::string& outcome) {
     if (!writer) return;
     auto records = integrator->take_step_series();
@@ -249,15 +268,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   forces.resize(sc.system);
   m.integrator->start(m.state);
   if (m.options.output) {
-    OutputOptions output;
-    output.checkpoint_width = m.integrator->checkpoint().size();
-    output.custom_potential = m.custom_potential;
-    output.overwrite = m.options.overwrite;
-    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
-    const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
-    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
-    if (!sc.file.empty() && std::filesystem::exists(sc.file)) output.inputs.push_back(sc.file);
-    m.writer = std::make_unique<H5Writer>(*m.options.output, sc, output);
+    m.writer = std::make_unique<H5Writer>(*m.options.output, sc, m.output_options(false));
     m.writer->write_pair_models(m.summary.pair_models);
   }
   // Wall time counts integrating and writing frames, not creating the file (as before there
@@ -281,7 +292,17 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
 
 std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file, PluginRegistry& registry,
                                                RunOptions options, double t_end) {
-  const RecordedRun run = read_recorded_run(file);
+  // The file is read, verified frame by frame and copied into a new file that replaces it only
+  // once every recorded frame is in (docs/user-guide.md, "Continuing a run"): a damaged file is
+  // refused, and neither it nor an interrupted continuation is ever half-changed.
+  // Every read below is made first in a child (io/read_probe.hpp): a damaged file must not crash
+  // or hang this process.
+  io::read_probe(file, [&file] {
+    const io::RunRecord run(file);
+    run.read(0, static_cast<std::size_t>(run.frames), [](std::size_t, const io::RecordedFrame&) {});
+    run.read_step_records([](const StepSeries&) {});
+  }, io::read_probe_seconds(file), options.interrupt);
+  const io::RunRecord run(file);
   const std::string& outcome = run.outcome;
   std::vector<std::string> overrides = run.overrides;
   const bool extend = !std::isnan(t_end);
@@ -299,11 +320,16 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
                 "; continuing it would fail again — change the scene and run it afresh");
   if (outcome.rfind("stopped: collision", 0) == 0 || outcome.rfind("stopped: close approach", 0) == 0)
     throw Error(file.string() + ": the run ended at an event (" + outcome.substr(9) + "); there is nothing to continue");
+  if (!run.checksummed)
+    spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
+                 "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
-  const double t_last = run.time[last];
+  io::RecordedFrame at_last;
+  run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
+  const double t_last = at_last.state.t;
   if (!(scene.run.t_end > t_last)) {
     std::ostringstream why;
     why.precision(10);
@@ -312,43 +338,57 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     throw Error(why.str());
   }
 
-  // The run rebuilt without output, its recorded frames replayed into the summary, then the
-  // output reopened to append.
-  options.output.reset();
-  auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, options));
+  // The run rebuilt, its recorded frames replayed into the summary and copied into the new
+  // file, block by block.
+  const std::optional<std::filesystem::path> no_output;
+  RunOptions rebuilt = options;
+  rebuilt.output = no_output;
+  auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, rebuilt));
   Impl& m = *sim->impl_;
   m.new_segment();
+  const Scene& sc = m.scene;
+  OutputOptions output = m.output_options(true);
+  char line[128];
+  std::snprintf(line, sizeof line, "frame %zu at t = %.17g", last, t_last);
+  output.resumed = run.resumed + (run.resumed.empty() ? "" : "\n") + line;
+  m.writer = std::make_unique<H5Writer>(file, sc, output);
   Forces forces;
-  forces.resize(m.scene.system);
-  {  // frame 0 with its forces (what the scene conserves), the others with U alone
-    State s0 = run.state(0);
-    auto workspace = m.potential->make_workspace();
-    m.potential->evaluate(s0, forces, *workspace);
-    forces.U = run.U[0];
-    m.observer->account(s0, forces);
+  forces.resize(sc.system);
+  double t0 = 0.0;
+  const bool complete = run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
+    if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
+      auto workspace = m.potential->make_workspace();
+      m.potential->evaluate(f.state, forces, *workspace);
+      t0 = f.state.t;
+    }
+    forces.U = f.U;
+    const Diagnostics d = m.observer->account(f.state, forces);
+    m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator);
+  }, options.interrupt);
+  if (!complete) {
+    m.writer.reset();  // the new file is dropped; the old one was only read
+    throw Error(file.string() + " was being read back when the continuation was interrupted; it is unchanged");
   }
-  for (std::size_t f = 1; f < run.time.size(); ++f) {
-    forces.U = run.U[f];
-    m.observer->account(run.state(f), forces);
-  }
-  m.summary.interpolated_frames = run.interpolated_at(last);
-  m.state = run.state(last);
-  m.t_origin = run.time[0];
+  run.read_step_records([&m](const StepSeries& records) { m.writer->append_step_series({records}); });
+  m.writer->write_pair_models(m.summary.pair_models);
+  m.writer->publish();
+
+  m.summary.interpolated_frames = at_last.interpolated;
+  m.state = at_last.state;
+  m.t_origin = t0;
   const double h = m.integrator->fixed_step();
   m.steps_before = h > 0 && t_last > m.t_origin ? whole_steps(t_last - m.t_origin, h, "the recorded time") : 0;
   // The integrator continues from its own variables where it has any (relative frame,
   // Lagrangian forms), else from the state.
-  const std::vector<double> checkpoint = run.integrator_at(last);
-  if (checkpoint.size() != m.integrator->checkpoint().size())
+  if (at_last.integrator.size() != m.integrator->checkpoint().size())
     throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
   const std::int64_t evaluations = m.integrator->work().potential_evaluations;
-  m.integrator->restore(m.state, checkpoint);
+  m.integrator->restore(m.state, at_last.integrator);
   m.integrator_at_state = true;
-  m.base_work = run.work_at(last) + WorkCounters{0, -evaluations, 0, 0};
-  m.wall_seconds = run.wall_seconds[last];
+  m.base_work = at_last.work + WorkCounters{0, -evaluations, 0, 0};
+  m.wall_seconds = at_last.wall_seconds;
   m.options = std::move(options);
   m.options.output = file;
-  m.writer = std::make_unique<H5Writer>(run, m.scene);
   return sim;
 }
 
@@ -517,32 +557,49 @@ namespace {
 
 using namespace noether::h5;
 
+// A dataset of doubles with the checksum of its values (attribute "checksum").
 void write_doubles(hid_t parent, const char* name, const double* data, std::vector<hsize_t> dims) {
-  hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-  hid_t d = check_id(H5Dcreate2(parent, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
+  const io::H5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+  const io::H5Handle d(
+      check_id(H5Dcreate2(parent, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name));
   std::size_t n = 1;
   for (auto x : dims) n *= x;
   if (n) check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
-  H5Dclose(d);
-  H5Sclose(space);
+  numeric_attribute<std::uint64_t>(d, "checksum", H5T_NATIVE_UINT64, {io::checksum64(data, n * sizeof(double))});
 }
 
-std::vector<double> read_doubles(hid_t parent, const char* name, std::size_t expected) {
-  hid_t d = H5Dopen2(parent, name, H5P_DEFAULT);
-  if (d < 0) throw OutputError(std::string("the checkpoint has no ") + name);
-  hid_t space = H5Dget_space(d);
+// The checkpoint `file` is damaged: `what` names where.
+[[noreturn]] void damaged_checkpoint(const std::filesystem::path& file, const std::string& what) {
+  throw OutputError(file.string() + " is damaged: " + what + "; it was only read, not changed");
+}
+
+// Reads a dataset written by write_doubles, verifying its checksum when it has one (a
+// checkpoint from an older noether has none).
+std::vector<double> read_doubles(const std::filesystem::path& file, hid_t parent, const char* group, const char* name,
+                                 std::size_t expected) {
+  const io::H5Handle d = io::open_dataset(parent, name);
+  if (!d.valid()) throw OutputError(std::string("the checkpoint has no ") + name);
+  const io::H5Handle space(H5Dget_space(d));
   const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
-  H5Sclose(space);
-  if (n != expected) {
-    H5Dclose(d);
+  if (n != expected)
     throw OutputError(std::string("the checkpoint's ") + name + " has " + std::to_string(n) + " numbers, the scene needs " +
                       std::to_string(expected));
-  }
   std::vector<double> out(n);
-  if (n) H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
-  H5Dclose(d);
+  const std::string where = std::string("/") + group + "/" + name;
+  if (n && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    damaged_checkpoint(file, where + " does not read");
+  if (H5Aexists(d, "checksum") > 0) {
+    std::uint64_t sum = 0;
+    const io::H5Handle a(H5Aopen(d, "checksum", H5P_DEFAULT));
+    if (H5Aread(a, H5T_NATIVE_UINT64, &sum) < 0 || sum != io::checksum64(out.data(), n * sizeof(double)))
+      damaged_checkpoint(file, where + " does not match its checksum");
+  }
   return out;
 }
+
+// The checksum of a group's text attributes (strings live outside the checksummed object
+// headers, in HDF5's global heap).
+std::uint64_t texts_checksum(std::initializer_list<const std::string*> texts) { return io::checksum_of_texts(texts); }
 
 double read_scalar(hid_t obj, const char* name) {
   if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
@@ -592,7 +649,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
   // Written under a temporary name and renamed: a kill while saving leaves the previous file.
   const std::filesystem::path partial = path.string() + ".partial";
-  hid_t file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(0));
   if (file < 0) throw OutputError("cannot create " + path.string() + system_reason());
   try {
     string_attribute(file, "format", "noether simulation checkpoint 1");
@@ -601,10 +658,13 @@ void Simulation::save(const std::filesystem::path& path) const {
     string_dataset(g, "scene", m.scene.text, "the scene file's text, as given");
     std::error_code ec;
     const auto absolute = std::filesystem::absolute(m.scene.file, ec);
-    string_attribute(g, "scene_path", ec ? m.scene.file : absolute.string());
+    const std::string scene_path = ec ? m.scene.file : absolute.string();
+    string_attribute(g, "scene_path", scene_path);
     std::string overrides;
     for (const auto& o : m.scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
     string_attribute(g, "overrides", overrides);
+    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64,
+                                     {io::scene_checksum(m.scene.text, scene_path, overrides, m.custom_potential)});
     H5Gclose(g);
     const State& st = m.state;
     const hsize_t nb = static_cast<hsize_t>(st.x.cols()), nr = st.R.size();
@@ -641,6 +701,7 @@ void Simulation::save(const std::filesystem::path& path) const {
                                static_cast<double>(s.interpolated_frames), p_scale, L_scale});
     string_attribute(g, "min_gap_pair", s.min_gap_pair);
     string_attribute(g, "stop_reason", s.stop_reason);
+    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {texts_checksum({&s.min_gap_pair, &s.stop_reason})});
     H5Gclose(g);
   } catch (...) {
     H5Fclose(file);
@@ -653,93 +714,138 @@ void Simulation::save(const std::filesystem::path& path) const {
   if (ec) throw OutputError("cannot write " + path.string() + ": " + ec.message());
 }
 
-std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, PluginRegistry& registry,
-                                             RunOptions options, std::shared_ptr<const Potential> potential) {
+namespace {
+
+// What Simulation::save wrote, read back and verified.
+struct SavedSimulation {
+  Scene scene;  // its initial state is where the saved simulation stood
+  std::vector<double> integrator, work, stats;
+  double t_origin = 0.0, steps_before = 0.0, wall = 0.0;
+  Diagnostics initial, final_;
+  std::string min_gap_pair, stop_reason;
+};
+
+SavedSimulation read_saved_simulation(const std::filesystem::path& path, bool potential_given) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw OutputError(path.string() + ": no such file");
-  hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (file < 0) throw OutputError(path.string() + " is not an HDF5 file" + system_reason());
-  std::unique_ptr<Simulation> sim;
-  try {
-    if (read_string(file, "format", false) != "noether simulation checkpoint 1")
-      throw OutputError(path.string() + " is not a checkpoint saved by Simulation.save (an output file continues "
-                                        "with `noether run --resume`)");
-    if (read_scalar(file, "custom_potential") != 0 && !potential)
-      throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
-                                  "function), not by the scene: pass the same potential to load it");
-    hid_t g = H5Gopen2(file, "parameters", H5P_DEFAULT);
+  const io::H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, io::file_access(0)));
+  if (!file.valid())
+    throw OutputError(path.string() + " is not an HDF5 file" + system_reason() +
+                      " (or its first bytes, the HDF5 superblock, are damaged)");
+  if (read_string(file, "format", false) != "noether simulation checkpoint 1")
+    throw OutputError(path.string() + " is not a checkpoint saved by Simulation.save (an output file continues "
+                                      "with `noether run --resume`)");
+  const bool custom = read_scalar(file, "custom_potential") != 0;
+  if (custom && !potential_given)
+    throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
+                                "function), not by the scene: pass the same potential to load it");
+  // A checksum attribute, verified when the checkpoint has one (an older noether's has none).
+  const auto verify = [&path](hid_t group, const char* where, std::uint64_t expected) {
+    if (H5Aexists(group, "checksum") <= 0) return;
+    std::uint64_t sum = 0;
+    const io::H5Handle a(H5Aopen(group, "checksum", H5P_DEFAULT));
+    if (H5Aread(a, H5T_NATIVE_UINT64, &sum) < 0 || sum != expected)
+      damaged_checkpoint(path, std::string(where) + " does not match its checksum");
+  };
+  const auto open_group = [&path, &file](const char* name) {
+    io::H5Handle g(H5Gopen2(file, name, H5P_DEFAULT));
+    if (!g.valid()) damaged_checkpoint(path, std::string("/") + name + " does not open");
+    return g;
+  };
+  SavedSimulation saved;
+  {
+    const io::H5Handle g = open_group("parameters");
     const std::string text = read_string(g, "scene", true), scene_path = read_string(g, "scene_path", false),
                       joined = read_string(g, "overrides", false);
-    H5Gclose(g);
-    const std::vector<std::string> overrides = lines_of(joined);
-    Scene scene = parse_scene(text, scene_path, overrides);
-    const std::size_t nb = scene.system.size(), nr = scene.system.rigid_count();
-    State st = State::zeros(scene.system);
-    g = H5Gopen2(file, "state", H5P_DEFAULT);
+    verify(g, "/parameters (the scene's text, its path or the overrides)",
+           io::scene_checksum(text, scene_path, joined, custom));
+    saved.scene = parse_scene(text, scene_path, lines_of(joined));
+  }
+  const std::size_t nb = saved.scene.system.size(), nr = saved.scene.system.rigid_count();
+  State st = State::zeros(saved.scene.system);
+  {
+    const io::H5Handle g = open_group("state");
     st.t = read_scalar(g, "t");
-    const auto x = read_doubles(g, "x", 3 * nb), p = read_doubles(g, "p", 3 * nb), R = read_doubles(g, "R", 9 * nr),
-               Pi = read_doubles(g, "Pi", 3 * nr);
-    hid_t own = H5Dopen2(g, "integrator", H5P_DEFAULT);
+    const auto x = read_doubles(path, g, "state", "x", 3 * nb), p = read_doubles(path, g, "state", "p", 3 * nb),
+               R = read_doubles(path, g, "state", "R", 9 * nr), Pi = read_doubles(path, g, "state", "Pi", 3 * nr);
     std::size_t own_size = 0;
-    if (own >= 0) {
-      hid_t space = H5Dget_space(own);
-      own_size = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
-      H5Sclose(space);
-      H5Dclose(own);
+    if (const io::H5Handle own = io::open_dataset(g, "integrator"); own.valid()) {
+      const io::H5Handle space(H5Dget_space(own));
+      own_size = static_cast<std::size_t>(std::max<hssize_t>(0, H5Sget_simple_extent_npoints(space)));
     }
-    const std::vector<double> integrator_checkpoint = read_doubles(g, "integrator", own_size);
-    H5Gclose(g);
+    saved.integrator = read_doubles(path, g, "state", "integrator", own_size);
     st.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, static_cast<Eigen::Index>(nb));
     st.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(nb));
     st.Pi = Eigen::Map<const Eigen::Matrix3Xd>(Pi.data(), 3, static_cast<Eigen::Index>(nr));
     for (std::size_t k = 0; k < nr; ++k)
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) st.R[k](r, c) = R[9 * k + static_cast<std::size_t>(3 * r + c)];
-    scene.initial = st;  // frame 0 of the loaded simulation is where the saved one stood
-    g = H5Gopen2(file, "run", H5P_DEFAULT);
-    const double t_origin = read_scalar(g, "t_origin"), steps_before = read_scalar(g, "steps_before"),
-                 wall = read_scalar(g, "wall_seconds");
-    const auto work = read_vector(g, "work"), stats = read_vector(g, "statistics");
-    const Diagnostics initial = unpack(read_vector(g, "initial")), final_ = unpack(read_vector(g, "final"));
-    const std::string pair = read_string(g, "min_gap_pair", false), stop = read_string(g, "stop_reason", false);
-    H5Gclose(g);
-    if (work.size() != 4 || stats.size() != 14) throw OutputError(path.string() + ": a damaged checkpoint");
-
-    const bool with_output = options.output.has_value();
-    sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
-    Impl& m = *sim->impl_;
-    RunSummary& s = m.summary;
-    if (!with_output) {  // the frame the constructor observed is the saved state's: not counted again
-      s.initial = initial;
-      s.final = final_;
-      s.max_abs_energy_error = stats[0], s.max_rel_linear_momentum_error = stats[1];
-      s.max_rel_angular_momentum_error = stats[2], s.max_orthogonality_error = stats[3];
-      s.conserves_linear_momentum = stats[4] != 0, s.conserves_angular_momentum = stats[5] != 0;
-      s.min_gap = stats[6], s.min_gap_reach = stats[7], s.min_distance = stats[8], s.t_of_min_distance = stats[9];
-      s.frames = static_cast<std::size_t>(stats[10]);
-      s.interpolated_frames = static_cast<std::int64_t>(stats[11]);
-      m.observer->set_scales(stats[12], stats[13]);
-      s.min_gap_pair = pair;
-      s.stop_reason = stop;
-    }
-    m.t_origin = t_origin;
-    m.steps_before = static_cast<std::int64_t>(steps_before);
-    m.base_work = WorkCounters{static_cast<std::int64_t>(work[0]),
-                               static_cast<std::int64_t>(work[1]) - m.integrator->work().potential_evaluations,
-                               static_cast<std::int64_t>(work[2]), static_cast<std::int64_t>(work[3])};
-    m.wall_seconds = wall;
-    // The integrator continues from its own variables where it has any, else from the state.
-    if (integrator_checkpoint.size() != m.integrator->checkpoint().size())
-      throw OutputError(path.string() + ": its integrator checkpoint does not fit the scene's integrator");
-    m.integrator->restore(m.state, integrator_checkpoint);
-    m.integrator_at_state = true;
-  } catch (...) {
-    H5Fclose(file);
-    throw;
   }
-  H5Fclose(file);
+  saved.scene.initial = st;  // frame 0 of the loaded simulation is where the saved one stood
+  {
+    const io::H5Handle g = open_group("run");
+    saved.t_origin = read_scalar(g, "t_origin");
+    saved.steps_before = read_scalar(g, "steps_before");
+    saved.wall = read_scalar(g, "wall_seconds");
+    saved.work = read_vector(g, "work");
+    saved.stats = read_vector(g, "statistics");
+    saved.initial = unpack(read_vector(g, "initial"));
+    saved.final_ = unpack(read_vector(g, "final"));
+    saved.min_gap_pair = read_string(g, "min_gap_pair", false);
+    saved.stop_reason = read_string(g, "stop_reason", false);
+    verify(g, "/run's texts", texts_checksum({&saved.min_gap_pair, &saved.stop_reason}));
+  }
+  if (saved.work.size() != 4 || saved.stats.size() != 14) damaged_checkpoint(path, "/run's work or statistics");
+  return saved;
+}
+
+}  // namespace
+
+std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, PluginRegistry& registry,
+                                             RunOptions options, std::shared_ptr<const Potential> potential) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw OutputError(path.string() + ": no such file");
+  SavedSimulation saved;
+  try {  // read in a child first: a damaged file must not crash or hang this process (io/read_probe.hpp)
+    const bool given = potential != nullptr;
+    io::read_probe(path, [&path, given] { read_saved_simulation(path, given); }, io::read_probe_seconds(path),
+                   options.interrupt);
+    saved = read_saved_simulation(path, given);
+  } catch (const OutputError& e) {  // every refusal names the file
+    const std::string what = e.what();
+    if (what.rfind(path.string(), 0) == 0) throw;
+    throw OutputError(path.string() + ": " + what + " (a damaged checkpoint, or not one that Simulation.save wrote)");
+  }
+  const std::vector<double>& stats = saved.stats;
+  const bool with_output = options.output.has_value();
+  auto sim = std::make_unique<Simulation>(std::move(saved.scene), registry, options, std::move(potential));
+  Impl& m = *sim->impl_;
+  RunSummary& s = m.summary;
+  if (!with_output) {  // the frame the constructor observed is the saved state's: not counted again
+    s.initial = saved.initial;
+    s.final = saved.final_;
+    s.max_abs_energy_error = stats[0], s.max_rel_linear_momentum_error = stats[1];
+    s.max_rel_angular_momentum_error = stats[2], s.max_orthogonality_error = stats[3];
+    s.conserves_linear_momentum = stats[4] != 0, s.conserves_angular_momentum = stats[5] != 0;
+    s.min_gap = stats[6], s.min_gap_reach = stats[7], s.min_distance = stats[8], s.t_of_min_distance = stats[9];
+    s.frames = static_cast<std::size_t>(stats[10]);
+    s.interpolated_frames = static_cast<std::int64_t>(stats[11]);
+    m.observer->set_scales(stats[12], stats[13]);
+    s.min_gap_pair = saved.min_gap_pair;
+    s.stop_reason = saved.stop_reason;
+  }
+  const std::vector<double>& work = saved.work;
+  m.t_origin = saved.t_origin;
+  m.steps_before = static_cast<std::int64_t>(saved.steps_before);
+  m.base_work = WorkCounters{static_cast<std::int64_t>(work[0]),
+                             static_cast<std::int64_t>(work[1]) - m.integrator->work().potential_evaluations,
+                             static_cast<std::int64_t>(work[2]), static_cast<std::int64_t>(work[3])};
+  m.wall_seconds = saved.wall;
+  // The integrator continues from its own variables where it has any, else from the state.
+  if (saved.integrator.size() != m.integrator->checkpoint().size())
+    throw OutputError(path.string() + ": its integrator checkpoint does not fit the scene's integrator");
+  m.integrator->restore(m.state, saved.integrator);
+  m.integrator_at_state = true;
   return sim;
 }
 

@@ -33,6 +33,30 @@ if float(b["parameters"].attrs["t_end"]) != 4.0 or "run.t_end=4" not in b["param
     sys.exit("FAILED: the extended file does not record its new t_end")
 PY
 
+# A file from a noether before checksums (made here by deleting them) continues, with a warning,
+# to the same file as the checksummed one; the continued file has checksums again.
+"$noether" run "$src/examples/dumbbells.yaml" --no-progress --set run.t_end=1 -o new.h5 >/dev/null || fail=1
+cp new.h5 old.h5
+/usr/bin/python3 -c '
+import h5py
+with h5py.File("old.h5", "r+") as f:
+    del f["checkpoint/checksum"]
+    del f["parameters"].attrs["checksum"]
+    del f["work"].attrs["outcome_checksum"]
+' || fail=1
+check 0 "old.h5 was written by a noether without checksums: its frames are continued unverified" \
+  "$noether" run --resume old.h5 --no-progress --t-end 2
+"$noether" run --resume new.h5 --no-progress --t-end 2 >/dev/null || fail=1
+/usr/bin/python3 - <<'PY' || fail=1
+import h5py, sys
+a, b = h5py.File("new.h5", "r"), h5py.File("old.h5", "r")
+for k in ["particles/bodies/position/value", "checkpoint/attitude", "observables/energy/value", "checkpoint/work"]:
+    if a[k][()].tobytes() != b[k][()].tobytes():
+        sys.exit(f"FAILED: {k} of the continued old file differs from the checksummed file's")
+if "checkpoint/checksum" not in b:
+    sys.exit("FAILED: the continued old file has no checksums")
+PY
+
 # A run that ended at a collision has nothing to continue.
 "$noether" run "$src/examples/collision.yaml" --no-progress -o hit.h5 >/dev/null
 check 2 "ended at an event \(collision" "$noether" run --resume hit.h5 --no-progress

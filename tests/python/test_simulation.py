@@ -130,3 +130,46 @@ def test_plugins_are_listed():
         assert name in names
     assert names["lgvi"]["kind"] == "integrator"
     assert any(q["name"] == "step" for q in names["lgvi"]["params"])
+
+
+def test_damaged_checkpoints_are_refused_by_name_or_load_the_same(dumbbells, tmp_path):
+    # docs/reliability.md, "Checksums": 150 seeded damages (1-8 flipped bits, or a 512-byte block
+    # zeroed) of a saved simulation; load() either raises noether.Error naming the file, or gives
+    # the undamaged checkpoint's state and summary exactly (the damage was in bytes it does not
+    # read). Never a different state.
+    dumbbells["integrator"] = {"plugin": "lgvi", "step": 0.0002, "frame": "relative", "form": "lagrangian"}
+    sim = noether.Simulation(dumbbells)
+    sim.integrate(0.5)
+    path = tmp_path / "sim.h5"
+    sim.save(path)
+    reference = noether.Simulation.load(path)
+    names = ["positions", "momenta", "attitudes", "angular_momenta"]
+    expected = {n: getattr(reference, n).tobytes() for n in names}
+    expected_summary = {k: v for k, v in reference.summary().items() if "wall" not in k}
+    original = path.read_bytes()
+    rng = np.random.default_rng(20261124)
+    outcomes = {"refused": 0, "same": 0}
+    for case in range(150):
+        data = bytearray(original)
+        if rng.random() < 0.5:
+            for _ in range(rng.integers(1, 9)):
+                data[rng.integers(len(data))] ^= 1 << int(rng.integers(8))
+        else:
+            start = int(rng.integers(len(data)))
+            data[start:start + 512] = bytes(len(data[start:start + 512]))
+        damaged = tmp_path / f"case-{case}.h5"
+        damaged.write_bytes(bytes(data))
+        try:
+            loaded = noether.Simulation.load(damaged)
+        except noether.Error as e:
+            assert str(damaged) in str(e), (case, str(e))
+            assert damaged.read_bytes() == bytes(data), case
+            outcomes["refused"] += 1
+            continue
+        assert loaded.t == reference.t, case
+        for n in names:
+            assert getattr(loaded, n).tobytes() == expected[n], (case, n)
+        got = {k: v for k, v in loaded.summary().items() if "wall" not in k}
+        assert got == expected_summary, case
+        outcomes["same"] += 1
+    assert outcomes["refused"] > 0 and outcomes["same"] > 0, outcomes

@@ -1,0 +1,60 @@
+#pragma once
+// RunRecord: an output file opened read-only to continue its run (noether run --resume). It
+// gives the scene the run was made from and reads its complete frames back in blocks of
+// bounded size, each frame checked against /checkpoint/checksum before it is handed on
+// (docs/reliability.md, "Checksums"); memory does not grow with the number of frames.
+#include "h5_handle.hpp"
+
+#include <noether/integrator.hpp>
+#include <noether/state.hpp>
+
+#include <csignal>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace noether::io {
+
+// One frame as the file holds it: the exact state (γ and R, not the derived v and q), U, and
+// where the run stood (work, wall time, the integrator's own variables).
+struct RecordedFrame {
+  State state;
+  double U = 0.0;
+  WorkCounters work;
+  std::int64_t interpolated = 0;  // frames interpolated between the method's steps so far
+  double wall_seconds = 0.0;
+  std::vector<double> integrator;  // Integrator::checkpoint()
+};
+
+class RunRecord {
+ public:
+  // Opens the file and reads what the run was (OutputError: not an output of noether, written
+  // by one too old to keep /checkpoint, no complete frame, damaged).
+  explicit RunRecord(const std::filesystem::path& file);
+
+  const std::filesystem::path& file() const { return file_; }
+  std::string scene_text, scene_path, outcome, resumed;
+  std::vector<std::string> overrides;
+  bool custom_potential = false;
+  bool checksummed = false;  // false: a file from a noether before checksums, read unverified
+  std::int64_t frames = 0;   // /frames_complete
+  std::size_t bodies = 0, rigid = 0, integrator_width = 0;
+
+  // Visits frames [first, first + count) in order, reading at most `block` frames at a time;
+  // OutputError names the dataset and frame that does not read or does not match its checksum.
+  // Returns false, having stopped between blocks, when *interrupt became non-zero.
+  bool read(std::size_t first, std::size_t count,
+            const std::function<void(std::size_t, const RecordedFrame&)>& visit,
+            const volatile std::sig_atomic_t* interrupt = nullptr, std::size_t block = 4096) const;
+  // The integrator's per-step records (/integrator/<name>), a block of rows at a time.
+  void read_step_records(const std::function<void(const StepSeries&)>& visit) const;
+
+ private:
+  [[noreturn]] void damaged(const std::string& what) const;
+  std::filesystem::path file_;
+  H5Handle h5_;
+};
+
+}  // namespace noether::io
