@@ -1,5 +1,6 @@
 // noether run, noether plugins.
 #include "commands.hpp"
+#include "progress.hpp"
 
 #include <noether/error.hpp>
 #include <noether/registry.hpp>
@@ -75,7 +76,8 @@ int run(const std::string& scene_file, const std::string& output_given,
   const std::string output = resume.empty() ? output_given : resume;
   if (!output_given.empty()) options.output = output_given;
   options.overwrite = force;
-  options.progress = progress;
+  Progress progress_line;
+  if (progress) options.progress = std::ref(progress_line);
   options.interrupt = &g_signal;
   options.max_wall_seconds = max_wall_time;
   std::unique_ptr<noether::Simulation> sim;

@@ -6,6 +6,8 @@
 #include <noether/simulation.hpp>
 
 #include "h5_helpers.hpp"
+#include "io/file_access.hpp"
+#include "io/safe_publish.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -207,12 +209,21 @@ class EnsembleFile {
     }
     // Built under a hidden name and renamed into place once its layout is complete, so the path
     // holds either nothing (or the file --force replaces) or a whole layout, whenever a kill comes.
-    const std::filesystem::path partial =
-        path.parent_path() / ("." + path.filename().string() + ".partial-" + std::to_string(::getpid()));
-    file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (file_ < 0) throw OutputError("cannot create " + path.string() + system_reason());
-    partial_ = partial;
-    path_ = path;
+    // (io/safe_publish.hpp: a link, or another process writing the path, is refused.)
+    const int claimed = io::claim_output(path, true);
+    const std::filesystem::path partial = io::partial_name(path);
+    try {
+      lock_ = io::create_partial(partial, path);
+    } catch (...) {
+      if (claimed >= 0) ::close(claimed);
+      throw;
+    }
+    file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
+    if (file_ < 0) {
+      if (claimed >= 0) ::close(claimed);
+      std::filesystem::remove(partial, ec);
+      throw OutputError("cannot create " + path.string() + system_reason());
+    }
     string_attribute(file_, "identity", identity_);
     string_attribute(file_, "description",
                      "noether ensemble: one row per sample; outcome -1 not run, 0 completed, 1 stopped by an "
@@ -264,18 +275,22 @@ class EnsembleFile {
     H5Dclose(trust);
     H5Gclose(timing);
     check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
-    std::filesystem::rename(partial_, path_, ec);
-    if (ec) {
+    try {
+      io::publish_file(partial, path, claimed >= 0);
+    } catch (...) {
       H5Fclose(file_);
       file_ = -1;
-      std::filesystem::remove(partial_, ec);
-      throw OutputError("cannot create " + path.string() + ": " + ec.message());
+      std::filesystem::remove(partial, ec);
+      if (claimed >= 0) ::close(claimed);
+      throw;
     }
+    if (claimed >= 0) ::close(claimed);
     done_.assign(samples, -1);
   }
   ~EnsembleFile() {
     if (outcome_ >= 0) H5Dclose(outcome_);
     if (file_ >= 0) H5Fclose(file_);
+    if (lock_ >= 0) ::close(lock_);
   }
   bool done(std::size_t i) const { return done_[i] >= 0; }
 
@@ -365,7 +380,7 @@ class EnsembleFile {
   }
 
   hid_t file_ = -1, outcome_ = -1;
-  std::filesystem::path partial_, path_;
+  int lock_ = -1;  // the new file's lock (io::create_partial), held while it is written
   hsize_t samples_;
   hsize_t nb_, nr_;
   std::string identity_;

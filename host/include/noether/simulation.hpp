@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <limits>
 #include <optional>
@@ -19,7 +20,9 @@ namespace noether {
 struct RunOptions {
   std::optional<std::filesystem::path> output;  // HDF5 file, none if empty
   bool overwrite = false;                       // replace an existing output file (--force)
-  bool progress = false;                        // progress line on stderr for long runs
+  // Called every 16 steps with t, the time the integrate() call began at and its end (the
+  // driver's progress line, apps/noether/progress.hpp); none when empty.
+  std::function<void(double t, double t_begin, double t_end)> progress;
   // Set asynchronously (a signal handler) to stop the run after the current step: the run
   // then ends like an event, with the output complete and stop_reason "interrupted".
   const volatile std::sig_atomic_t* interrupt = nullptr;

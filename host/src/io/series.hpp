@@ -1,0 +1,107 @@
+#pragma once
+// Series<T>: one [frame][shape...] series of an output file, written in blocks (internal to
+// libnoether).
+#include "../h5_helpers.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace noether::io {
+
+using h5::check;
+using h5::check_id;
+
+// A series [frame][shape...]: a chunked dataset whose chunks are all allocated (and filled
+// with `fill`) when it is created or grown, so that writing frames changes raw data only, never
+// the file's metadata (docs/user-guide.md, "Output files": a kill at any moment leaves a
+// consistent file).
+template <class T>
+struct Series {
+  hid_t dataset = -1;
+  hid_t type = -1;
+  std::vector<hsize_t> frame_shape;
+  std::size_t frame_size = 1;
+  std::vector<T> buffer;
+
+  Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape, hsize_t frames,
+         T fill)
+      : type(h5type), frame_shape(std::move(shape)) {
+    for (auto d : frame_shape) frame_size *= d;
+    std::vector<hsize_t> dims{frames}, maxdims{H5S_UNLIMITED}, chunk;
+    const hsize_t frames_per_chunk =
+        std::max<hsize_t>(1, std::min<hsize_t>(1024, 8192 / std::max<std::size_t>(1, frame_size)));
+    chunk.push_back(frames_per_chunk);
+    for (auto d : frame_shape) {
+      dims.push_back(d);
+      maxdims.push_back(d);
+      chunk.push_back(std::max<hsize_t>(1, d));
+    }
+    hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
+    H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+    H5Pset_fill_value(plist, type, &fill);
+    H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
+    dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+                       name);
+    H5Pclose(plist);
+    H5Sclose(space);
+  }
+  // An existing series (a continued run's file).
+  Series(hid_t file, const char* path, hid_t h5type) : type(h5type) {
+    dataset = check_id(H5Dopen2(file, path, H5P_DEFAULT), path);
+    hid_t space = H5Dget_space(dataset);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    H5Sclose(space);
+    frame_shape.assign(dims.begin() + 1, dims.end());
+    for (auto d : frame_shape) frame_size *= d;
+  }
+  hsize_t frames() const {
+    hid_t space = H5Dget_space(dataset);
+    hsize_t dims[8] = {0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    H5Sclose(space);
+    return dims[0];
+  }
+  ~Series() {
+    if (dataset >= 0) H5Dclose(dataset);
+  }
+  Series(const Series&) = delete;
+  Series& operator=(const Series&) = delete;
+
+  void push(const T* values) { buffer.insert(buffer.end(), values, values + frame_size); }
+
+  // Sets the number of frames (growing allocates and fills the new chunks).
+  void resize(hsize_t frames) {
+    std::vector<hsize_t> dims{frames};
+    dims.insert(dims.end(), frame_shape.begin(), frame_shape.end());
+    check(H5Dset_extent(dataset, dims.data()), "resizing a dataset");
+  }
+
+  // Writes the buffered frames from `first_frame` on (inside the allocated frames).
+  void write(hsize_t first_frame) {
+    if (buffer.empty() || frame_size == 0) {
+      buffer.clear();
+      return;
+    }
+    const hsize_t frames = buffer.size() / frame_size;
+    std::vector<hsize_t> start{first_frame}, count{frames};
+    for (auto d : frame_shape) {
+      start.push_back(0);
+      count.push_back(d);
+    }
+    hid_t file_space = H5Dget_space(dataset);
+    H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+    hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
+    check(H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, buffer.data()),
+          "writing a block of frames");
+    H5Sclose(mem_space);
+    H5Sclose(file_space);
+    buffer.clear();
+  }
+};
+
+}  // namespace noether::io

@@ -1,0 +1,122 @@
+#pragma once
+// H5Writer::Impl: the open output file — its lock, its series, what is buffered (internal to
+// libnoether; output.cpp writes frames, output_layout.cpp creates the layout).
+#include <noether/output.hpp>
+
+#include "io/series.hpp"
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace noether {
+
+using io::Series;
+using h5::check;
+using h5::make_group;
+using h5::string_attribute;
+using Clock = std::chrono::steady_clock;
+
+struct H5Writer::Impl {
+  int lock = -1;     // the descriptor holding the output's lock (claim_output)
+  int claimed = -1;  // the existing file's, held until the new one replaces it
+  std::filesystem::path path, partial;  // where the file goes, and the hidden name it is built under
+  bool published = false;
+  hid_t file = -1;
+  OutputOptions options;
+  Clock::time_point last_flush = Clock::now();
+  std::size_t n_bodies = 0, n_rigid = 0;
+  std::vector<double> masses;
+  std::vector<std::unique_ptr<Series<double>>> doubles;  // all double series, for flushing
+  Series<std::int64_t>* step = nullptr;
+  Series<double>* time = nullptr;
+  Series<double>*position = nullptr, *velocity = nullptr, *orientation = nullptr,
+  *angular_momentum = nullptr, *energy = nullptr, *kinetic_translational = nullptr,
+  *kinetic_rotational = nullptr, *potential_energy = nullptr, *linear_momentum_total = nullptr,
+  *angular_momentum_total = nullptr, *orthogonality = nullptr;
+  // /checkpoint: the exact state (γ, R) and the work and wall time at each frame (--resume).
+  Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr,
+  *integrator_checkpoint = nullptr;
+  std::unique_ptr<Series<std::int64_t>> step_series, work_series;
+  // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame
+  // (io/checkpointed.hpp), so that a continued run finds a damaged frame before it trusts it.
+  std::unique_ptr<Series<std::uint64_t>> checksum_series;
+  std::size_t buffered = 0;
+  hsize_t allocated = 0;   // frames allocated in every series
+  hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
+  struct StepRecords {     // /integrator/<name>: an integrator's per-step records
+    hid_t dataset = -1;
+    hsize_t width = 1, rows = 0;
+  };
+  std::map<std::string, StepRecords> step_records;
+  hid_t integrator_group = -1;
+  std::string verdict, verdict_reasons, energy_scale;  // set_verdict
+  double relative_energy_error = 0.0;
+
+  // A series of doubles, described, with its unit (the scene's, docs/user-guide.md "Units").
+  Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape, const std::string& unit,
+                      const std::string& description) {
+    doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
+                                                       allocated, std::numeric_limits<double>::quiet_NaN()));
+    string_attribute(doubles.back()->dataset, "unit", unit);
+    string_attribute(doubles.back()->dataset, "description", description);
+    return doubles.back().get();
+  }
+  void resize_series(hsize_t frames) {
+    step_series->resize(frames);
+    work_series->resize(frames);
+    checksum_series->resize(frames);
+    for (auto& s : doubles) s->resize(frames);
+    allocated = frames;
+  }
+  // Flushes the file, having first extended it to HDF5's end of allocation: the superblock the
+  // flush writes records that address, and HDF5 refuses to open a file shorter than it says
+  // ("truncated file"), which a kill between the superblock and the last block of metadata
+  // would otherwise leave.
+  void flush_file(const char* what) {
+    haddr_t eoa = 0;
+    struct stat st {};
+    if (H5Fget_eoa(file, &eoa) >= 0 && ::fstat(lock, &st) == 0 && static_cast<haddr_t>(st.st_size) < eoa &&
+        ::ftruncate(lock, static_cast<off_t>(eoa)) != 0)
+      throw OutputError(std::string("cannot extend the output file while ") + what + ": " + std::strerror(errno));
+    check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
+  }
+  void write_complete(std::int64_t frames) {
+    check(H5Dwrite(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames),
+          "writing /frames_complete");
+  }
+  void close_datasets() {
+    doubles.clear();
+    step_series.reset();
+    work_series.reset();
+    checksum_series.reset();
+    for (auto& [name, records] : step_records) H5Dclose(records.dataset);
+    step_records.clear();
+    if (integrator_group >= 0) H5Gclose(integrator_group);
+    integrator_group = -1;
+    if (complete >= 0) H5Dclose(complete);
+    complete = -1;
+  }
+
+  // An H5MD time-series group: {step, time, value}; step and time are hard links to one pair.
+  hid_t element(hid_t parent, const char* name) {
+    hid_t g = make_group(parent, name);
+    if (step) {
+      check(H5Lcreate_hard(file, "/particles/bodies/position/step", g, "step", H5P_DEFAULT,
+                           H5P_DEFAULT), "linking step");
+      check(H5Lcreate_hard(file, "/particles/bodies/position/time", g, "time", H5P_DEFAULT,
+                           H5P_DEFAULT), "linking time");
+    }
+    return g;
+  }
+};
+
+}  // namespace noether

@@ -1,0 +1,277 @@
+// The output file's layout (docs/user-guide.md, "Output"): every group, attribute and series,
+// created once when the file is made; and /parameters/pair_models.
+#include <noether/output.hpp>
+#include <noether/version.hpp>
+
+#include "h5_helpers.hpp"
+#include "io/checkpointed.hpp"
+#include "io/checksum.hpp"
+#include "output_impl.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace noether {
+
+namespace fs = std::filesystem;
+using namespace noether::h5;
+
+void H5Writer::create_layout(const Scene& scene) {
+  Impl& m = *impl_;
+  const OutputOptions& options = m.options;
+  const System& sys = scene.system;
+  m.n_bodies = sys.size();
+  m.n_rigid = sys.rigid_count();
+  // Every series is allocated for the frames the run will write, up to a budget; a run that
+  // writes more grows them (in doubling steps, each flushed at once).
+  const double frame_bytes = 8.0 * static_cast<double>(18 + 9 * m.n_bodies + 16 * m.n_rigid);
+  const double budget = std::max(1.0, std::floor(options.preallocate_bytes / frame_bytes));
+  m.allocated = static_cast<hsize_t>(
+      std::min(options.expected_frames > 0 ? static_cast<double>(options.expected_frames) : 1024.0, budget));
+
+  hid_t h5md = make_group(m.file, "h5md");
+  numeric_attribute<int>(h5md, "version", H5T_NATIVE_INT, {1, 1});
+  hid_t creator = make_group(h5md, "creator");
+  string_attribute(creator, "name", "noether");
+  string_attribute(creator, "version", NOETHER_VERSION);
+  H5Gclose(creator);
+  H5Gclose(h5md);
+
+  hid_t parameters = make_group(m.file, "parameters");
+  string_attribute(parameters, "scene_file", scene.file);
+  // Where the scene was, so that a continued run finds its shape files from any folder.
+  std::error_code ec;
+  const fs::path absolute = scene.file.empty() ? fs::path() : fs::absolute(scene.file, ec);
+  const std::string scene_path = ec ? scene.file : absolute.string();
+  string_attribute(parameters, "scene_path", scene_path);
+  string_dataset(parameters, "scene", scene.text, "the scene file's text, as given");
+  string_dataset(parameters, "scene_as_run", scene_as_run(scene),
+                 "the scene as run: after the --set overrides (YAML)");
+  std::string overrides;
+  for (const auto& o : scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
+  string_attribute(parameters, "overrides", overrides);
+  // What a continued run rebuilds its scene from, checksummed (io/run_record.cpp).
+  numeric_attribute<std::uint64_t>(parameters, "checksum", H5T_NATIVE_UINT64,
+                                   {io::scene_checksum(scene.text, scene_path, overrides, options.custom_potential)});
+  std::string potentials;
+  for (const auto& p : scene.potentials) potentials += (potentials.empty() ? "" : "+") + p.plugin;
+  string_attribute(parameters, "potential", options.custom_potential ? "python (given in code, not the scene's)" : potentials);
+  numeric_attribute<int>(parameters, "custom_potential", H5T_NATIVE_INT, {options.custom_potential ? 1 : 0});
+  string_attribute(parameters, "integrator", scene.integrator.plugin);
+  scalar_attribute(parameters, "G", sys.G());
+  string_attribute(parameters, "units", scene.units.describe());
+  string_attribute(parameters, "unit_length", scene.units.of_length());
+  string_attribute(parameters, "unit_mass", scene.units.of_mass());
+  string_attribute(parameters, "unit_time", scene.units.of_time());
+  string_attribute(parameters, "unit_G", scene.units.of_G());
+  scalar_attribute(parameters, "t_end", scene.run.t_end);
+  scalar_attribute(parameters, "output_every", scene.run.output_every);
+  // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
+  // (x_file = offset + rotation · x_body).
+  hid_t shapes = -1;
+  for (const auto& b : sys.bodies()) {
+    if (!b.solid) continue;
+    if (shapes < 0) shapes = make_group(parameters, "shapes");
+    hid_t g = make_group(shapes, b.name.c_str());
+    string_attribute(g, "kind", b.solid->kind == Solid::Kind::Ellipsoid ? "ellipsoid" : "polyhedron");
+    string_attribute(g, "description", b.solid->describe());
+    numeric_attribute<double>(g, "density", H5T_NATIVE_DOUBLE, {b.solid->density});
+    numeric_attribute<double>(g, "volume", H5T_NATIVE_DOUBLE, {b.solid->volume});
+    numeric_attribute<double>(g, "semi_axes", H5T_NATIVE_DOUBLE,
+                              {b.solid->semi_axes.x(), b.solid->semi_axes.y(), b.solid->semi_axes.z()});
+    numeric_attribute<double>(g, "offset", H5T_NATIVE_DOUBLE,
+                              {b.solid->offset.x(), b.solid->offset.y(), b.solid->offset.z()});
+    std::vector<double> rotation;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) rotation.push_back(b.solid->rotation(r, c));
+    numeric_attribute<double>(g, "rotation", H5T_NATIVE_DOUBLE, rotation);  // row-major
+    H5Gclose(g);
+  }
+  if (shapes >= 0) H5Gclose(shapes);
+  H5Gclose(parameters);
+
+  hid_t particles = make_group(m.file, "particles");
+  hid_t bodies = make_group(particles, "bodies");
+  std::vector<std::string> names;
+  for (const auto& b : sys.bodies()) {
+    names.push_back(b.name);
+    m.masses.push_back(b.mass);
+  }
+  string_list_dataset(bodies, "name", names);
+  double_dataset(bodies, "mass", m.masses);
+  {
+    hid_t d = H5Dopen2(bodies, "mass", H5P_DEFAULT);
+    string_attribute(d, "unit", scene.units.of_mass());
+    string_attribute(d, "description", "mass of each body");
+    H5Dclose(d);
+    d = H5Dopen2(bodies, "name", H5P_DEFAULT);
+    string_attribute(d, "description", "the bodies' names, in the order of every [body] axis");
+    H5Dclose(d);
+  }
+  if (m.n_rigid > 0) {  // J_k, principal-axes body frame, [rigid body][3][3]
+    std::vector<double> inertia;
+    std::vector<int> rigid_index;
+    for (std::size_t k = 0; k < sys.rigid_count(); ++k) {
+      const Body& b = sys.body(sys.body_of_rigid(k));
+      rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) inertia.push_back(b.inertia(r, c));
+    }
+    const hsize_t dims[3] = {m.n_rigid, 3, 3};
+    hid_t space = H5Screate_simple(3, dims, nullptr);
+    hid_t d = check_id(H5Dcreate2(bodies, "inertia", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                  H5P_DEFAULT), "inertia");
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, inertia.data()), "inertia");
+    numeric_attribute<int>(d, "body_index", H5T_NATIVE_INT, rigid_index);
+    string_attribute(d, "description", "inertia tensor J of each rigid body in its body frame");
+    string_attribute(d, "unit", scene.units.of_inertia());
+    H5Dclose(d);
+    H5Sclose(space);
+  }
+  const hsize_t nb = m.n_bodies, nr = m.n_rigid;
+  hid_t pos = make_group(bodies, "position");
+  m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,
+                                                         std::vector<hsize_t>{}, m.allocated, -1);
+  m.step = m.step_series.get();
+  string_attribute(m.step->dataset, "description", "the integrator's step count at each frame");
+  const Units& u = scene.units;
+  m.time = m.add(pos, "time", {}, u.of_time(), "time of each frame");
+  m.position = m.add(pos, "value", {nb, 3}, u.of_length(),
+                     "position x of each body's centre of mass, inertial frame [frame][body][xyz]");
+  H5Gclose(pos);
+  hid_t g = m.element(bodies, "velocity");
+  m.velocity = m.add(g, "value", {nb, 3}, u.of_velocity(),
+                     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]");
+  H5Gclose(g);
+  if (m.n_rigid > 0) {
+    std::vector<int> rigid_index;
+    for (std::size_t k = 0; k < sys.rigid_count(); ++k)
+      rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
+    g = m.element(bodies, "orientation");  // quaternion (w, x, y, z), rigid bodies only
+    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
+    m.orientation = m.add(g, "value", {nr, 4}, "1",
+                          "attitude R (body to inertial frame) of each rigid body as a unit quaternion "
+                          "(w, x, y, z) [frame][rigid body][wxyz]; body_index names the bodies");
+    H5Gclose(g);
+    g = m.element(bodies, "angular_momentum");  // Π, body frame, rigid bodies only
+    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
+    m.angular_momentum = m.add(g, "value", {nr, 3}, u.of_angular_momentum(),
+                               "spin angular momentum Π = J Ω of each rigid body, body frame "
+                               "[frame][rigid body][xyz]");
+    H5Gclose(g);
+  }
+  H5Gclose(bodies);
+  H5Gclose(particles);
+
+  hid_t obs = make_group(m.file, "observables");
+  const std::string energy_unit = u.of_energy();
+  const struct {
+    const char* name;
+    Series<double>** target;
+    std::string unit, description;
+  } scalars[] = {
+      {"energy", &m.energy, energy_unit, "total energy E = T + U at each frame"},
+      {"kinetic_energy_translational", &m.kinetic_translational, energy_unit, "Σ |γ|²/(2m)"},
+      {"kinetic_energy_rotational", &m.kinetic_rotational, energy_unit, "Σ Π·J⁻¹Π/2"},
+      {"potential_energy", &m.potential_energy, energy_unit, "the mutual potential U"},
+      {"orthogonality_error", &m.orthogonality, "1", "max over rigid bodies of ‖I − RᵀR‖_F"}};
+  for (const auto& scalar : scalars) {
+    g = m.element(obs, scalar.name);
+    *scalar.target = m.add(g, "value", {}, scalar.unit, scalar.description);
+    H5Gclose(g);
+  }
+  g = m.element(obs, "linear_momentum");
+  m.linear_momentum_total = m.add(g, "value", {3}, u.of_momentum(), "total linear momentum Σ γ, inertial frame");
+  H5Gclose(g);
+  g = m.element(obs, "angular_momentum");
+  m.angular_momentum_total = m.add(g, "value", {3}, u.of_angular_momentum(),
+                                   "total angular momentum about the origin, Σ x × γ + R Π, inertial frame");
+  H5Gclose(g);
+  H5Gclose(obs);
+
+  // The checkpoint of every frame: what the derived series lose (γ, not v = γ/m; R, not its
+  // quaternion) and the work done, so that a continued run starts exactly where this one was.
+  hid_t checkpoint = make_group(m.file, "checkpoint");
+  string_attribute(checkpoint, "description",
+                   "the exact state and the work at every frame, from which `noether run --resume` "
+                   "continues a run");
+  m.exact_momentum = m.add(checkpoint, "linear_momentum", {nb, 3}, u.of_momentum(),
+                           "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact");
+  if (m.n_rigid > 0)
+    m.exact_attitude = m.add(checkpoint, "attitude", {nr, 3, 3}, "1",
+                             "attitude matrix R (body to inertial) of each rigid body [frame][rigid body][row][column], "
+                             "exact");
+  m.wall_time = m.add(checkpoint, "wall_time", {}, "s", "wall time spent by the run up to each frame");
+  if (options.checkpoint_width > 0)
+    m.integrator_checkpoint =
+        m.add(checkpoint, "integrator", {options.checkpoint_width}, "mixed",
+              "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's "
+              "coordinates, a two-step form's previous step), from which a continued run restores it");
+  m.work_series = std::make_unique<Series<std::int64_t>>(checkpoint, "work", H5T_NATIVE_INT64,
+                                                         std::vector<hsize_t>{5}, m.allocated, -1);
+  string_attribute(m.work_series->dataset, "description",
+                   "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, "
+                   "frames interpolated between the method's steps");
+  {
+    std::vector<std::string> columns;
+    for (const auto& c : io::kCheckpointed) columns.push_back(c.path);
+    m.checksum_series = std::make_unique<Series<std::uint64_t>>(
+        checkpoint, "checksum", H5T_NATIVE_UINT64, std::vector<hsize_t>{io::kCheckpointedCount}, m.allocated, 0);
+    string_attribute(m.checksum_series->dataset, "description",
+                     "checksum64 of each frame of the series named in `columns`, seeded with the frame's index "
+                     "(0: the series is absent); `noether run --resume` verifies every frame it reads");
+    std::string joined;
+    for (const auto& c : columns) joined += (joined.empty() ? "" : "\n") + c;
+    string_attribute(m.checksum_series->dataset, "columns", joined);
+  }
+  if (!options.resumed.empty()) string_attribute(checkpoint, "resumed", options.resumed);
+  H5Gclose(checkpoint);
+
+  // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
+  // their allocated length, with fill (NaN, step −1) or an unfinished block after it.
+  {
+    hid_t space = H5Screate(H5S_SCALAR);
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_layout(plist, H5D_CONTIGUOUS);
+    H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+    m.complete = check_id(H5Dcreate2(m.file, "frames_complete", H5T_NATIVE_INT64, space, H5P_DEFAULT,
+                                     plist, H5P_DEFAULT), "frames_complete");
+    H5Pclose(plist);
+    H5Sclose(space);
+    string_attribute(m.complete, "description",
+                     "the number of complete frames: every series holds exactly this many after a "
+                     "run that ended; after a killed run, read series[:frames_complete]");
+    m.write_complete(0);
+  }
+  m.flush_file("flushing the output file");
+}
+
+void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
+  if (models.empty()) return;
+  Impl& m = *impl_;
+  hid_t parameters = H5Gopen2(m.file, "parameters", H5P_DEFAULT);
+  if (H5Lexists(parameters, "pair_models", H5P_DEFAULT) > 0) H5Ldelete(parameters, "pair_models", H5P_DEFAULT);
+  hid_t group = make_group(parameters, "pair_models");
+  for (const auto& p : models) {
+    hid_t g = make_group(group, (p.body_a + "–" + p.body_b).c_str());
+    string_attribute(g, "body_a", p.body_a);
+    string_attribute(g, "body_b", p.body_b);
+    string_attribute(g, "model", p.model);
+    numeric_attribute<int>(g, "order", H5T_NATIVE_INT, {p.order});
+    numeric_attribute<double>(g, "tolerance", H5T_NATIVE_DOUBLE, {p.tolerance});
+    numeric_attribute<double>(g, "estimated_error", H5T_NATIVE_DOUBLE, {p.estimated_error});
+    numeric_attribute<double>(g, "separation", H5T_NATIVE_DOUBLE, {p.separation});
+    numeric_attribute<int>(g, "exceeded", H5T_NATIVE_INT, {p.exceeded ? 1 : 0});
+    if (p.exceeded) {
+      numeric_attribute<double>(g, "exceeded_time", H5T_NATIVE_DOUBLE, {p.exceeded_time});
+      numeric_attribute<double>(g, "exceeded_separation", H5T_NATIVE_DOUBLE, {p.exceeded_separation});
+      numeric_attribute<double>(g, "exceeded_error", H5T_NATIVE_DOUBLE, {p.exceeded_error});
+    }
+    H5Gclose(g);
+  }
+  H5Gclose(group);
+  H5Gclose(parameters);
+  m.flush_file("flushing the output file");
+}
+
+}  // namespace noether

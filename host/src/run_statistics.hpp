@@ -1,0 +1,117 @@
+#pragma once
+// RunStatistics: the run's accounting at every output frame — the summary's running values
+// (E0, max |E − E0|, the momentum errors, closest approach, the smallest gap) and the frame
+// handed on to the output. Internal to libnoether (Simulation, its continuation).
+#include <noether/diagnostics.hpp>
+#include <noether/error.hpp>
+#include <noether/simulation.hpp>
+#include <noether/stepping.hpp>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+namespace noether::detail {
+
+// The run's accounting at every frame: the summary's statistics, and the frame to the output.
+class RunStatistics final : public Observer {
+ public:
+  RunStatistics(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
+      : system_(system), s_(summary), write_(std::move(write)) {}
+
+  void observe(const State& state, const Forces& forces, bool interpolated) override {
+    const Diagnostics d = account(state, forces);
+    if (interpolated) ++s_.interpolated_frames;
+    if (write_) write_(state, d);
+  }
+
+  // The statistics of one frame (also of the frames a continued run replays from its file).
+  Diagnostics account(const State& state, const Forces& forces) {
+    const Diagnostics d = diagnose(system_, state, forces.U);
+    // A non-finite energy or state is a failure, never a number in the summary (std::max
+    // would drop a NaN silently).
+    if (!std::isfinite(d.energy) || !state.x.allFinite() || !state.p.allFinite() || !state.Pi.allFinite()) {
+      std::ostringstream msg;
+      msg << "the " << (std::isfinite(d.energy) ? "state" : "energy") << " became non-finite at t = " << state.t
+          << " (the integrator diverged: a smaller step or tolerance?)";
+      throw IntegrationError(msg.str(), state.t);
+    }
+    if (s_.frames == 0) {
+      s_.initial = d;
+      // Scales for the relative momentum errors: the sum of the magnitudes of the parts.
+      p_scale_ = L_scale_ = 0.0;
+      for (Eigen::Index i = 0; i < state.p.cols(); ++i) {
+        p_scale_ += state.p.col(i).norm();
+        L_scale_ += Vec3(state.x.col(i)).cross(Vec3(state.p.col(i))).norm();
+      }
+      for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
+      s_.min_distance = std::numeric_limits<double>::infinity();
+      detect_conservation(state, forces);
+    }
+    s_.final = d;
+    s_.max_abs_energy_error = std::max(s_.max_abs_energy_error, std::abs(d.energy - s_.initial.energy));
+    if (p_scale_ > 0)
+      s_.max_rel_linear_momentum_error = std::max(
+          s_.max_rel_linear_momentum_error, (d.linear_momentum - s_.initial.linear_momentum).norm() / p_scale_);
+    if (L_scale_ > 0)
+      s_.max_rel_angular_momentum_error =
+          std::max(s_.max_rel_angular_momentum_error,
+                   (d.angular_momentum - s_.initial.angular_momentum).norm() / L_scale_);
+    s_.max_orthogonality_error = std::max(s_.max_orthogonality_error, d.orthogonality_error);
+    if (state.x.cols() <= 64)  // closest approach of centres, O(n²): small scenes only
+      for (Eigen::Index i = 0; i < state.x.cols(); ++i)
+        for (Eigen::Index j = i + 1; j < state.x.cols(); ++j) {
+          const double r = (state.x.col(i) - state.x.col(j)).norm();
+          if (r < s_.min_distance) {
+            s_.min_distance = r;
+            s_.t_of_min_distance = state.t;
+          }
+          const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(j));
+          if (a.radius + b.radius > 0 && r - (a.radius + b.radius) < s_.min_gap) {
+            s_.min_gap = r - (a.radius + b.radius);
+            s_.min_gap_reach = a.radius + b.radius;
+            s_.min_gap_pair = a.name + "–" + b.name;
+          }
+        }
+    ++s_.frames;
+    return d;
+  }
+
+  // The scales of the relative momentum errors (a saved simulation keeps them).
+  std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
+  void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
+
+ private:
+  // The forces at t0 tell what the scene conserves: a net force or a net torque about the
+  // origin larger than 10⁻⁶ of the sum of their parts is an external field.
+  void detect_conservation(const State& state, const Forces& forces) {
+    Vec3 F = Vec3::Zero(), T = Vec3::Zero();
+    double F_parts = 0.0, T_parts = 0.0;
+    for (Eigen::Index i = 0; i < forces.f.cols(); ++i) {
+      const Vec3 f = forces.f.col(i), torque = Vec3(state.x.col(i)).cross(f);
+      F += f, F_parts += f.norm();
+      T += torque, T_parts += torque.norm();
+    }
+    for (Eigen::Index k = 0; k < forces.M.cols(); ++k) {
+      T += state.R[static_cast<std::size_t>(k)] * Vec3(forces.M.col(k));  // d(R Π)/dt = R M
+      T_parts += forces.M.col(k).norm();
+    }
+    s_.conserves_linear_momentum = F.norm() <= 1e-6 * F_parts;
+    s_.conserves_angular_momentum = T.norm() <= 1e-6 * T_parts;
+  }
+
+  const System& system_;
+  RunSummary& s_;
+  std::function<void(const State&, const Diagnostics&)> write_;
+  double p_scale_ = 0.0, L_scale_ = 0.0;
+};
+
+// Work counters added up; −1 (not reported) stays −1.
+inline WorkCounters operator+(const WorkCounters& a, const WorkCounters& b) {
+  return WorkCounters{a.steps + b.steps, a.potential_evaluations + b.potential_evaluations,
+                      a.newton_iterations + b.newton_iterations,
+                      a.rejected_steps < 0 || b.rejected_steps < 0 ? -1 : a.rejected_steps + b.rejected_steps};
+}
+
+}  // namespace noether::detail

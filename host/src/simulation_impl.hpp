@@ -1,0 +1,94 @@
+#pragma once
+// Simulation::Impl: what a run held open consists of (internal to libnoether; simulation.cpp
+// drives it, continuation.cpp resumes, saves and loads it).
+#include <noether/output.hpp>
+#include <noether/simulation.hpp>
+
+#include "run_statistics.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace noether {
+
+using Clock = std::chrono::steady_clock;
+using detail::operator+;
+
+struct Simulation::Impl {
+  Scene scene;
+  RunOptions options;
+  std::shared_ptr<const Potential> potential;
+  std::shared_ptr<Integrator> integrator;
+  std::unique_ptr<H5Writer> writer;
+  RunSummary summary;
+  std::unique_ptr<detail::RunStatistics> observer;
+  State state;
+  double t_origin = 0.0;            // the time of step 0 and frame 0
+  std::int64_t steps_before = 0;    // fixed-step methods: steps from t_origin to state.t
+  bool integrator_at_state = false; // the integrator stands at `state` (no start() needed)
+  WorkCounters base_work{0, 0, 0, 0};  // work of the run this one continues
+  double wall_seconds = 0.0;           // wall time spent integrating (and of the run continued)
+  Clock::time_point call_start = Clock::now();
+  bool in_call = false, finished = false;
+  bool custom_potential = false;  // the potential was given in code, not made from the scene
+  std::string failure;  // the error that ended the run, if any
+
+  WorkCounters work() const { return base_work + integrator->work(); }
+  double wall_now() const {
+    return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
+  }
+  std::vector<PairModel> pair_models() const {
+    const PotentialEvaluator* evaluator = integrator->potential_evaluator();
+    return evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
+  }
+  // A new segment of statistics (set_state, and the replay of a resumed run): the next frame
+  // observed gives the references (E0, the momentum scales, what the scene conserves).
+  void new_segment() {
+    RunSummary& s = summary;
+    s.frames = 0;
+    s.interpolated_frames = 0;
+    s.max_abs_energy_error = s.max_rel_linear_momentum_error = 0.0;
+    s.max_rel_angular_momentum_error = s.max_orthogonality_error = 0.0;
+    s.min_gap = std::numeric_limits<double>::infinity();
+    s.min_gap_reach = 0.0;
+    s.min_gap_pair.clear();
+  }
+  void make_observer() {
+    observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
+      if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
+    });
+  }
+  // The output file's options; `continuation`: a resumed run's new file, which replaces the
+  // old one once the recorded frames are in.
+  OutputOptions output_options(bool continuation) const {
+    const Scene& sc = scene;
+    OutputOptions output;
+    output.checkpoint_width = integrator->checkpoint().size();
+    output.custom_potential = custom_potential;
+    output.overwrite = continuation || options.overwrite;
+    output.defer_publish = continuation;
+    // t0, every output time, and one more for an event or an interrupt (the stepping loop).
+    const double frames = 2.0 + std::ceil((sc.run.t_end - sc.initial.t) / sc.run.output_every);
+    output.expected_frames = frames > 0 && frames < 1e18 ? static_cast<std::uint64_t>(frames) : 0;
+    if (!continuation && !sc.file.empty() && std::filesystem::exists(sc.file)) output.inputs.push_back(sc.file);
+    return output;
+  }
+  void finish_output(const std::string& outcome) {
+    if (!writer) return;
+    auto records = integrator->take_step_series();
+    if (!records.empty()) writer->append_step_series(records);
+    writer->write_pair_models(pair_models());
+    RunSummary judged = summary;
+    judged.work = work();
+    judge(judged, scene);
+    std::string reasons;
+    for (const auto& r : judged.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
+    writer->set_verdict(judged.verdict.trustworthy ? "trustworthy" : "untrustworthy", reasons,
+                        judged.max_rel_energy_error, judged.energy_scale);
+    writer->finish(judged.work, wall_now(), outcome);
+    writer.reset();
+  }
+};
+
+}  // namespace noether

@@ -1,0 +1,159 @@
+// A run's summary as `noether run` prints it: text, or one JSON object (--summary json).
+#include <noether/simulation.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace noether {
+
+std::string format_pair_models(const std::vector<PairModel>& models) {
+  std::string out;
+  char line[512];
+  for (const auto& m : models) {
+    const std::string pair = "pair " + m.body_a + "–" + m.body_b;
+    std::snprintf(line, sizeof line, "%-31s %s, estimated error %.1e at separation %.6g (tolerance %.0e)\n",
+                  pair.c_str(), m.model.c_str(), m.estimated_error, m.separation, m.tolerance);
+    out += line;
+    if (m.exceeded) {
+      std::snprintf(line, sizeof line,
+                    "%-31s EXCEEDED at t = %.6g: separation %.6g, estimated error %.1e > tolerance %.0e\n", "",
+                    m.exceeded_time, m.exceeded_separation, m.exceeded_error, m.tolerance);
+      out += line;
+    }
+  }
+  return out;
+}
+
+std::string format_summary(const RunSummary& s) {
+  char buf[2048];
+  const double steps = static_cast<double>(std::max<std::int64_t>(1, s.work.steps));
+  // Only what the scene conserves, and a closest approach only where there are two bodies.
+  std::string optional;
+  char line[256];
+  if (s.conserves_linear_momentum) {
+    std::snprintf(line, sizeof line, "max rel. linear momentum err  %.3e\n", s.max_rel_linear_momentum_error);
+    optional += line;
+  }
+  if (s.conserves_angular_momentum) {
+    std::snprintf(line, sizeof line, "max rel. angular momentum err %.3e\n", s.max_rel_angular_momentum_error);
+    optional += line;
+  }
+  if (s.final_state.R.size() > 0) {
+    std::snprintf(line, sizeof line, "max ||I - R^T R||_F           %.4e\n", s.max_orthogonality_error);
+    optional += line;
+  }
+  if (std::isfinite(s.min_distance)) {
+    std::snprintf(line, sizeof line, "closest approach              %.6f at t = %.4f\n", s.min_distance,
+                  s.t_of_min_distance);
+    optional += line;
+  }
+  // Frames between the method's steps are interpolated states, not the method's own: say so.
+  const std::string where_energy =
+      s.interpolated_frames > 0 ? ", " + std::to_string(s.interpolated_frames) + " of " + std::to_string(s.frames) +
+                                      " interpolated between the method's steps"
+                                : "";
+  std::snprintf(
+      buf, sizeof buf,
+      "potential                     %s\n"
+      "integrator                    %s\n"
+      "E0                            %.10f\n"
+      "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames%s)\n"
+      "%s"
+      "output frames                 %zu\n"
+      "steps                         %lld\n"
+      "potential evaluations         %lld\n"
+      "Newton iterations per step    %.3f\n"
+      "rejected steps                %s\n"
+      "wall time                     %.3f s\n",
+      s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
+      s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
+      static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
+      static_cast<double>(s.work.newton_iterations) / steps,
+      s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
+      s.wall_seconds);
+  std::string out = buf;
+  if (!s.units.empty()) out.insert(out.find("E0 "), "units                         " + s.units + "\n");
+  if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
+  out += format_pair_models(s.pair_models);
+  if (s.verdict.trustworthy) {
+    out += "verdict                       trustworthy\n";
+  } else {
+    for (const auto& r : s.verdict.reasons) out += "verdict                       UNTRUSTWORTHY: " + r + "\n";
+  }
+  return out;
+}
+
+namespace {
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+}  // namespace
+
+std::string format_summary_json(const RunSummary& s) {
+  std::ostringstream out;
+  auto field = [&out, first = true](const char* name, const std::string& value) mutable {
+    out << (first ? "{\n  " : ",\n  ") << json_string(name) << ": " << value;
+    first = false;
+  };
+  field("potential", json_string(s.potential));
+  field("integrator", json_string(s.integrator));
+  field("units", s.units.empty() ? "null" : json_string(s.units));
+  field("E0", json_number(s.initial.energy));
+  field("max_abs_energy_error", json_number(s.max_abs_energy_error));
+  field("max_rel_energy_error", json_number(s.max_rel_energy_error));
+  field("energy_scale", json_string(s.energy_scale));
+  field("max_rel_linear_momentum_error",
+        s.conserves_linear_momentum ? json_number(s.max_rel_linear_momentum_error) : "null");
+  field("max_rel_angular_momentum_error",
+        s.conserves_angular_momentum ? json_number(s.max_rel_angular_momentum_error) : "null");
+  field("max_orthogonality_error", s.final_state.R.empty() ? "null" : json_number(s.max_orthogonality_error));
+  field("closest_approach", json_number(s.min_distance));
+  field("t_of_closest_approach", std::isfinite(s.min_distance) ? json_number(s.t_of_min_distance) : "null");
+  field("output_frames", std::to_string(s.frames));
+  field("interpolated_frames", std::to_string(s.interpolated_frames));
+  field("final_time", json_number(s.final_state.t));
+  field("stop_reason", s.stop_reason.empty() ? "null" : json_string(s.stop_reason));
+  field("steps", std::to_string(s.work.steps));
+  field("potential_evaluations", std::to_string(s.work.potential_evaluations));
+  field("newton_iterations", std::to_string(s.work.newton_iterations));
+  field("rejected_steps", s.work.rejected_steps < 0 ? "null" : std::to_string(s.work.rejected_steps));
+  field("wall_seconds", json_number(s.wall_seconds));
+  std::string models = "[";
+  for (const auto& m : s.pair_models)
+    models += std::string(models.size() > 1 ? ", " : "") + "{\"body_a\": " + json_string(m.body_a) +
+              ", \"body_b\": " + json_string(m.body_b) + ", \"model\": " + json_string(m.model) +
+              ", \"order\": " + std::to_string(m.order) + ", \"estimated_error\": " + json_number(m.estimated_error) +
+              ", \"exceeded\": " + (m.exceeded ? "true" : "false") + "}";
+  field("pair_models", models + "]");
+  std::string reasons = "[";
+  for (const auto& r : s.verdict.reasons) reasons += std::string(reasons.size() > 1 ? ", " : "") + json_string(r);
+  field("verdict", std::string("{\"trustworthy\": ") + (s.verdict.trustworthy ? "true" : "false") +
+                       ", \"reasons\": " + reasons + "]}");
+  out << "\n}\n";
+  return out.str();
+}
+
+}  // namespace noether
