@@ -39,7 +39,7 @@ inline std::vector<std::pair<Vec3, Mat3>> orbit_configurations(const Scene& scen
   State s = scene.initial;
   const double h = scene.integrator.params.at("step").as_double();
   const double every = std::max(h, std::round(t_end / count / h) * h);
-  integrate(*integrator, *potential, scene.system, s, {every * count, every}, collect);
+  advance(*integrator, *potential, scene.system, s, {every * count, every}, collect);
   collect.out.resize(static_cast<std::size_t>(count));
   return collect.out;
 }

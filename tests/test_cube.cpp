@@ -29,7 +29,7 @@ Trajectory integrate(const std::string& integrator, const std::vector<std::strin
                                         scene.integrator.params);
   Trajectory tr;
   State s = scene.initial;
-  noether::integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, tr);
+  noether::advance(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, tr);
   return tr;
 }
 

@@ -54,7 +54,7 @@ TEST(Dumbbells, StepTooLargeForTheSpinIsAClearError) {
   } count;
   State s = scene.initial;
   try {
-    integrate(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, count);
+    advance(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, count);
     FAIL() << "expected an IntegrationError";
   } catch (const IntegrationError& e) {
     const std::string what = e.what();

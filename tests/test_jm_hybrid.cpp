@@ -58,7 +58,7 @@ KeplerRun kepler(const std::string& integrator, const std::vector<std::string>& 
   auto integ = registry.make_integrator(scene.integrator.plugin, scene.system, potential, scene.integrator.params);
   KeplerRun run;
   State s = scene.initial;
-  integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, run.orbit);
+  advance(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, run.orbit);
   run.steps = integ->take_step_series();
   run.work = integ->work();
   return run;

@@ -53,7 +53,7 @@ Recorder integrate(const Scene& scene) {
   Recorder rec;
   rec.system = &scene.system;
   State s = scene.initial;
-  noether::integrate(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, rec);
+  noether::advance(*lgvi, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, rec);
   return rec;
 }
 

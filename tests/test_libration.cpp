@@ -64,7 +64,7 @@ TEST(Libration, SynchronousEllipsoidLibratesAtTheSpinOrbitFrequency) {
   auto integrator = registry.make_integrator(s.integrator.plugin, s.system, potential, s.integrator.params);
   Libration track;
   State state = s.initial;
-  integrate(*integrator, *potential, s.system, state, {s.run.t_end, s.run.output_every}, track);
+  advance(*integrator, *potential, s.system, state, {s.run.t_end, s.run.output_every}, track);
   const double measured = 2 * M_PI / track.period();
   std::printf("libration: measured ω = %.6f, n √(3(B − A)/C) = %.6f (n = %.6f), relative difference %.2e\n",
               measured, omega, n, measured / omega - 1);

@@ -50,7 +50,7 @@ History run(const std::string& integrator, std::int64_t* evaluations) {
   History h;
   h.system = &scene.system;
   State s = scene.initial;
-  integrate(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, h);
+  advance(*integ, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, h);
   *evaluations = integ->work().potential_evaluations;
   return h;
 }

@@ -120,7 +120,7 @@ TEST(OrderSelection, WarnsWhenAPairComesCloserThanItsOrderWasChosenFor) {
   auto potential = make_scene_potential(scene, registry);
   auto integrator = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
   State s = scene.initial;
-  integrate(*integrator, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, collect);
+  advance(*integrator, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, collect);
   const auto &A = scene.system.body(0).solid, &B = scene.system.body(1).solid;
   const auto TA = A->integrals(m.order + 2), TB = B->integrals(m.order + 2);
   SeriesBank bank;

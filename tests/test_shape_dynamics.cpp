@@ -50,7 +50,7 @@ Track run(const std::string& scene_file, const std::vector<std::string>& overrid
   Track track;
   track.system = &scene.system;
   State s = scene.initial;
-  integrate(*integrator, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, track);
+  advance(*integrator, *potential, scene.system, s, {scene.run.t_end, scene.run.output_every}, track);
   return track;
 }
 

@@ -103,7 +103,7 @@ TEST(Workspace, IntegratorsOnSeveralThreadsShareOneModel) {
   auto run = [&](Last& out, std::vector<PairModel>& pairs) {
     auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, model, scene.integrator.params);
     State s = scene.initial;
-    integrate(*integrator, *model, scene.system, s, schedule, out);
+    advance(*integrator, *model, scene.system, s, schedule, out);
     ASSERT_NE(integrator->potential_evaluator(), nullptr);
     pairs = integrator->potential_evaluator()->pair_models();
   };

@@ -48,6 +48,8 @@ System::System(double G, std::vector<Body> bodies) : G_(G), bodies_(std::move(bo
     Body& b = bodies_[i];
     const std::string context = "body '" + b.name + "'";
     if (b.name.empty()) throw SceneError("body " + std::to_string(i) + " has an empty name");
+    if (const std::string why = name_problem(b.name); !why.empty())
+      throw SceneError("body " + std::to_string(i) + " is named '" + b.name + "': " + why);
     if (!names.insert(b.name).second)
       throw SceneError("two bodies are named '" + b.name + "'; names must be unique");
     if (!std::isfinite(b.mass) || b.mass <= 0.0) {
@@ -63,6 +65,13 @@ System::System(double G, std::vector<Body> bodies) : G_(G), bodies_(std::move(bo
       body_of_rigid_.push_back(i);
     }
   }
+}
+
+std::string System::name_problem(const std::string& name) {
+  for (const char c : name)
+    if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return "a name may not contain '/' or control characters (letters, digits, '-', '_', '.' and spaces are fine)";
+  return "";
 }
 
 int System::index_of(const std::string& name) const {

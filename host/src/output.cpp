@@ -158,7 +158,6 @@ void H5Writer::flush() {
   const hsize_t first = frames_written_, needed = first + m.buffered;
   if (needed > m.allocated) {  // grow: the only metadata change while frames are written
     m.resize_series(std::max<hsize_t>(needed, 2 * m.allocated));
-    m.flush_file("flushing the output file");
   }
   // The frames first, then the counter that makes them part of the file: a kill before the
   // second flush leaves the counter at the previous block.
@@ -226,6 +225,9 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
     return;
   }
   flush();
+  // The series at their final length first (flushed), then /work: a kill in between leaves a
+  // killed run's file, never a finished one whose series are longer than its frames.
+  m.resize_series(frames_written_);
   hid_t g = make_group(m.file, "work");
   numeric_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, {work.steps});
   numeric_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64,
@@ -244,7 +246,6 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
     string_attribute(g, "energy_scale", m.energy_scale);
   }
   H5Gclose(g);
-  m.resize_series(frames_written_);
   m.close_datasets();
   m.flush_file("closing the output file");
   check(H5Fclose(m.file), "closing the output file");

@@ -70,12 +70,29 @@ struct H5Writer::Impl {
     string_attribute(doubles.back()->dataset, "description", description);
     return doubles.back().get();
   }
+  // Sets every series' length, then flushes: one change of the file. HDF5's metadata cache
+  // would otherwise write some series' new shapes early (evicting them to make room while the
+  // next series is resized), and a kill in between would leave series of different lengths; so
+  // evictions are off until the flush has written all of them.
   void resize_series(hsize_t frames) {
+    H5AC_cache_config_t saved{}, held{};
+    saved.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+    const bool configured = H5Fget_mdc_config(file, &saved) >= 0;
+    if (configured) {
+      held = saved;
+      held.evictions_enabled = false;  // which HDF5 allows only with automatic resizing off
+      held.incr_mode = H5C_incr__off;
+      held.flash_incr_mode = H5C_flash_incr__off;
+      held.decr_mode = H5C_decr__off;
+      H5Fset_mdc_config(file, &held);
+    }
     step_series->resize(frames);
     work_series->resize(frames);
     checksum_series->resize(frames);
     for (auto& s : doubles) s->resize(frames);
     allocated = frames;
+    flush_file("resizing the output's series");
+    if (configured) H5Fset_mdc_config(file, &saved);
   }
   // Flushes the file, having first extended it to HDF5's end of allocation: the superblock the
   // flush writes records that address, and HDF5 refuses to open a file shorter than it says

@@ -37,6 +37,16 @@ class RunStatistics final : public Observer {
           << " (the integrator diverged: a smaller step or tolerance?)";
       throw IntegrationError(msg.str(), state.t);
     }
+    // Finite state, infinite momenta: products that overflow a double (a body 1e300 away). A
+    // summary over them would say "error 0"; no such run is trustworthy.
+    if (!d.linear_momentum.allFinite() || !d.angular_momentum.allFinite()) {
+      std::ostringstream msg;
+      msg << "the total " << (d.linear_momentum.allFinite() ? "angular" : "linear") << " momentum is not finite at t = "
+          << state.t << " (positions × momenta overflow a double: give the scene units that keep its numbers "
+          << "far from 1e±300, docs/user-guide.md \"Units\")";
+      if (s_.frames == 0) throw SceneError("the initial state: " + msg.str());  // refused before any step
+      throw IntegrationError(msg.str(), state.t);
+    }
     if (s_.frames == 0) {
       s_.initial = d;
       // Scales for the relative momentum errors: the sum of the magnitudes of the parts.

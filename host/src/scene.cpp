@@ -162,10 +162,18 @@ void apply_override(Params& root, const std::string& assignment) {
       // An index: digits only, and short enough to be one (longer ones are no element either).
       const bool numeric = !part.empty() && part.size() <= 9 && part.find_first_not_of("0123456789") == std::string::npos;
       if (numeric && std::stoul(part) < items.size()) next = &items[std::stoul(part)];
-      for (auto& item : items)  // bodies by name
-        if (!next && item.is_map() && item.has("name") && item.at("name").is_scalar() &&
-            item.at("name").as_string() == part)
-          next = &item;
+      // Bodies by name; a name with dots ("a.b") spans several parts: the longest that names
+      // a body is taken.
+      for (std::size_t j = parts.size() - 1; !next && j-- > i;) {
+        std::string name = parts[i];
+        for (std::size_t k = i + 1; k <= j; ++k) name += "." + parts[k];
+        for (auto& item : items)
+          if (!next && item.is_map() && item.has("name") && item.at("name").is_scalar() &&
+              item.at("name").as_string() == name) {
+            next = &item;
+            i = j;
+          }
+      }
     }
     if (!next)
       throw SceneError("--set " + key + ": the scene has no '" + part + "' at '" +
@@ -496,6 +504,9 @@ Scene parse_scene(const std::string& text, const std::string& file,
                  "body '" + b.get("name", std::string("?")) + "'");
     Body body;
     body.name = b.at("name").as_string();
+    if (const std::string why = System::name_problem(body.name); !why.empty())  // with the line
+      throw SceneError(b.at("name").here() + "body " + std::to_string(list.size()) + " is named '" + body.name +
+                       "': " + why);
     if (b.has("shape")) {
       const Params& shape = b.at("shape");
       if (!shape.is_map() || shape.size() != 1)

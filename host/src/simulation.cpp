@@ -46,10 +46,20 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   // checkpoint, for the output's layout), its forces there.
   Forces forces;
   forces.resize(sc.system);
-  m.integrator->start(m.state);
+  std::string start_failure;
+  try {
+    m.integrator->start(m.state);
+  } catch (const Error& e) {  // e.g. a potential that is not finite at t0: the output says so
+    if (!m.options.output) throw;
+    start_failure = e.what();
+  }
   if (m.options.output) {
     m.writer = std::make_unique<H5Writer>(*m.options.output, sc, m.output_options(false));
     m.writer->write_pair_models(m.summary.pair_models);
+  }
+  if (!start_failure.empty()) {
+    m.finish_output("failed: " + start_failure);  // no frame: the initial state is not valid
+    throw IntegrationError(start_failure, sc.initial.t);
   }
   // Wall time counts integrating and writing frames, not creating the file (as before there
   // was a Simulation: wall times stay comparable).
@@ -137,7 +147,7 @@ StopInfo Simulation::integrate(double t_end) {
   };
   StopInfo stop;
   try {
-    stop = noether::integrate(*m.integrator, *m.potential, sc.system, m.state, schedule, *m.observer);
+    stop = advance(*m.integrator, *m.potential, sc.system, m.state, schedule, *m.observer);
   } catch (const Error& e) {
     m.wall_seconds = m.wall_now();
     m.in_call = false;

@@ -64,7 +64,11 @@ struct Simulation::Impl {
   OutputOptions output_options(bool continuation) const {
     const Scene& sc = scene;
     OutputOptions output;
-    output.checkpoint_width = integrator->checkpoint().size();
+    try {
+      output.checkpoint_width = integrator->checkpoint().size();
+    } catch (const Error&) {  // an integrator that could not start has no checkpoint
+      output.checkpoint_width = 0;
+    }
     output.custom_potential = custom_potential;
     output.overwrite = continuation || options.overwrite;
     output.defer_publish = continuation;

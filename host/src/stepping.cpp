@@ -11,6 +11,11 @@
 
 namespace noether {
 
+namespace {
+constexpr double kVanishingStep = 1e-14;      // of t_end − t_start
+constexpr std::int64_t kStalledSteps = 1000;  // in a row
+}  // namespace
+
 std::int64_t whole_steps(double interval, double h, const char* what) {
   const double n = std::round(interval / h);
   // Step k is at t0 + k h: beyond 2^53 steps k is no longer exact in a double (and the count
@@ -118,8 +123,8 @@ std::vector<Watch> watches(const System& system, const Events& events) {
 
 }  // namespace
 
-StopInfo integrate(Integrator& integrator, const Potential& potential, const System& system,
-                   State& state, const Schedule& schedule, Observer& observer) {
+StopInfo advance(Integrator& integrator, const Potential& potential, const System& system,
+                 State& state, const Schedule& schedule, Observer& observer) {
   const double t_start = state.t, t_end = schedule.t_end;
   // Step k and output frames are counted from t0: the run's start, also when this call
   // continues it.
@@ -173,6 +178,7 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     return probe;
   };
 
+  std::int64_t stalled = 0;  // adaptive steps in a row that barely moved t
   for (std::int64_t k = schedule.steps_before + 1;; ++k) {
     stop.steps = k;
     const double t_prev = integrator.time();
@@ -184,6 +190,21 @@ StopInfo integrate(Integrator& integrator, const Potential& potential, const Sys
     }
     const double t = h > 0 ? t0 + static_cast<double>(k) * h : integrator.time();
     if (schedule.on_step) schedule.on_step(t);
+    // An adaptive method whose step has collapsed: 1000 steps in a row each shorter than 1e-14
+    // of the run (10^14 more to go) is a method that will never arrive, not a slow one.
+    if (h <= 0) {
+      if (t - t_prev > kVanishingStep * (t_end - t_start)) {
+        stalled = 0;
+      } else if (++stalled >= kStalledSteps) {
+        std::ostringstream msg;
+        msg << "the adaptive step has vanished: " << stalled << " steps in a row each shorter than "
+            << kVanishingStep << " of the run, the last from t = " << t_prev << " to " << t << " (h = "
+            << t - t_prev << "); the tolerance cannot be met here (a singular or overflowing force? "
+            << "a close approach? check the scene's scale, or use a fixed-step method)";
+        integrator.current(state, forces);
+        throw IntegrationError(msg.str(), integrator.time());
+      }
+    }
 
     // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
     // variant of regula falsi on the interpolated positions (16.3).

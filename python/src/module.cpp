@@ -21,6 +21,8 @@
 
 #include <cmath>
 #include <memory>
+#include <chrono>
+#include <csignal>
 #include <sstream>
 
 namespace py = pybind11;
@@ -50,10 +52,39 @@ void set_rows(Eigen::Matrix3Xd& m, const py::handle& value, const char* what) {
     for (int k = 0; k < 3; ++k) m(k, i) = v(i, k);
 }
 
+// Ctrl-C while C++ integrates (the GIL released): every 16 steps the stepping loop calls
+// RunOptions::progress; at most every 50 ms that takes the GIL and asks Python whether a signal
+// is pending (PyErr_CheckSignals, which raises KeyboardInterrupt). If so the loop stops after
+// the step, as `noether run` does on SIGINT, and integrate() raises it.
+struct SignalWatch {
+  volatile std::sig_atomic_t stop = 0;
+  bool raised = false;
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now();
+  void poll() {
+    const auto now = std::chrono::steady_clock::now();
+    if (stop || now - last < std::chrono::milliseconds(50)) return;
+    last = now;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      raised = true;
+      stop = SIGINT;
+    }
+  }
+};
+
+// RunOptions with `watch` wired in.
+noether::RunOptions watched_options(const std::shared_ptr<SignalWatch>& watch) {
+  noether::RunOptions options;
+  options.interrupt = &watch->stop;
+  options.progress = [w = watch.get()](double, double, double) { w->poll(); };
+  return options;
+}
+
 // The Simulation as Python sees it: the C++ one, with the state's derived views.
 class PySimulation {
  public:
-  explicit PySimulation(std::unique_ptr<noether::Simulation> sim) : sim_(std::move(sim)) {}
+  PySimulation(std::unique_ptr<noether::Simulation> sim, std::shared_ptr<SignalWatch> watch)
+      : sim_(std::move(sim)), watch_(std::move(watch)) {}
 
   static PySimulation from_text(const std::string& text, const std::string& name,
                                 const std::vector<std::string>& overrides, const std::optional<std::string>& output,
@@ -66,24 +97,29 @@ class PySimulation {
   }
   static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force,
                            py::object potential) {
-    noether::RunOptions options;
+    auto watch = std::make_shared<SignalWatch>();
+    noether::RunOptions options = watched_options(watch);
     if (output) options.output = *output;
     options.overwrite = force;
     std::shared_ptr<const noether::Potential> custom;
     if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
-    return PySimulation(noether::Simulation::load(file, registry(), options, custom));
+    return PySimulation(noether::Simulation::load(file, registry(), options, custom), watch);
   }
 
   static PySimulation resume(const std::filesystem::path& file, double t_end) {
-    return PySimulation(noether::Simulation::resume(file, registry(), {}, t_end));
+    auto watch = std::make_shared<SignalWatch>();
+    return PySimulation(noether::Simulation::resume(file, registry(), watched_options(watch), t_end), watch);
   }
 
   py::dict integrate(double t) {
     noether::StopInfo stop;
+    watch_->stop = 0;
+    watch_->raised = false;
     {
       py::gil_scoped_release release;  // a Python potential takes it back for each evaluation
       stop = sim_->integrate(t);
     }
+    if (watch_->raised) throw py::error_already_set();  // KeyboardInterrupt, the state kept
     py::dict out;
     out["t"] = sim_->time();
     out["stopped"] = !stop.reason.empty();
@@ -236,14 +272,16 @@ class PySimulation {
  private:
   static PySimulation make(noether::Scene scene, const std::optional<std::string>& output, bool force,
                            py::object potential) {
-    noether::RunOptions options;
+    auto watch = std::make_shared<SignalWatch>();
+    noether::RunOptions options = watched_options(watch);
     if (output) options.output = *output;
     options.overwrite = force;
     std::shared_ptr<const noether::Potential> custom;
     if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
-    return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom));
+    return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom), watch);
   }
   std::unique_ptr<noether::Simulation> sim_;
+  std::shared_ptr<SignalWatch> watch_;
 };
 
 py::list plugins() {

@@ -173,3 +173,25 @@ def test_damaged_checkpoints_are_refused_by_name_or_load_the_same(dumbbells, tmp
         assert got == expected_summary, case
         outcomes["same"] += 1
     assert outcomes["refused"] > 0 and outcomes["same"] > 0, outcomes
+
+
+def test_ctrl_c_stops_integrate_between_steps(dumbbells):
+    # SIGINT while C++ integrates: KeyboardInterrupt within a fraction of a second, the state
+    # kept where the loop stopped (it used to be seen only when integrate returned: here, after
+    # 10^9 steps, hours).
+    import os
+    import signal
+    import threading
+    import time
+    sim = noether.Simulation(dumbbells)
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        sim.integrate(2e5)
+    elapsed = time.monotonic() - start
+    timer.join()
+    assert elapsed < 3.0, elapsed
+    assert 0 < sim.t < 2e5
+    assert np.isfinite(sim.positions).all()
+    sim.integrate(round(sim.t) + 1.0)  # and it goes on afterwards

@@ -47,6 +47,9 @@ class System {
   // Index into the rigid-body arrays of State, or -1 for a point mass.
   int rigid_index(std::size_t body) const { return rigid_of_body_[body]; }
   std::size_t body_of_rigid(std::size_t k) const { return body_of_rigid_[k]; }
+  // Why `name` cannot name a body ("" when it can): names become HDF5 group names and --set
+  // path components, so no '/' and no control characters.
+  static std::string name_problem(const std::string& name);
   int index_of(const std::string& name) const;  // -1 if absent
 
  private:

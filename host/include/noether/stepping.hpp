@@ -69,11 +69,12 @@ struct StopInfo {
   std::int64_t steps = 0;
 };
 
-// Runs `integrator` from `state` (at state.t) to schedule.t_end. On return `state` is the
-// final state (at t_end or at the event). On IntegrationError it is the last valid state and
-// the error propagates.
-StopInfo integrate(Integrator& integrator, const Potential& potential, const System& system,
-                   State& state, const Schedule& schedule, Observer& observer);
+// The stepping loop: advances `state` (at state.t) with `integrator` through the schedule to
+// schedule.t_end, the observer seeing every output frame. On return `state` is the final state
+// (at t_end or at the event). On IntegrationError it is the last valid state and the error
+// propagates. (Simulation::integrate is this loop with the output file and the summary.)
+StopInfo advance(Integrator& integrator, const Potential& potential, const System& system,
+                 State& state, const Schedule& schedule, Observer& observer);
 
 // For fixed-step methods: the number of steps of size h in `interval`. Throws SceneError
 // (naming `what`) when the interval is not a whole number of steps.

@@ -31,7 +31,7 @@ inline std::uint64_t checksum64(const void* data, std::size_t bytes, std::uint64
     h = ((h << 31) | (h >> 33)) * k2;
   }
   std::uint64_t tail = 0;
-  std::memcpy(&tail, p, bytes);
+  if (bytes > 0) std::memcpy(&tail, p, bytes);  // (p may be null when nothing is left)
   h ^= tail * k1 + bytes;
   return checksum_mix(h);
 }

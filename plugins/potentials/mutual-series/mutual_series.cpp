@@ -194,7 +194,17 @@ class MutualSeriesPotential final : public noether::Potential {
     const double mu = G_ * (mass_[p.a] + mass_[p.b]);
     const Vec3 h = r.cross(v);
     const double e = (v.cross(h) / mu - r.normalized()).norm();
-    return 0.9 * h.squaredNorm() / (mu * (1.0 + e));
+    const double periapsis = h.squaredNorm() / (mu * (1.0 + e));
+    if (!std::isfinite(periapsis) || !(periapsis > 1e-12 * r.norm())) {
+      std::ostringstream msg;
+      msg << "mutual-series: bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' "
+          << (std::isfinite(periapsis) ? "fall straight towards each other (their osculating orbit is radial: periapsis 0)"
+                                       : "have a separation or relative velocity that overflows a double")
+          << ", so the tolerance cannot choose the series order for the closest separation they reach; give "
+          << "potential.min_separation (the closest they come), or use a fixed order or mutual-exact";
+      throw SceneError(msg.str());
+    }
+    return 0.9 * periapsis;
   }
 
   void choose(const State& s, SeriesWorkspace& w) const {
