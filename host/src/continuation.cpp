@@ -141,10 +141,6 @@ void write_doubles(hid_t parent, const char* name, const double* data, std::vect
   numeric_attribute<std::uint64_t>(d, "checksum", H5T_NATIVE_UINT64, {io::checksum64(data, n * sizeof(double))});
 }
 
-// The checkpoint `file` is damaged: `what` names where.
-[[noreturn]] void damaged_checkpoint(const std::filesystem::path& file, const std::string& what) {
-  throw OutputError(file.string() + " is damaged: " + what + "; it was only read, not changed");
-}
 
 // Reads a dataset written by write_doubles, verifying its checksum when it has one (a
 // checkpoint from an older noether has none).
@@ -160,19 +156,13 @@ std::vector<double> read_doubles(const std::filesystem::path& file, hid_t parent
   std::vector<double> out(n);
   const std::string where = std::string("/") + group + "/" + name;
   if (n && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    damaged_checkpoint(file, where + " does not read");
-  if (H5Aexists(d, "checksum") > 0) {
-    std::uint64_t sum = 0;
-    const io::H5Handle a(H5Aopen(d, "checksum", H5P_DEFAULT));
-    if (H5Aread(a, H5T_NATIVE_UINT64, &sum) < 0 || sum != io::checksum64(out.data(), n * sizeof(double)))
-      damaged_checkpoint(file, where + " does not match its checksum");
-  }
+    io::throw_damaged(file, where + " does not read");
+  if (H5Aexists(d, "checksum") > 0 &&
+      io::read_u64_attribute(d, "checksum") != io::checksum64(out.data(), n * sizeof(double)))
+    io::throw_damaged(file, where + " does not match its checksum");
   return out;
 }
 
-// The checksum of a group's text attributes (strings live outside the checksummed object
-// headers, in HDF5's global heap).
-std::uint64_t texts_checksum(std::initializer_list<const std::string*> texts) { return io::checksum_of_texts(texts); }
 
 double read_scalar(hid_t obj, const char* name) {
   if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
@@ -281,7 +271,7 @@ void Simulation::save(const std::filesystem::path& path) const {
                                static_cast<double>(s.interpolated_frames), p_scale, L_scale});
     string_attribute(g, "min_gap_pair", s.min_gap_pair);
     string_attribute(g, "stop_reason", s.stop_reason);
-    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {texts_checksum({&s.min_gap_pair, &s.stop_reason})});
+    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::checksum_of_texts({&s.min_gap_pair, &s.stop_reason})});
     H5Gclose(g);
     check(H5Fclose(file), "closing the checkpoint");
     file = -1;
@@ -324,15 +314,12 @@ SavedSimulation read_saved_simulation(const std::filesystem::path& path, bool po
                                 "function), not by the scene: pass the same potential to load it");
   // A checksum attribute, verified when the checkpoint has one (an older noether's has none).
   const auto verify = [&path](hid_t group, const char* where, std::uint64_t expected) {
-    if (H5Aexists(group, "checksum") <= 0) return;
-    std::uint64_t sum = 0;
-    const io::H5Handle a(H5Aopen(group, "checksum", H5P_DEFAULT));
-    if (H5Aread(a, H5T_NATIVE_UINT64, &sum) < 0 || sum != expected)
-      damaged_checkpoint(path, std::string(where) + " does not match its checksum");
+    if (H5Aexists(group, "checksum") > 0 && io::read_u64_attribute(group, "checksum") != expected)
+      io::throw_damaged(path, std::string(where) + " does not match its checksum");
   };
   const auto open_group = [&path, &file](const char* name) {
     io::H5Handle g(H5Gopen2(file, name, H5P_DEFAULT));
-    if (!g.valid()) damaged_checkpoint(path, std::string("/") + name + " does not open");
+    if (!g.valid()) io::throw_damaged(path, std::string("/") + name + " does not open");
     return g;
   };
   SavedSimulation saved;
@@ -376,9 +363,9 @@ SavedSimulation read_saved_simulation(const std::filesystem::path& path, bool po
     saved.final_ = unpack(read_vector(g, "final"));
     saved.min_gap_pair = read_string(g, "min_gap_pair", false);
     saved.stop_reason = read_string(g, "stop_reason", false);
-    verify(g, "/run's texts", texts_checksum({&saved.min_gap_pair, &saved.stop_reason}));
+    verify(g, "/run's texts", io::checksum_of_texts({&saved.min_gap_pair, &saved.stop_reason}));
   }
-  if (saved.work.size() != 4 || saved.stats.size() != 14) damaged_checkpoint(path, "/run's work or statistics");
+  if (saved.work.size() != 4 || saved.stats.size() != 14) io::throw_damaged(path, "/run's work or statistics");
   return saved;
 }
 

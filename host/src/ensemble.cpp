@@ -221,6 +221,8 @@ class EnsembleFile {
     file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
     if (file_ < 0) {
       if (claimed >= 0) ::close(claimed);
+      ::close(lock_);
+      lock_ = -1;
       std::filesystem::remove(partial, ec);
       throw OutputError("cannot create " + path.string() + system_reason());
     }

@@ -51,21 +51,10 @@ bool read_hyperslab(hid_t dataset, hid_t mem_type, hsize_t first, hsize_t count,
   return H5Dread(dataset, mem_type, mem_space, file_space, H5P_DEFAULT, out.data()) >= 0;
 }
 
-std::uint64_t read_u64_attribute(hid_t object, const char* name, bool& found) {
-  found = H5Aexists(object, name) > 0;
-  std::uint64_t value = 0;
-  if (!found) return 0;
-  const H5Handle a(H5Aopen(object, name, H5P_DEFAULT));
-  if (!a.valid() || H5Aread(a, H5T_NATIVE_UINT64, &value) < 0) found = false;
-  return value;
-}
 
 }  // namespace
 
-void RunRecord::damaged(const std::string& what) const {
-  throw OutputError(file_.string() + " is damaged: " + what +
-                    "; it was only read, not changed (continue from a copy of the file, or run the scene afresh)");
-}
+void RunRecord::damaged(const std::string& what) const { throw_damaged(file_, what); }
 
 RunRecord::RunRecord(const fs::path& path) : file_(path) {
   using namespace noether::h5;
@@ -109,18 +98,14 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
       custom_potential = custom != 0;
     }
     overrides = lines_of(joined);
-    bool found = false;
-    const std::uint64_t sum = read_u64_attribute(parameters, "checksum", found);
-    if (checksummed && (!found || sum != scene_checksum(scene_text, scene_path, joined, custom_potential)))
+    if (checksummed && read_u64_attribute(parameters, "checksum") != scene_checksum(scene_text, scene_path, joined, custom_potential))
       damaged("/parameters (the scene's text, its path or the overrides) does not match its checksum");
   }
   if (exists("work")) {
     const H5Handle work(H5Gopen2(file, "work", H5P_DEFAULT));
     if (!work.valid()) damaged("/work does not open");
     outcome = read_string(work, "outcome", false);
-    bool found = false;
-    const std::uint64_t sum = read_u64_attribute(work, "outcome_checksum", found);
-    if (checksummed && (!found || sum != checksum64(outcome.data(), outcome.size())))
+    if (checksummed && read_u64_attribute(work, "outcome_checksum") != checksum64(outcome.data(), outcome.size()))
       damaged("/work's outcome does not match its checksum");
   }
   {
