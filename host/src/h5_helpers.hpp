@@ -34,6 +34,28 @@ inline hid_t make_group(hid_t parent, const char* name) {
   return check_id(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name);
 }
 
+// The group at an absolute `path` ("/a/b/c"), opened, or created with the groups on its way;
+// `created` tells whether the last one was made here.
+inline hid_t group_at(hid_t file, const std::string& path, bool* created = nullptr) {
+  hid_t group = check_id(H5Gopen2(file, "/", H5P_DEFAULT), "opening the root group");
+  bool made = false;
+  for (std::size_t begin = 1; begin <= path.size();) {
+    std::size_t end = path.find('/', begin);
+    if (end == std::string::npos) end = path.size();
+    const std::string name = path.substr(begin, end - begin);
+    begin = end + 1;
+    if (name.empty()) continue;
+    const htri_t exists = H5Lexists(group, name.c_str(), H5P_DEFAULT);
+    made = exists <= 0;
+    const hid_t next = made ? H5Gcreate2(group, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT)
+                            : H5Gopen2(group, name.c_str(), H5P_DEFAULT);
+    H5Gclose(group);
+    group = check_id(next, path.c_str());
+  }
+  if (created) *created = made;
+  return group;
+}
+
 // A variable-length UTF-8 string attribute (h5py reads it as str, not bytes).
 inline void string_attribute(hid_t obj, const char* name, const std::string& value) {
   hid_t type = H5Tcopy(H5T_C_S1);

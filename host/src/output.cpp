@@ -5,7 +5,6 @@
 #include <noether/output.hpp>
 
 #include "h5_helpers.hpp"
-#include "io/checkpointed.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/safe_publish.hpp"
@@ -92,60 +91,22 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
                            double wall_seconds, std::int64_t interpolated_frames,
                            const std::vector<double>& integrator_checkpoint) {
   Impl& m = *impl_;
-  using namespace io;
-  // Column c of /checkpoint/checksum: checksum64 of this frame of kCheckpointed[c], seeded with
-  // the frame's index (the bytes the reader will read back: the state, U, work, wall time).
+  if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
+    throw OutputError("the integrator's checkpoint changed its size during the run");
+  const io::FrameInput in{*m.system, state, d, work, interpolated_frames, wall_seconds, integrator_checkpoint};
+  // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
+  // seeded with the frame's index (the bytes a continued run reads back).
   const std::uint64_t seed = frames_written_ + m.buffered;
-  std::uint64_t sums[kCheckpointedCount] = {};
-  const auto sum = [seed](const void* data, std::size_t bytes) { return checksum64(data, bytes, seed); };
-  const std::size_t nb = m.n_bodies, nr = m.n_rigid;
-  m.step->push(&work.steps);
-  const std::int64_t counters[5] = {work.steps, work.potential_evaluations, work.newton_iterations,
-                                    work.rejected_steps, interpolated_frames};
-  sums[kTime] = sum(&state.t, sizeof(double));
-  sums[kPosition] = sum(state.x.data(), 3 * nb * sizeof(double));
-  sums[kMomentum] = sum(state.p.data(), 3 * nb * sizeof(double));
-  sums[kPotential] = sum(&d.potential, sizeof(double));
-  sums[kWork] = sum(counters, sizeof counters);
-  sums[kWall] = sum(&wall_seconds, sizeof(double));
-  if (m.integrator_checkpoint) sums[kIntegrator] = sum(integrator_checkpoint.data(), integrator_checkpoint.size() * sizeof(double));
-  m.work_series->push(counters);
-  m.wall_time->push(&wall_seconds);
-  if (m.integrator_checkpoint) {
-    if (integrator_checkpoint.size() != m.integrator_checkpoint->frame_size)
-      throw OutputError("the integrator's checkpoint changed its size during the run");
-    m.integrator_checkpoint->push(integrator_checkpoint.data());
+  m.sums.assign(m.checkpointed.size(), 0);
+  for (auto& column : m.columns) {
+    m.scratch.assign(column.series->frame_size, 0);
+    column.quantity->fill(in, m.scratch.data());
+    column.series->push(m.scratch.data());
+    if (column.quantity->checksum_column >= 0)
+      m.sums[static_cast<std::size_t>(column.quantity->checksum_column)] =
+          io::checksum64(m.scratch.data(), m.scratch.size() * sizeof(std::uint64_t), seed);
   }
-  m.exact_momentum->push(state.p.data());
-  m.time->push(&state.t);
-  m.position->push(state.x.data());
-  frame_.resize(3 * m.n_bodies + 9 * m.n_rigid);
-  for (std::size_t i = 0; i < m.n_bodies; ++i)  // v = γ/m
-    for (int a = 0; a < 3; ++a)
-      frame_[3 * i + a] = state.p(a, static_cast<Eigen::Index>(i)) / m.masses[i];
-  m.velocity->push(frame_.data());
-  if (m.orientation) {
-    for (std::size_t k = 0; k < m.n_rigid; ++k) {
-      const Vec4 q = quaternion_from_rotation(state.R[k]);
-      for (int a = 0; a < 4; ++a) frame_[4 * k + a] = q[a];
-    }
-    m.orientation->push(frame_.data());
-    m.angular_momentum->push(state.Pi.data());
-    for (std::size_t k = 0; k < m.n_rigid; ++k)  // row-major, as the file's [row][column]
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) frame_[9 * k + static_cast<std::size_t>(3 * r + c)] = state.R[k](r, c);
-    m.exact_attitude->push(frame_.data());
-    sums[kAttitude] = sum(frame_.data(), 9 * nr * sizeof(double));
-    sums[kSpin] = sum(state.Pi.data(), 3 * nr * sizeof(double));
-  }
-  m.checksum_series->push(sums);
-  m.energy->push(&d.energy);
-  m.kinetic_translational->push(&d.kinetic_translational);
-  m.kinetic_rotational->push(&d.kinetic_rotational);
-  m.potential_energy->push(&d.potential);
-  m.orthogonality->push(&d.orthogonality_error);
-  m.linear_momentum_total->push(d.linear_momentum.data());
-  m.angular_momentum_total->push(d.angular_momentum.data());
+  m.checksum_series->push(m.sums.data());
   ++m.buffered;
   const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();
   if (m.buffered >= m.options.block_frames || since >= m.options.block_seconds) flush();
@@ -161,10 +122,8 @@ void H5Writer::flush() {
   }
   // The frames first, then the counter that makes them part of the file: a kill before the
   // second flush leaves the counter at the previous block.
-  m.step->write(first);
-  m.work_series->write(first);
+  for (auto& c : m.columns) c.series->write(first);
   m.checksum_series->write(first);
-  for (auto& s : m.doubles) s->write(first);
   m.flush_file("flushing the output file");
   frames_written_ = needed;
   m.buffered = 0;

@@ -3,6 +3,7 @@
 // libnoether; output.cpp writes frames, output_layout.cpp creates the layout).
 #include <noether/output.hpp>
 
+#include "io/frame_schema.hpp"
 #include "io/series.hpp"
 
 #include <cerrno>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@
 namespace noether {
 
 using io::Series;
+using io::FrameQuantity;
 using h5::check;
 using h5::make_group;
 using h5::string_attribute;
@@ -34,21 +37,18 @@ struct H5Writer::Impl {
   OutputOptions options;
   Clock::time_point last_flush = Clock::now();
   std::size_t n_bodies = 0, n_rigid = 0;
-  std::vector<double> masses;
-  std::vector<std::unique_ptr<Series<double>>> doubles;  // all double series, for flushing
-  Series<std::int64_t>* step = nullptr;
-  Series<double>* time = nullptr;
-  Series<double>*position = nullptr, *velocity = nullptr, *orientation = nullptr,
-  *angular_momentum = nullptr, *energy = nullptr, *kinetic_translational = nullptr,
-  *kinetic_rotational = nullptr, *potential_energy = nullptr, *linear_momentum_total = nullptr,
-  *angular_momentum_total = nullptr, *orthogonality = nullptr;
-  // /checkpoint: the exact state (γ, R) and the work and wall time at each frame (--resume).
-  Series<double>*exact_momentum = nullptr, *exact_attitude = nullptr, *wall_time = nullptr,
-  *integrator_checkpoint = nullptr;
-  std::unique_ptr<Series<std::int64_t>> step_series, work_series;
-  // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame
-  // (io/checkpointed.hpp), so that a continued run finds a damaged frame before it trusts it.
-  std::unique_ptr<Series<std::uint64_t>> checksum_series;
+  std::optional<System> system;  // the bodies the frames are computed with (masses, inertias)
+  // The frame schema's series this file has (io/frame_schema.hpp), in the schema's order.
+  struct Column {
+    const io::FrameQuantity* quantity;
+    std::unique_ptr<Series> series;
+  };
+  std::vector<Column> columns;
+  std::vector<const Column*> checkpointed;  // by /checkpoint/checksum column (null: absent)
+  // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame, so
+  // that a continued run finds a damaged frame before it trusts it.
+  std::unique_ptr<Series> checksum_series;
+  std::vector<std::uint64_t> scratch, sums;  // one frame of one series; one frame's checksums
   std::size_t buffered = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
@@ -61,15 +61,6 @@ struct H5Writer::Impl {
   std::string verdict, verdict_reasons, energy_scale;  // set_verdict
   double relative_energy_error = 0.0;
 
-  // A series of doubles, described, with its unit (the scene's, docs/user-guide.md "Units").
-  Series<double>* add(hid_t parent, const char* name, std::vector<hsize_t> shape, const std::string& unit,
-                      const std::string& description) {
-    doubles.push_back(std::make_unique<Series<double>>(parent, name, H5T_NATIVE_DOUBLE, std::move(shape),
-                                                       allocated, std::numeric_limits<double>::quiet_NaN()));
-    string_attribute(doubles.back()->dataset, "unit", unit);
-    string_attribute(doubles.back()->dataset, "description", description);
-    return doubles.back().get();
-  }
   // Sets every series' length, then flushes: one change of the file. HDF5's metadata cache
   // would otherwise write some series' new shapes early (evicting them to make room while the
   // next series is resized), and a kill in between would leave series of different lengths; so
@@ -86,10 +77,8 @@ struct H5Writer::Impl {
       held.decr_mode = H5C_decr__off;
       H5Fset_mdc_config(file, &held);
     }
-    step_series->resize(frames);
-    work_series->resize(frames);
+    for (auto& c : columns) c.series->resize(frames);
     checksum_series->resize(frames);
-    for (auto& s : doubles) s->resize(frames);
     allocated = frames;
     flush_file("resizing the output's series");
     if (configured) H5Fset_mdc_config(file, &saved);
@@ -111,9 +100,8 @@ struct H5Writer::Impl {
           "writing /frames_complete");
   }
   void close_datasets() {
-    doubles.clear();
-    step_series.reset();
-    work_series.reset();
+    checkpointed.clear();
+    columns.clear();
     checksum_series.reset();
     for (auto& [name, records] : step_records) H5Dclose(records.dataset);
     step_records.clear();
@@ -123,17 +111,6 @@ struct H5Writer::Impl {
     complete = -1;
   }
 
-  // An H5MD time-series group: {step, time, value}; step and time are hard links to one pair.
-  hid_t element(hid_t parent, const char* name) {
-    hid_t g = make_group(parent, name);
-    if (step) {
-      check(H5Lcreate_hard(file, "/particles/bodies/position/step", g, "step", H5P_DEFAULT,
-                           H5P_DEFAULT), "linking step");
-      check(H5Lcreate_hard(file, "/particles/bodies/position/time", g, "time", H5P_DEFAULT,
-                           H5P_DEFAULT), "linking time");
-    }
-    return g;
-  }
 };
 
 }  // namespace noether

@@ -4,7 +4,8 @@
 #include <noether/version.hpp>
 
 #include "h5_helpers.hpp"
-#include "io/checkpointed.hpp"
+#include "io/frame_schema.hpp"
+#include "io/h5_handle.hpp"
 #include "io/checksum.hpp"
 #include "output_impl.hpp"
 
@@ -22,9 +23,18 @@ void H5Writer::create_layout(const Scene& scene) {
   const System& sys = scene.system;
   m.n_bodies = sys.size();
   m.n_rigid = sys.rigid_count();
+  m.system = sys;
   // Every series is allocated for the frames the run will write, up to a budget; a run that
   // writes more grows them (in doubling steps, each flushed at once).
-  const double frame_bytes = 8.0 * static_cast<double>(18 + 9 * m.n_bodies + 16 * m.n_rigid);
+  double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
+  for (const auto& q : io::frame_schema()) {
+    if (!io::present(q, m.n_rigid, options.checkpoint_width)) continue;
+    double bytes = 8.0;
+    for (const auto d : io::frame_shape(q, m.n_bodies, m.n_rigid, options.checkpoint_width))
+      bytes *= static_cast<double>(d);
+    frame_bytes += bytes;
+  }
+
   const double budget = std::max(1.0, std::floor(options.preallocate_bytes / frame_bytes));
   m.allocated = static_cast<hsize_t>(
       std::min(options.expected_frames > 0 ? static_cast<double>(options.expected_frames) : 1024.0, budget));
@@ -93,12 +103,13 @@ void H5Writer::create_layout(const Scene& scene) {
   hid_t particles = make_group(m.file, "particles");
   hid_t bodies = make_group(particles, "bodies");
   std::vector<std::string> names;
+  std::vector<double> masses;
   for (const auto& b : sys.bodies()) {
     names.push_back(b.name);
-    m.masses.push_back(b.mass);
+    masses.push_back(b.mass);
   }
   string_list_dataset(bodies, "name", names);
-  double_dataset(bodies, "mass", m.masses);
+  double_dataset(bodies, "mass", masses);
   {
     hid_t d = H5Dopen2(bodies, "mass", H5P_DEFAULT);
     string_attribute(d, "unit", scene.units.of_mass());
@@ -128,105 +139,9 @@ void H5Writer::create_layout(const Scene& scene) {
     H5Dclose(d);
     H5Sclose(space);
   }
-  const hsize_t nb = m.n_bodies, nr = m.n_rigid;
-  hid_t pos = make_group(bodies, "position");
-  m.step_series = std::make_unique<Series<std::int64_t>>(pos, "step", H5T_NATIVE_INT64,
-                                                         std::vector<hsize_t>{}, m.allocated, -1);
-  m.step = m.step_series.get();
-  string_attribute(m.step->dataset, "description", "the integrator's step count at each frame");
-  const Units& u = scene.units;
-  m.time = m.add(pos, "time", {}, u.of_time(), "time of each frame");
-  m.position = m.add(pos, "value", {nb, 3}, u.of_length(),
-                     "position x of each body's centre of mass, inertial frame [frame][body][xyz]");
-  H5Gclose(pos);
-  hid_t g = m.element(bodies, "velocity");
-  m.velocity = m.add(g, "value", {nb, 3}, u.of_velocity(),
-                     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]");
-  H5Gclose(g);
-  if (m.n_rigid > 0) {
-    std::vector<int> rigid_index;
-    for (std::size_t k = 0; k < sys.rigid_count(); ++k)
-      rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
-    g = m.element(bodies, "orientation");  // quaternion (w, x, y, z), rigid bodies only
-    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
-    m.orientation = m.add(g, "value", {nr, 4}, "1",
-                          "attitude R (body to inertial frame) of each rigid body as a unit quaternion "
-                          "(w, x, y, z) [frame][rigid body][wxyz]; body_index names the bodies");
-    H5Gclose(g);
-    g = m.element(bodies, "angular_momentum");  // Π, body frame, rigid bodies only
-    numeric_attribute<int>(g, "body_index", H5T_NATIVE_INT, rigid_index);
-    m.angular_momentum = m.add(g, "value", {nr, 3}, u.of_angular_momentum(),
-                               "spin angular momentum Π = J Ω of each rigid body, body frame "
-                               "[frame][rigid body][xyz]");
-    H5Gclose(g);
-  }
   H5Gclose(bodies);
   H5Gclose(particles);
-
-  hid_t obs = make_group(m.file, "observables");
-  const std::string energy_unit = u.of_energy();
-  const struct {
-    const char* name;
-    Series<double>** target;
-    std::string unit, description;
-  } scalars[] = {
-      {"energy", &m.energy, energy_unit, "total energy E = T + U at each frame"},
-      {"kinetic_energy_translational", &m.kinetic_translational, energy_unit, "Σ |γ|²/(2m)"},
-      {"kinetic_energy_rotational", &m.kinetic_rotational, energy_unit, "Σ Π·J⁻¹Π/2"},
-      {"potential_energy", &m.potential_energy, energy_unit, "the mutual potential U"},
-      {"orthogonality_error", &m.orthogonality, "1", "max over rigid bodies of ‖I − RᵀR‖_F"}};
-  for (const auto& scalar : scalars) {
-    g = m.element(obs, scalar.name);
-    *scalar.target = m.add(g, "value", {}, scalar.unit, scalar.description);
-    H5Gclose(g);
-  }
-  g = m.element(obs, "linear_momentum");
-  m.linear_momentum_total = m.add(g, "value", {3}, u.of_momentum(), "total linear momentum Σ γ, inertial frame");
-  H5Gclose(g);
-  g = m.element(obs, "angular_momentum");
-  m.angular_momentum_total = m.add(g, "value", {3}, u.of_angular_momentum(),
-                                   "total angular momentum about the origin, Σ x × γ + R Π, inertial frame");
-  H5Gclose(g);
-  H5Gclose(obs);
-
-  // The checkpoint of every frame: what the derived series lose (γ, not v = γ/m; R, not its
-  // quaternion) and the work done, so that a continued run starts exactly where this one was.
-  hid_t checkpoint = make_group(m.file, "checkpoint");
-  string_attribute(checkpoint, "description",
-                   "the exact state and the work at every frame, from which `noether run --resume` "
-                   "continues a run");
-  m.exact_momentum = m.add(checkpoint, "linear_momentum", {nb, 3}, u.of_momentum(),
-                           "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact");
-  if (m.n_rigid > 0)
-    m.exact_attitude = m.add(checkpoint, "attitude", {nr, 3, 3}, "1",
-                             "attitude matrix R (body to inertial) of each rigid body [frame][rigid body][row][column], "
-                             "exact");
-  m.wall_time = m.add(checkpoint, "wall_time", {}, "s", "wall time spent by the run up to each frame");
-  if (options.checkpoint_width > 0)
-    m.integrator_checkpoint =
-        m.add(checkpoint, "integrator", {options.checkpoint_width}, "mixed",
-              "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's "
-              "coordinates, a two-step form's previous step), from which a continued run restores it");
-  m.work_series = std::make_unique<Series<std::int64_t>>(checkpoint, "work", H5T_NATIVE_INT64,
-                                                         std::vector<hsize_t>{5}, m.allocated, -1);
-  string_attribute(m.work_series->dataset, "description",
-                   "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, "
-                   "frames interpolated between the method's steps");
-  {
-    std::vector<std::string> columns;
-    for (const auto& c : io::kCheckpointed) columns.push_back(c.path);
-    m.checksum_series = std::make_unique<Series<std::uint64_t>>(
-        checkpoint, "checksum", H5T_NATIVE_UINT64, std::vector<hsize_t>{io::kCheckpointedCount}, m.allocated, 0);
-    string_attribute(m.checksum_series->dataset, "description",
-                     "checksum64 of each frame of the series named in `columns`, seeded with the frame's index "
-                     "(0: the series is absent); `noether run --resume` verifies every frame it reads");
-    std::string joined;
-    for (const auto& c : columns) joined += (joined.empty() ? "" : "\n") + c;
-    string_attribute(m.checksum_series->dataset, "columns", joined);
-  }
-  if (!options.resumed.empty()) string_attribute(checkpoint, "resumed", options.resumed);
-  H5Gclose(checkpoint);
-
+  create_series(scene);
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
   // their allocated length, with fill (NaN, step −1) or an unfinished block after it.
   {
@@ -244,6 +159,70 @@ void H5Writer::create_layout(const Scene& scene) {
     m.write_complete(0);
   }
   m.flush_file("flushing the output file");
+}
+
+// Every series of the frame schema (io/frame_schema.hpp) the scene has, each in its group
+// (created on the way: H5MD elements get hard links to position's step and time), then
+// /checkpoint/checksum over the checkpointed ones.
+void H5Writer::create_series(const Scene& scene) {
+  Impl& m = *impl_;
+  const System& sys = scene.system;
+  std::vector<int> rigid_index;
+  for (std::size_t k = 0; k < sys.rigid_count(); ++k) rigid_index.push_back(static_cast<int>(sys.body_of_rigid(k)));
+  {
+    const io::H5Handle checkpoint(make_group(m.file, "checkpoint"));
+    string_attribute(checkpoint, "description",
+                     "the exact state and the work at every frame, from which `noether run --resume` "
+                     "continues a run");
+    if (!m.options.resumed.empty()) string_attribute(checkpoint, "resumed", m.options.resumed);
+  }
+  const auto schema = io::frame_schema();
+  const auto checkpointed = io::checkpointed_series();
+  m.columns.reserve(schema.size());
+  m.checkpointed.assign(checkpointed.size(), nullptr);
+  std::string step_group;  // the H5MD element holding step and time (position's)
+  const std::int64_t integer_fill = -1;
+  const double real_fill = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& q : schema) {
+    if (!io::present(q, m.n_rigid, m.options.checkpoint_width)) continue;
+    const std::string path = q.path, parent = path.substr(0, path.rfind('/')), name = path.substr(path.rfind('/') + 1);
+    bool created = false;
+    const io::H5Handle group(group_at(m.file, parent, &created));
+    if (q.element == io::Element::kH5md && created) {
+      if (step_group.empty()) {
+        step_group = parent;
+      } else {  // {step, time} of every element are hard links to position's
+        for (const char* link : {"step", "time"})
+          check(H5Lcreate_hard(m.file, (step_group + "/" + link).c_str(), group, link, H5P_DEFAULT, H5P_DEFAULT),
+                "linking step and time");
+      }
+      if (q.extent == io::Extent::kRigidVector || q.extent == io::Extent::kRigidQuaternion)
+        numeric_attribute<int>(group, "body_index", H5T_NATIVE_INT, rigid_index);
+    }
+    std::vector<hsize_t> shape;
+    for (auto d : io::frame_shape(q, m.n_bodies, m.n_rigid, m.options.checkpoint_width)) shape.push_back(d);
+    const bool integer = io::is_integer(q);
+    auto series = std::make_unique<Series>(group, name.c_str(), integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
+                                           shape, m.allocated,
+                                           integer ? static_cast<const void*>(&integer_fill) : &real_fill);
+    string_attribute(series->dataset, "unit", io::unit_of(q.unit, scene.units));
+    string_attribute(series->dataset, "description", q.description);
+    m.columns.push_back({&q, std::move(series)});
+    if (q.checksum_column >= 0) m.checkpointed[static_cast<std::size_t>(q.checksum_column)] = &m.columns.back();
+  }
+  const io::H5Handle checkpoint(H5Gopen2(m.file, "checkpoint", H5P_DEFAULT));
+  const std::uint64_t zero = 0;
+  m.checksum_series = std::make_unique<Series>(checkpoint, "checksum", H5T_NATIVE_UINT64,
+                                               std::vector<hsize_t>{checkpointed.size()}, m.allocated, &zero);
+  string_attribute(m.checksum_series->dataset, "description",
+                   "checksum64 of each frame of the series named in `columns`, seeded with the frame's index "
+                   "(0: the series is absent); `noether run --resume` verifies every frame it reads");
+  std::string columns;
+  for (const auto* q : checkpointed) {
+    if (!columns.empty()) columns += '\n';
+    columns += q->path;
+  }
+  string_attribute(m.checksum_series->dataset, "columns", columns);
 }
 
 void H5Writer::write_pair_models(const std::vector<PairModel>& models) {

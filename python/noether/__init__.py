@@ -21,9 +21,17 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "compare", "Table", "plugins", "relative_equilibrium",
+__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
+
+
+def output_series():
+    """Every series an output file holds per frame: a list of dicts with name (the key of
+    noether.read(file)[name]), path, shape ("[frame][body][3]"), unit (in L, M, T), description,
+    integer, rigid_only, optional (present when the integrator has variables of its own) and
+    checkpointed (read back and verified by a continuation)."""
+    return _noether.output_series()
 
 
 def plugins():

@@ -2,24 +2,11 @@
 import h5py
 import numpy as np
 
-# Short names for the series of an output file.
-SERIES = {
-    "time": "particles/bodies/position/time",
-    "step": "particles/bodies/position/step",
-    "positions": "particles/bodies/position/value",
-    "velocities": "particles/bodies/velocity/value",
-    "quaternions": "particles/bodies/orientation/value",
-    "angular_momenta": "particles/bodies/angular_momentum/value",
-    "momenta": "checkpoint/linear_momentum",
-    "attitudes": "checkpoint/attitude",
-    "energy": "observables/energy/value",
-    "kinetic_energy_translational": "observables/kinetic_energy_translational/value",
-    "kinetic_energy_rotational": "observables/kinetic_energy_rotational/value",
-    "potential_energy": "observables/potential_energy/value",
-    "orthogonality_error": "observables/orthogonality_error/value",
-    "linear_momentum": "observables/linear_momentum/value",
-    "angular_momentum": "observables/angular_momentum/value",
-}
+from . import _noether
+
+# Short names for the series of an output file: name → path, from the table the writer uses
+# (noether.output_series(); docs/user-guide.md, "Output").
+SERIES = {s["name"]: s["path"].lstrip("/") for s in _noether.output_series()}
 
 
 class Output:

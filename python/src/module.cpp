@@ -9,6 +9,7 @@
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/error.hpp>
+#include <noether/output_schema.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
@@ -284,6 +285,25 @@ class PySimulation {
   std::shared_ptr<SignalWatch> watch_;
 };
 
+// The output file's series (noether/output_schema.hpp), as dicts, in the scene's units.
+py::list output_series() {
+  py::list out;
+  for (const auto& s : noether::output_series()) {
+    py::dict d;
+    d["name"] = s.name;
+    d["path"] = s.path;
+    d["shape"] = s.shape;
+    d["unit"] = s.unit;
+    d["description"] = s.description;
+    d["integer"] = s.integer;
+    d["rigid_only"] = s.rigid_only;
+    d["optional"] = s.optional;
+    d["checkpointed"] = s.checkpointed;
+    out.append(d);
+  }
+  return out;
+}
+
 py::list plugins() {
   std::vector<std::string> failures;
   const auto found = registry().load_all(failures);
@@ -379,6 +399,7 @@ PYBIND11_MODULE(_noether, m) {
   });
 
   m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
+  m.def("output_series", &output_series, "every series of an output file: name, path, shape, unit, description");
   m.def("compare", &compare);
   m.def("relative_equilibrium",
         [](const std::string& file, const std::string& text, const std::string& name,

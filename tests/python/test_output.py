@@ -35,6 +35,92 @@ def test_the_reader_gives_named_arrays_with_units(source, tmp_path):
         out["nonsense"]
 
 
+def _frame_series(f):
+    """Every dataset of an output file with one entry per frame (the series), except the checksums."""
+    n = f["frames_complete"][()]
+    not_series = {"particles/bodies/name", "particles/bodies/mass", "particles/bodies/inertia", "checkpoint/checksum"}
+    found = {}
+
+    def visit(path, obj):
+        if (isinstance(obj, h5py.Dataset) and obj.shape and obj.shape[0] == n and path not in not_series
+                and path.split("/")[0] in ("particles", "observables", "checkpoint")):
+            found[path] = obj
+    f.visititems(visit)  # visits each object once, under one of its names: step and time are links
+    return {p: d for p, d in found.items() if p.split("/")[-1] not in ("step", "time")}
+
+
+@pytest.mark.parametrize("scene,overrides,rigid,own", [
+    ("dumbbells.yaml", ["integrator.step=0.001"], True, False),
+    ("dumbbells.yaml", ["integrator.step=0.001", "integrator.frame=relative"], True, True),
+    ("figure-eight.yaml", ["integrator.plugin=rk", "integrator.method=rk4", "integrator.step=0.001"], False, False)])
+def test_the_files_series_are_the_schema_table(source, tmp_path, scene, overrides, rigid, own):
+    """The writer, the reader and noether.output_series() are one table: a file holds exactly
+    the schema's series (the rigid bodies' only with rigid bodies, the integrator's own only when
+    it has variables), each with the schema's type, rank, unit and description."""
+    out = tmp_path / "run.h5"
+    sim = noether.Simulation(source / "examples" / scene, output=out,
+                             set=overrides + ["run.t_end=0.05", "run.output_every=0.01"])
+    sim.integrate(sim.run["t_end"])
+    sim.finish()
+    schema = {s["path"].lstrip("/"): s for s in noether.output_series()}
+    expected = {p for p, s in schema.items() if (rigid or not s["rigid_only"]) and (own or not s["optional"])}
+    with h5py.File(out, "r") as f:
+        frames = _frame_series(f)
+        assert set(frames) == {p for p in expected if p.split("/")[-1] not in ("step", "time")}
+        for path in frames:  # every H5MD element's step and time: the position's, hard-linked
+            if path.endswith("/value"):
+                element = path[: -len("/value")]
+                for link in ("step", "time"):
+                    assert f[element + "/" + link] == f["particles/bodies/position/" + link], element
+        for path in expected:
+            d, s = f[path], schema[path]
+            assert d.attrs["description"] == s["description"]
+            assert d.dtype == (np.int64 if s["integer"] else np.float64)
+            assert d.ndim == s["shape"].count("["), path
+            if "L" not in s["unit"] and "M" not in s["unit"] and "T" not in s["unit"]:
+                assert d.attrs["unit"] == s["unit"], path  # the scene-independent units
+        assert sorted(f["checkpoint/checksum"].attrs["columns"].split("\n")) == sorted(
+            "/" + p for p, s in schema.items() if s["checkpointed"])
+    reader = noether.read(out)
+    assert set(reader.keys()) == {schema[p]["name"] for p in expected}
+
+
+def test_the_user_guide_names_every_series(source):
+    """docs/user-guide.md's layout names every series of the schema: an H5MD element by its
+    group (`/particles/bodies/velocity/{...}`, or its name in the /observables list), a plain
+    dataset by its path."""
+    guide = (source / "docs/user-guide.md").read_text()
+    layout = guide[guide.index("## Output (HDF5"):guide.index("### Output files")]
+    for s in noether.output_series():
+        parts = s["path"].split("/")
+        if parts[1] == "checkpoint":
+            assert s["path"] in layout, s["path"]
+        elif parts[1] == "observables":
+            observables = layout[layout.index("/observables/<name>"):layout.index("/checkpoint/")]
+            assert parts[2] in observables, s["path"]
+        else:
+            assert "/".join(parts[:-1]) + "/{" in layout, s["path"]
+
+
+def test_angular_velocity_is_the_attitudes_rate(source, tmp_path):
+    """The output quantity added through the schema table alone (one row and its function):
+    Ω = J⁻¹Π, checked against the attitudes' own rate, Ω̂ ≈ Rᵀ (R(t+h) − R(t−h)) / 2h."""
+    out = tmp_path / "dumbbells.h5"
+    sim = noether.Simulation(source / "examples/dumbbells.yaml", output=out,
+                             set=["run.t_end=0.02", "run.output_every=1e-4", "integrator.step=1e-5"])
+    sim.integrate(sim.run["t_end"])
+    sim.finish()
+    run = noether.read(out)
+    omega, R, t = run["angular_velocities"], run["attitudes"], run["time"]
+    assert run.unit("angular_velocities") == "rad/" + run.unit("time")
+    h = t[1] - t[0]
+    for k in range(1, len(t) - 1, 37):
+        for b in range(R.shape[1]):
+            W = R[k, b].T @ (R[k + 1, b] - R[k - 1, b]) / (2 * h)
+            rate = np.array([W[2, 1], W[0, 2], W[1, 0]])
+            assert np.abs(rate - omega[k, b]).max() <= 1e-5 * max(1.0, np.abs(omega[k, b]).max())
+
+
 def test_compare_returns_a_table(source):
     table = noether.compare(source / "examples/dumbbells.yaml", set=["run.t_end=2"],
                             runs=[{"plugin": "lgvi", "step": [0.002, 0.001]}, "{plugin: rk, method: rk4, step: 0.001}"])

@@ -67,10 +67,10 @@ class H5Writer {
  private:
   struct Impl;
   void create_layout(const Scene& scene);  // every group, attribute and series, then a flush
+  void create_series(const Scene& scene);  // the frame schema's series (io/frame_schema.hpp)
   void abandon();  // closes the file; removes it if it was never published
   std::unique_ptr<Impl> impl_;
   std::size_t frames_written_ = 0;
-  std::vector<double> frame_;  // scratch for one frame of a derived field
 };
 
 }  // namespace noether

@@ -1,7 +1,6 @@
 #include "run_record.hpp"
 
 #include "../h5_helpers.hpp"
-#include "checkpointed.hpp"
 #include "checksum.hpp"
 #include "file_access.hpp"
 
@@ -118,38 +117,42 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   if (frames < 1)
     throw OutputError(path.string() + " holds no complete frame (the run was killed before its first block "
                                       "was written); start it again");
-  // The shapes: [frame][body][3], [frame][rigid][3][3], [frame][width], each with at least
+  // The shapes the frame schema gives (io/frame_schema.hpp), each series with at least
   // /frames_complete frames (exactly that many once the run ended and wrote /work).
   const auto n = static_cast<hsize_t>(frames);
-  for (const auto& series : kCheckpointed) {
-    const H5Handle d = open_dataset(file, series.path);
+  bool rigid_seen = false;
+  for (const FrameQuantity* q : checkpointed_series()) {
+    const std::string p = q->path;
+    const H5Handle d = open_dataset(file, q->path);
     if (!d.valid()) {
-      if (series.rigid_only || series.optional) continue;
-      damaged(std::string(series.path) + " is missing or does not open");
+      if (!present(*q, 0, 0)) continue;  // rigid bodies' and the integrator's series are optional
+      damaged(p + " is missing or does not open");
     }
     const std::vector<hsize_t> dims = extent(d);
-    if (dims.empty() || dims[0] < n) damaged(std::string(series.path) + " holds fewer frames than /frames_complete");
+    if (dims.empty() || dims[0] < n) damaged(p + " holds fewer frames than /frames_complete");
     if (checksummed && !outcome.empty() && dims[0] != n)
-      damaged(std::string(series.path) + " has " + std::to_string(dims[0]) + " frames, /frames_complete says " +
-              std::to_string(frames) + " (a run that ended writes exactly that many)");
-    const std::string p = series.path;
-    if (p == kCheckpointed[kPosition].path) {
-      if (dims.size() != 3 || dims[2] != 3) damaged(p + " is not [frame][body][3]");
-      bodies = dims[1];
-    } else if (p == kCheckpointed[kAttitude].path) {
-      if (dims.size() != 4 || dims[2] != 3 || dims[3] != 3) damaged(p + " is not [frame][rigid body][3][3]");
-      rigid = dims[1];
-    } else if (p == kCheckpointed[kIntegrator].path) {
-      if (dims.size() != 2) damaged(p + " is not [frame][width]");
-      integrator_width = dims[1];
-    } else if (p == kCheckpointed[kWork].path) {
-      if (dims.size() != 2 || dims[1] != 5) damaged(p + " is not [frame][5]");
+      damaged(p + " has " + std::to_string(dims[0]) + " frames, /frames_complete says " + std::to_string(frames) +
+              " (a run that ended writes exactly that many)");
+    const std::size_t axis = dims.size() > 1 ? dims[1] : 0;
+    const std::vector<std::size_t> shape = frame_shape(*q, axis, axis, axis);
+    if (dims.size() != shape.size() + 1 || !std::equal(shape.begin(), shape.end(), dims.begin() + 1))
+      damaged(p + " is not " + describe_extent(q->extent));
+    if (q->extent == Extent::kBodyVector) {
+      if (bodies != 0 && bodies != axis) damaged(p + " has " + std::to_string(axis) + " bodies, not " + std::to_string(bodies));
+      bodies = axis;
+    } else if (!present(*q, 0, 1)) {  // a rigid bodies' series
+      if (rigid_seen && rigid != axis) damaged(p + " has " + std::to_string(axis) + " rigid bodies, not " + std::to_string(rigid));
+      rigid = axis;
+      rigid_seen = true;
+    } else if (q->extent == Extent::kIntegrator) {
+      integrator_width = axis;
     }
   }
   if (checksummed) {
     const std::vector<hsize_t> dims = extent(open_dataset(file, kChecksumPath));
-    if (dims.size() != 2 || dims[1] != kCheckpointedCount || dims[0] < n)
-      damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(kCheckpointedCount) + "]");
+    const std::size_t columns = checkpointed_series().size();
+    if (dims.size() != 2 || dims[1] != columns || dims[0] < n)
+      damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(columns) + "]");
   }
 }
 
@@ -159,70 +162,47 @@ bool RunRecord::read(std::size_t first, std::size_t count,
   if (first + count > static_cast<std::size_t>(frames))
     throw OutputError(file_.string() + ": frames past /frames_complete requested");
   struct Column {
+    const FrameQuantity* quantity;
     H5Handle dataset;
-    std::size_t width = 0;  // numbers per frame
-    std::vector<double> values;
-    std::vector<std::int64_t> integers;  // /checkpoint/work
+    std::size_t width = 0;               // numbers per frame
+    std::vector<std::uint64_t> values;   // a block of frames, as the file's 8-byte numbers
   };
-  std::vector<Column> columns(kCheckpointedCount);
-  for (std::size_t c = 0; c < kCheckpointedCount; ++c) {
-    columns[c].dataset = open_dataset(h5_, kCheckpointed[c].path);
-    columns[c].width = columns[c].dataset.valid() ? frame_size(extent(columns[c].dataset)) : 0;
+  std::vector<Column> columns;
+  for (const FrameQuantity* q : checkpointed_series()) {
+    Column c{q, open_dataset(h5_, q->path), 0, {}};
+    c.width = c.dataset.valid() ? frame_size(extent(c.dataset)) : 0;
+    columns.push_back(std::move(c));
   }
   const H5Handle sums_dataset = checksummed ? open_dataset(h5_, kChecksumPath) : H5Handle();
   std::vector<std::uint64_t> sums;
   RecordedFrame frame;
-  const auto nb = static_cast<Eigen::Index>(bodies), nr = static_cast<Eigen::Index>(rigid);
   frame.state.R.resize(rigid);
+  if (rigid == 0) frame.state.Pi.resize(3, 0);
   for (std::size_t b = first; b < first + count; b += block) {
     if (interrupt && *interrupt) return false;
     const std::size_t n = std::min(block, first + count - b);
-    for (std::size_t c = 0; c < kCheckpointedCount; ++c) {
-      Column& col = columns[c];
+    const std::string frames_read = "frames " + std::to_string(b) + " to " + std::to_string(b + n - 1) + " of ";
+    for (Column& col : columns) {
       if (!col.dataset.valid()) continue;
-      const bool ok = c == kWork ? read_hyperslab(col.dataset, H5T_NATIVE_INT64, b, n, col.integers)
-                                 : read_hyperslab(col.dataset, H5T_NATIVE_DOUBLE, b, n, col.values);
-      if (!ok)
-        damaged("frames " + std::to_string(b) + " to " + std::to_string(b + n - 1) + " of " +
-                kCheckpointed[c].path + " do not read (HDF5 found its metadata or data inconsistent)");
+      const hid_t type = is_integer(*col.quantity) ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
+      if (!read_hyperslab(col.dataset, type, b, n, col.values))
+        damaged(frames_read + col.quantity->path + " do not read (HDF5 found its metadata or data inconsistent)");
     }
     if (sums_dataset.valid() && !read_hyperslab(sums_dataset, H5T_NATIVE_UINT64, b, n, sums))
-      damaged("frames " + std::to_string(b) + " to " + std::to_string(b + n - 1) + " of " + kChecksumPath +
-              " do not read");
+      damaged(frames_read + kChecksumPath + " do not read");
     for (std::size_t j = 0; j < n; ++j) {
       const std::size_t k = b + j;
-      if (sums_dataset.valid()) {
-        for (std::size_t c = 0; c < kCheckpointedCount; ++c) {
-          const Column& col = columns[c];
-          const void* data = c == kWork ? static_cast<const void*>(col.integers.data() + 5 * j)
-                                        : static_cast<const void*>(col.values.data() + col.width * j);
-          const std::uint64_t expected = col.dataset.valid() ? checksum64(data, col.width * 8, k) : 0;
-          if (sums[kCheckpointedCount * j + c] != expected)
-            damaged("frame " + std::to_string(k) + " of " + kCheckpointed[c].path +
-                    " does not match its checksum in " + kChecksumPath);
+      for (std::size_t c = 0; c < columns.size(); ++c) {
+        const Column& col = columns[c];
+        const std::uint64_t* values = col.values.data() + col.width * j;
+        if (sums_dataset.valid()) {
+          const std::uint64_t expected = col.dataset.valid() ? checksum64(values, col.width * 8, k) : 0;
+          if (sums[columns.size() * j + c] != expected)
+            damaged("frame " + std::to_string(k) + " of " + col.quantity->path + " does not match its checksum in " +
+                    kChecksumPath);
         }
+        if (col.dataset.valid()) col.quantity->restore(values, col.width, frame);
       }
-      State& s = frame.state;
-      s.t = columns[kTime].values[j];
-      s.x = Eigen::Map<const Eigen::Matrix3Xd>(columns[kPosition].values.data() + 3 * bodies * j, 3, nb);
-      s.p = Eigen::Map<const Eigen::Matrix3Xd>(columns[kMomentum].values.data() + 3 * bodies * j, 3, nb);
-      if (rigid > 0) {
-        s.Pi = Eigen::Map<const Eigen::Matrix3Xd>(columns[kSpin].values.data() + 3 * rigid * j, 3, nr);
-        const double* R = columns[kAttitude].values.data() + 9 * rigid * j;
-        for (std::size_t r = 0; r < rigid; ++r)  // row-major [row][column]
-          for (int row = 0; row < 3; ++row)
-            for (int col = 0; col < 3; ++col) s.R[r](row, col) = R[9 * r + static_cast<std::size_t>(3 * row + col)];
-      } else {
-        s.Pi.resize(3, 0);
-      }
-      frame.U = columns[kPotential].values[j];
-      const std::int64_t* w = columns[kWork].integers.data() + 5 * j;
-      frame.work = WorkCounters{w[0], w[1], w[2], w[3]};
-      frame.interpolated = w[4];
-      frame.wall_seconds = columns[kWall].values[j];
-      const Column& own = columns[kIntegrator];
-      frame.integrator.assign(own.values.begin() + static_cast<std::ptrdiff_t>(own.width * j),
-                              own.values.begin() + static_cast<std::ptrdiff_t>(own.width * (j + 1)));
       visit(k, frame);
     }
   }

@@ -3,6 +3,7 @@
 // gives the scene the run was made from and reads its complete frames back in blocks of
 // bounded size, each frame checked against /checkpoint/checksum before it is handed on
 // (docs/reliability.md, "Checksums"); memory does not grow with the number of frames.
+#include "frame_schema.hpp"
 #include "h5_handle.hpp"
 
 #include <noether/integrator.hpp>
@@ -16,17 +17,6 @@
 #include <vector>
 
 namespace noether::io {
-
-// One frame as the file holds it: the exact state (γ and R, not the derived v and q), U, and
-// where the run stood (work, wall time, the integrator's own variables).
-struct RecordedFrame {
-  State state;
-  double U = 0.0;
-  WorkCounters work;
-  std::int64_t interpolated = 0;  // frames interpolated between the method's steps so far
-  double wall_seconds = 0.0;
-  std::vector<double> integrator;  // Integrator::checkpoint()
-};
 
 class RunRecord {
  public:

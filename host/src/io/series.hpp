@@ -1,11 +1,15 @@
 #pragma once
-// Series<T>: one [frame][shape...] series of an output file, written in blocks (internal to
+// Series: one [frame][shape...] series of an output file, written in blocks (internal to
 // libnoether).
 #include "../h5_helpers.hpp"
 
 #include <hdf5.h>
 
+#include <noether/error.hpp>
+
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace noether::io {
@@ -13,21 +17,21 @@ namespace noether::io {
 using h5::check;
 using h5::check_id;
 
-// A series [frame][shape...]: a chunked dataset whose chunks are all allocated (and filled
-// with `fill`) when it is created or grown, so that writing frames changes raw data only, never
-// the file's metadata (docs/user-guide.md, "Output files": a kill at any moment leaves a
-// consistent file).
-template <class T>
+// A series [frame][shape...] of 8-byte numbers (double, int64 or uint64: `type`): a chunked
+// dataset whose chunks are all allocated (and filled with `fill`) when it is created or grown,
+// so that writing frames changes raw data only, never the file's metadata (docs/user-guide.md,
+// "Output files": a kill at any moment leaves a consistent file).
 struct Series {
   hid_t dataset = -1;
   hid_t type = -1;
   std::vector<hsize_t> frame_shape;
-  std::size_t frame_size = 1;
-  std::vector<T> buffer;
+  std::size_t frame_size = 1;           // numbers per frame
+  std::vector<std::uint64_t> buffer;    // the frames not yet written, as raw 8-byte words
 
   Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape, hsize_t frames,
-         T fill)
+         const void* fill)
       : type(h5type), frame_shape(std::move(shape)) {
+    if (H5Tget_size(type) != sizeof(std::uint64_t)) throw OutputError("a series of numbers that are not 8 bytes");
     for (auto d : frame_shape) frame_size *= d;
     std::vector<hsize_t> dims{frames}, maxdims{H5S_UNLIMITED}, chunk;
     const hsize_t frames_per_chunk =
@@ -42,29 +46,12 @@ struct Series {
     hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
     H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
     H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
-    H5Pset_fill_value(plist, type, &fill);
+    H5Pset_fill_value(plist, type, fill);
     H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
     dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
                        name);
     H5Pclose(plist);
     H5Sclose(space);
-  }
-  // An existing series (a continued run's file).
-  Series(hid_t file, const char* path, hid_t h5type) : type(h5type) {
-    dataset = check_id(H5Dopen2(file, path, H5P_DEFAULT), path);
-    hid_t space = H5Dget_space(dataset);
-    std::vector<hsize_t> dims(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space)));
-    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
-    H5Sclose(space);
-    frame_shape.assign(dims.begin() + 1, dims.end());
-    for (auto d : frame_shape) frame_size *= d;
-  }
-  hsize_t frames() const {
-    hid_t space = H5Dget_space(dataset);
-    hsize_t dims[8] = {0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    H5Sclose(space);
-    return dims[0];
   }
   ~Series() {
     if (dataset >= 0) H5Dclose(dataset);
@@ -72,7 +59,12 @@ struct Series {
   Series(const Series&) = delete;
   Series& operator=(const Series&) = delete;
 
-  void push(const T* values) { buffer.insert(buffer.end(), values, values + frame_size); }
+  // One frame (frame_size numbers of the series' type).
+  void push(const void* values) {
+    const std::size_t at = buffer.size();
+    buffer.resize(at + frame_size);
+    if (frame_size) std::memcpy(buffer.data() + at, values, frame_size * sizeof(std::uint64_t));
+  }
 
   // Sets the number of frames (growing allocates and fills the new chunks).
   void resize(hsize_t frames) {

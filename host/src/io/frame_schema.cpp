@@ -1,0 +1,250 @@
+// The frame schema (frame_schema.hpp): one row per series of an output file, with the function
+// that computes one frame of it and, for the series a continued run reads back, the function
+// that puts it back. docs/user-guide.md, "Output", lists the same series for users.
+#include "frame_schema.hpp"
+
+#include <noether/output_schema.hpp>
+
+#include <noether/lie.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+namespace noether::io {
+
+namespace {
+
+using Matrix = Eigen::Matrix3Xd;
+
+double* doubles(void* out) { return static_cast<double*>(out); }
+const double* doubles(const void* in) { return static_cast<const double*>(in); }
+std::int64_t* integers(void* out) { return static_cast<std::int64_t*>(out); }
+
+void copy(const Matrix& m, void* out) { std::copy(m.data(), m.data() + m.size(), doubles(out)); }
+void copy(double x, void* out) { *doubles(out) = x; }
+void copy(const Vec3& v, void* out) { std::copy(v.data(), v.data() + 3, doubles(out)); }
+Matrix matrix(const void* in, std::size_t width) {
+  return Eigen::Map<const Matrix>(doubles(in), 3, static_cast<Eigen::Index>(width / 3));
+}
+
+// The fill functions, one per series (FrameQuantity::fill).
+void step(const FrameInput& in, void* out) { *integers(out) = in.work.steps; }
+void time(const FrameInput& in, void* out) { copy(in.state.t, out); }
+void position(const FrameInput& in, void* out) { copy(in.state.x, out); }
+void velocity(const FrameInput& in, void* out) {  // v = γ/m
+  double* v = doubles(out);
+  for (std::size_t i = 0; i < in.system.size(); ++i)
+    for (int a = 0; a < 3; ++a) v[3 * i + a] = in.state.p(a, static_cast<Eigen::Index>(i)) / in.system.body(i).mass;
+}
+void quaternion(const FrameInput& in, void* out) {  // (w, x, y, z) of R
+  for (std::size_t k = 0; k < in.state.R.size(); ++k) {
+    const Vec4 q = quaternion_from_rotation(in.state.R[k]);
+    std::copy(q.data(), q.data() + 4, doubles(out) + 4 * k);
+  }
+}
+void spin(const FrameInput& in, void* out) { copy(in.state.Pi, out); }
+void angular_velocity(const FrameInput& in, void* out) {  // Ω = J⁻¹Π (docs/equations.md §2)
+  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
+    const Vec3 omega = in.system.body(in.system.body_of_rigid(k)).inertia_inverse *
+                       in.state.Pi.col(static_cast<Eigen::Index>(k));
+    copy(omega, doubles(out) + 3 * k);
+  }
+}
+void energy(const FrameInput& in, void* out) { copy(in.diagnostics.energy, out); }
+void kinetic_translational(const FrameInput& in, void* out) { copy(in.diagnostics.kinetic_translational, out); }
+void kinetic_rotational(const FrameInput& in, void* out) { copy(in.diagnostics.kinetic_rotational, out); }
+void potential(const FrameInput& in, void* out) { copy(in.diagnostics.potential, out); }
+void orthogonality(const FrameInput& in, void* out) { copy(in.diagnostics.orthogonality_error, out); }
+void linear_momentum(const FrameInput& in, void* out) { copy(in.diagnostics.linear_momentum, out); }
+void angular_momentum(const FrameInput& in, void* out) { copy(in.diagnostics.angular_momentum, out); }
+void momentum(const FrameInput& in, void* out) { copy(in.state.p, out); }
+void attitude(const FrameInput& in, void* out) {  // row-major, as the file's [row][column]
+  double* R = doubles(out);
+  for (std::size_t k = 0; k < in.state.R.size(); ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) R[9 * k + static_cast<std::size_t>(3 * r + c)] = in.state.R[k](r, c);
+}
+void wall_time(const FrameInput& in, void* out) { copy(in.wall_seconds, out); }
+void integrator(const FrameInput& in, void* out) { std::copy(in.integrator.begin(), in.integrator.end(), doubles(out)); }
+void work(const FrameInput& in, void* out) {
+  const std::int64_t w[5] = {in.work.steps, in.work.potential_evaluations, in.work.newton_iterations,
+                             in.work.rejected_steps, in.interpolated};
+  std::memcpy(out, w, sizeof w);
+}
+
+// The restore functions of the checkpointed series (FrameQuantity::restore).
+void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
+void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
+void restore_momentum(const void* in, std::size_t width, RecordedFrame& f) { f.state.p = matrix(in, width); }
+void restore_spin(const void* in, std::size_t width, RecordedFrame& f) { f.state.Pi = matrix(in, width); }
+void restore_attitude(const void* in, std::size_t width, RecordedFrame& f) {
+  f.state.R.resize(width / 9);
+  for (std::size_t k = 0; k < width / 9; ++k)
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) f.state.R[k](r, c) = doubles(in)[9 * k + static_cast<std::size_t>(3 * r + c)];
+}
+void restore_potential(const void* in, std::size_t, RecordedFrame& f) { f.U = *doubles(in); }
+void restore_wall(const void* in, std::size_t, RecordedFrame& f) { f.wall_seconds = *doubles(in); }
+void restore_integrator(const void* in, std::size_t width, RecordedFrame& f) {
+  f.integrator.assign(doubles(in), doubles(in) + width);
+}
+void restore_work(const void* in, std::size_t, RecordedFrame& f) {
+  std::int64_t w[5];
+  std::memcpy(w, in, sizeof w);
+  f.work = WorkCounters{w[0], w[1], w[2], w[3]};
+  f.interpolated = w[4];
+}
+
+using E = Extent;
+using D = Dimension;
+constexpr Element kH5md = Element::kH5md, kPlain = Element::kPlain;
+
+// The table. The checksum columns 0–8 are the file format of /checkpoint/checksum: a new
+// checkpointed series takes the next free column.
+const FrameQuantity kFrameSchema[] = {
+    {"step", "/particles/bodies/position/step", E::kStepCount, D::kOne, kH5md,
+     "the integrator's step count at each frame", -1, step, nullptr},
+    {"time", "/particles/bodies/position/time", E::kScalar, D::kTime, kH5md, "time of each frame", 0, time,
+     restore_time},
+    {"positions", "/particles/bodies/position/value", E::kBodyVector, D::kLength, kH5md,
+     "position x of each body's centre of mass, inertial frame [frame][body][xyz]", 1, position, restore_position},
+    {"velocities", "/particles/bodies/velocity/value", E::kBodyVector, D::kVelocity, kH5md,
+     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]", -1, velocity, nullptr},
+    {"quaternions", "/particles/bodies/orientation/value", E::kRigidQuaternion, D::kOne, kH5md,
+     "attitude R (body to inertial frame) of each rigid body as a unit quaternion (w, x, y, z) "
+     "[frame][rigid body][wxyz]; body_index names the bodies",
+     -1, quaternion, nullptr},
+    {"angular_momenta", "/particles/bodies/angular_momentum/value", E::kRigidVector, D::kAngularMomentum, kH5md,
+     "spin angular momentum Π = J Ω of each rigid body, body frame [frame][rigid body][xyz]", 4, spin, restore_spin},
+    {"angular_velocities", "/particles/bodies/angular_velocity/value", E::kRigidVector, D::kAngularVelocity, kH5md,
+     "angular velocity Ω = J⁻¹Π of each rigid body, body frame [frame][rigid body][xyz]", -1, angular_velocity,
+     nullptr},
+    {"energy", "/observables/energy/value", E::kScalar, D::kEnergy, kH5md, "total energy E = T + U at each frame", -1,
+     energy, nullptr},
+    {"kinetic_energy_translational", "/observables/kinetic_energy_translational/value", E::kScalar, D::kEnergy, kH5md,
+     "Σ |γ|²/(2m)", -1, kinetic_translational, nullptr},
+    {"kinetic_energy_rotational", "/observables/kinetic_energy_rotational/value", E::kScalar, D::kEnergy, kH5md,
+     "Σ Π·J⁻¹Π/2", -1, kinetic_rotational, nullptr},
+    {"potential_energy", "/observables/potential_energy/value", E::kScalar, D::kEnergy, kH5md,
+     "the mutual potential U", 5, potential, restore_potential},
+    {"orthogonality_error", "/observables/orthogonality_error/value", E::kScalar, D::kOne, kH5md,
+     "max over rigid bodies of ‖I − RᵀR‖_F", -1, orthogonality, nullptr},
+    {"linear_momentum", "/observables/linear_momentum/value", E::kVector, D::kMomentum, kH5md,
+     "total linear momentum Σ γ, inertial frame", -1, linear_momentum, nullptr},
+    {"angular_momentum", "/observables/angular_momentum/value", E::kVector, D::kAngularMomentum, kH5md,
+     "total angular momentum about the origin, Σ x × γ + R Π, inertial frame", -1, angular_momentum, nullptr},
+    {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
+     "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
+    {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
+     "attitude matrix R (body to inertial) of each rigid body [frame][rigid body][row][column], exact", 3, attitude,
+     restore_attitude},
+    {"wall_time", "/checkpoint/wall_time", E::kScalar, D::kWallSeconds, kPlain,
+     "wall time spent by the run up to each frame", 7, wall_time, restore_wall},
+    {"integrator_checkpoint", "/checkpoint/integrator", E::kIntegrator, D::kMixed, kPlain,
+     "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's coordinates, a "
+     "two-step form's previous step), from which a continued run restores it",
+     8, integrator, restore_integrator},
+    {"work", "/checkpoint/work", E::kWork, D::kOne, kPlain,
+     "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, frames interpolated "
+     "between the method's steps",
+     6, work, restore_work},
+};
+
+}  // namespace
+
+std::span<const FrameQuantity> frame_schema() { return kFrameSchema; }
+
+std::vector<const FrameQuantity*> checkpointed_series() {
+  std::vector<const FrameQuantity*> out;
+  for (const auto& q : kFrameSchema)
+    if (q.checksum_column >= 0) out.push_back(&q);
+  std::sort(out.begin(), out.end(),
+            [](const FrameQuantity* a, const FrameQuantity* b) { return a->checksum_column < b->checksum_column; });
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (out[c]->checksum_column != static_cast<int>(c) || !out[c]->restore)
+      throw std::logic_error("frame schema: the checksum columns must be 0, 1, 2, … each with a restore function");
+  return out;
+}
+
+bool present(const FrameQuantity& q, std::size_t rigid, std::size_t width) {
+  switch (q.extent) {
+    case E::kRigidVector:
+    case E::kRigidQuaternion:
+    case E::kRigidMatrix: return rigid > 0;
+    case E::kIntegrator: return width > 0;
+    default: return true;
+  }
+}
+
+std::vector<std::size_t> frame_shape(const FrameQuantity& q, std::size_t bodies, std::size_t rigid, std::size_t width) {
+  switch (q.extent) {
+    case E::kStepCount:
+    case E::kScalar: return {};
+    case E::kVector: return {3};
+    case E::kBodyVector: return {bodies, 3};
+    case E::kRigidVector: return {rigid, 3};
+    case E::kRigidQuaternion: return {rigid, 4};
+    case E::kRigidMatrix: return {rigid, 3, 3};
+    case E::kWork: return {5};
+    case E::kIntegrator: return {width};
+  }
+  return {};
+}
+
+bool is_integer(const FrameQuantity& q) { return q.extent == E::kStepCount || q.extent == E::kWork; }
+
+std::string unit_of(Dimension d, const Units& u) {
+  switch (d) {
+    case D::kOne: return "1";
+    case D::kTime: return u.of_time();
+    case D::kLength: return u.of_length();
+    case D::kVelocity: return u.of_velocity();
+    case D::kMomentum: return u.of_momentum();
+    case D::kAngularMomentum: return u.of_angular_momentum();
+    case D::kEnergy: return u.of_energy();
+    case D::kAngularVelocity: return u.of_angular_velocity();
+    case D::kWallSeconds: return "s";
+    case D::kMixed: return "mixed";
+  }
+  return "";
+}
+
+std::string describe_extent(Extent e) {
+  switch (e) {
+    case E::kStepCount:
+    case E::kScalar: return "[frame]";
+    case E::kVector: return "[frame][3]";
+    case E::kBodyVector: return "[frame][body][3]";
+    case E::kRigidVector: return "[frame][rigid body][3]";
+    case E::kRigidQuaternion: return "[frame][rigid body][4]";
+    case E::kRigidMatrix: return "[frame][rigid body][3][3]";
+    case E::kWork: return "[frame][5]";
+    case E::kIntegrator: return "[frame][width]";
+  }
+  return "";
+}
+
+}  // namespace noether::io
+
+namespace noether {
+
+std::vector<OutputSeries> output_series(const Units& units) {
+  std::vector<OutputSeries> out;
+  for (const auto& q : io::frame_schema()) {
+    OutputSeries s;
+    s.name = q.name;
+    s.path = q.path;
+    s.shape = io::describe_extent(q.extent);
+    s.unit = io::unit_of(q.unit, units);
+    s.description = q.description;
+    s.integer = io::is_integer(q);
+    s.rigid_only = !io::present(q, 0, 1);
+    s.optional = !io::present(q, 1, 0);
+    s.checkpointed = q.checksum_column >= 0;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace noether

@@ -1,0 +1,97 @@
+#pragma once
+// The frame schema: every series of an output file that holds one value per output frame — its
+// path, its shape, its unit, what it is and how it is computed — as one table (kFrameSchema,
+// frame_schema.cpp). It drives everything that touches frames: the writer creates the series
+// and fills each frame from it (output_layout.cpp, output.cpp), a continued run reads its
+// checkpointed rows back (run_record.cpp), `noether schema` prints it, and the Python reader's
+// series list is tested against it (tests/python). Adding an output quantity is one row here
+// plus the function that computes it (docs/architecture.md, "Where to add").
+#include <noether/diagnostics.hpp>
+#include <noether/integrator.hpp>
+#include <noether/state.hpp>
+#include <noether/system.hpp>
+#include <noether/units.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace noether::io {
+
+// What one frame is made of: the state and what the run knows about it at that moment.
+struct FrameInput {
+  const System& system;
+  const State& state;
+  const Diagnostics& diagnostics;
+  const WorkCounters& work;
+  std::int64_t interpolated = 0;  // frames interpolated between the method's steps so far
+  double wall_seconds = 0.0;
+  const std::vector<double>& integrator;  // Integrator::checkpoint()
+};
+
+// One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
+// where the run stood (work, wall time, the integrator's own variables).
+struct RecordedFrame {
+  State state;
+  double U = 0.0;
+  WorkCounters work;
+  std::int64_t interpolated = 0;
+  double wall_seconds = 0.0;
+  std::vector<double> integrator;
+};
+
+// The shape of one frame of a series (the file's dataset is [frame] followed by it).
+enum class Extent {
+  kStepCount,        // [] int64: the integrator's step count
+  kScalar,           // []
+  kVector,           // [3]
+  kBodyVector,       // [body][3]
+  kRigidVector,      // [rigid body][3]          (present when the scene has rigid bodies)
+  kRigidQuaternion,  // [rigid body][4]          (idem)
+  kRigidMatrix,      // [rigid body][3][3]       (idem)
+  kWork,             // [5] int64: steps, evaluations, Newton iterations, rejections, interpolated
+  kIntegrator,       // [width]: Integrator::checkpoint() (present when its width is not 0)
+};
+
+// The unit, as the scene's units spell it (docs/user-guide.md, "Units").
+enum class Dimension { kOne, kTime, kLength, kVelocity, kMomentum, kAngularMomentum, kEnergy, kAngularVelocity, kWallSeconds, kMixed };
+
+enum class Element {
+  kH5md,   // an H5MD time series: <group>/{step,time,value}, step and time hard links to position's
+  kPlain,  // a dataset of its own (/checkpoint)
+};
+
+struct FrameQuantity {
+  const char* name;  // the Python reader's name (noether.read(...)[name])
+  const char* path;  // the dataset
+  Extent extent;
+  Dimension unit;
+  Element element;
+  const char* description;
+  // The column of /checkpoint/checksum holding this series' frame checksums, for the series a
+  // continued run reads back (−1: not read back). Columns are part of the file format.
+  int checksum_column;
+  // Writes one frame into `out` (double numbers, or int64 for kStepCount and kWork).
+  void (*fill)(const FrameInput& in, void* out);
+  // The checkpointed series: puts one frame read back into the run's frame (nullptr otherwise).
+  void (*restore)(const void* values, std::size_t width, RecordedFrame& frame);
+};
+
+// Every series, in the order the file's groups are created.
+std::span<const FrameQuantity> frame_schema();
+// The series a continued run reads back, in the order of /checkpoint/checksum's columns.
+std::vector<const FrameQuantity*> checkpointed_series();
+inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
+
+// Whether the series is written for a scene with `rigid` rigid bodies and an integrator
+// checkpoint of `width` numbers.
+bool present(const FrameQuantity& q, std::size_t rigid, std::size_t width);
+// Its frame shape.
+std::vector<std::size_t> frame_shape(const FrameQuantity& q, std::size_t bodies, std::size_t rigid, std::size_t width);
+bool is_integer(const FrameQuantity& q);  // int64 values (step, work), else double
+std::string unit_of(Dimension d, const Units& units);
+std::string describe_extent(Extent e);  // "[frame][body][3]"
+
+}  // namespace noether::io
