@@ -22,6 +22,42 @@
 
 namespace noether {
 
+namespace {
+
+// Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied
+// into its output file, if it has one), a block at a time. False when interrupted.
+bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
+            const volatile std::sig_atomic_t* interrupt) {
+  Forces forces;
+  forces.resize(m.scene.system);
+  return run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
+    if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
+      auto workspace = m.potential->make_workspace();
+      m.potential->evaluate(f.state, forces, *workspace);
+    }
+    forces.U = f.U;
+    const Diagnostics d = m.observer->account(f.state, forces);
+    if (m.writer) m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator);
+  }, interrupt);
+}
+
+// Where the run's step grid starts: /checkpoint/t_origin, or (a file from before it was kept)
+// the time of frame 0.
+double origin_of(const io::RunRecord& run) {
+  if (!std::isnan(run.t_origin)) return run.t_origin;
+  double t0 = 0.0;
+  run.read(0, 1, [&t0](std::size_t, const io::RecordedFrame& f) { t0 = f.state.t; });
+  return t0;
+}
+
+// A fixed-step method's steps from the grid's origin to t.
+std::int64_t steps_to(const Simulation::Impl& m, double t) {
+  const double h = m.integrator->fixed_step();
+  return h > 0 && t > m.t_origin ? whole_steps(t - m.t_origin, h, "the recorded time") : 0;
+}
+
+}  // namespace
+
 std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file, PluginRegistry& registry,
                                                RunOptions options, double t_end) {
   // The file is read, verified frame by frame and copied into a new file that replaces it only
@@ -61,7 +97,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
-  const double t_last = at_last.state.t;
+  const double t_last = at_last.state.t, t_origin = origin_of(run);
   if (!(scene.run.t_end > t_last)) {
     std::ostringstream why;
     why.precision(10);
@@ -78,26 +114,14 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, rebuilt));
   Impl& m = *sim->impl_;
   m.new_segment();
+  m.t_origin = t_origin;
   const Scene& sc = m.scene;
   OutputOptions output = m.output_options(true);
   char line[128];
   std::snprintf(line, sizeof line, "frame %zu at t = %.17g", last, t_last);
   output.resumed = run.resumed + (run.resumed.empty() ? "" : "\n") + line;
   m.writer = std::make_unique<H5Writer>(file, sc, output);
-  Forces forces;
-  forces.resize(sc.system);
-  double t0 = 0.0;
-  const bool complete = run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
-    if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
-      auto workspace = m.potential->make_workspace();
-      m.potential->evaluate(f.state, forces, *workspace);
-      t0 = f.state.t;
-    }
-    forces.U = f.U;
-    const Diagnostics d = m.observer->account(f.state, forces);
-    m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator);
-  }, options.interrupt);
-  if (!complete) {
+  if (!replay(run, m, last, options.interrupt)) {
     m.writer.reset();  // the new file is dropped; the old one was only read
     throw Error(file.string() + " was being read back when the continuation was interrupted; it is unchanged");
   }
@@ -106,94 +130,25 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   m.writer->publish();
 
   m.summary.interpolated_frames = at_last.interpolated;
-  m.state = at_last.state;
-  m.t_origin = t0;
-  const double h = m.integrator->fixed_step();
-  m.steps_before = h > 0 && t_last > m.t_origin ? whole_steps(t_last - m.t_origin, h, "the recorded time") : 0;
-  // The integrator continues from its own variables where it has any (relative frame,
-  // Lagrangian forms), else from the state.
-  if (at_last.integrator.size() != m.integrator->checkpoint().size())
-    throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
-  const std::int64_t evaluations = m.integrator->work().potential_evaluations;
-  m.integrator->restore(m.state, at_last.integrator);
-  m.integrator_at_state = true;
-  m.base_work = at_last.work + WorkCounters{0, -evaluations, 0, 0};
-  m.wall_seconds = at_last.wall_seconds;
+  m.steps_before = steps_to(m, t_last);
+  m.restore(at_last, file);
   m.options = std::move(options);
   m.options.output = file;
   return sim;
 }
 // Saving and loading ------------------------------------------------------------------------
-// A checkpoint file: the scene as given, the exact state, where the run stands (t0, steps), its
-// work and the summary's running values, so that a loaded simulation continues as this one would.
+// A saved simulation is an output file with one frame, the state where it stood, plus
+// /checkpoint/summary: the summary's running values.
+// Simulation::load reads it (or any output file) through the same RunRecord as --resume.
 namespace {
 
-using namespace noether::h5;
-
-// A dataset of doubles with the checksum of its values (attribute "checksum").
-void write_doubles(hid_t parent, const char* name, const double* data, std::vector<hsize_t> dims) {
-  const io::H5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
-  const io::H5Handle d(
-      check_id(H5Dcreate2(parent, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name));
-  std::size_t n = 1;
-  for (auto x : dims) n *= x;
-  if (n) check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
-  numeric_attribute<std::uint64_t>(d, "checksum", H5T_NATIVE_UINT64, {io::checksum64(data, n * sizeof(double))});
-}
-
-
-// Reads a dataset written by write_doubles, verifying its checksum when it has one (a
-// checkpoint from an older noether has none).
-std::vector<double> read_doubles(const std::filesystem::path& file, hid_t parent, const char* group, const char* name,
-                                 std::size_t expected) {
-  const io::H5Handle d = io::open_dataset(parent, name);
-  if (!d.valid()) throw OutputError(std::string("the checkpoint has no ") + name);
-  const io::H5Handle space(H5Dget_space(d));
-  const auto n = static_cast<std::size_t>(H5Sget_simple_extent_npoints(space));
-  if (n != expected)
-    throw OutputError(std::string("the checkpoint's ") + name + " has " + std::to_string(n) + " numbers, the scene needs " +
-                      std::to_string(expected));
-  std::vector<double> out(n);
-  const std::string where = std::string("/") + group + "/" + name;
-  if (n && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    io::throw_damaged(file, where + " does not read");
-  if (H5Aexists(d, "checksum") > 0 &&
-      io::read_u64_attribute(d, "checksum") != io::checksum64(out.data(), n * sizeof(double)))
-    io::throw_damaged(file, where + " does not match its checksum");
-  return out;
-}
-
-
-double read_scalar(hid_t obj, const char* name) {
-  if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
-  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-  hid_t space = H5Aget_space(a);
-  std::vector<double> v(static_cast<std::size_t>(std::max<hssize_t>(1, H5Sget_simple_extent_npoints(space))));
-  H5Sclose(space);
-  H5Aread(a, H5T_NATIVE_DOUBLE, v.data());
-  H5Aclose(a);
-  return v[0];
-}
-
-std::vector<double> read_vector(hid_t obj, const char* name) {
-  if (H5Aexists(obj, name) <= 0) throw OutputError(std::string("the checkpoint has no attribute ") + name);
-  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
-  hid_t space = H5Aget_space(a);
-  std::vector<double> v(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-  H5Sclose(space);
-  H5Aread(a, H5T_NATIVE_DOUBLE, v.data());
-  H5Aclose(a);
-  return v;
-}
-
-// The diagnostics as 13 numbers and back.
+// The diagnostics as named numbers and back.
 std::vector<double> pack(const Diagnostics& d) {
   return {d.kinetic_translational, d.kinetic_rotational, d.potential, d.energy, d.linear_momentum.x(),
           d.linear_momentum.y(), d.linear_momentum.z(), d.angular_momentum.x(), d.angular_momentum.y(),
           d.angular_momentum.z(), d.orthogonality_error};
 }
 Diagnostics unpack(const std::vector<double>& v) {
-  if (v.size() != 11) throw OutputError("the checkpoint's diagnostics have the wrong size");
   Diagnostics d;
   d.kinetic_translational = v[0], d.kinetic_rotational = v[1], d.potential = v[2], d.energy = v[3];
   d.linear_momentum = Vec3(v[4], v[5], v[6]);
@@ -201,6 +156,7 @@ Diagnostics unpack(const std::vector<double>& v) {
   d.orthogonality_error = v[10];
   return d;
 }
+constexpr std::size_t kStatistics = 12;
 
 }  // namespace
 
@@ -208,214 +164,87 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  // Built under a hidden name and renamed into place (io/safe_publish.hpp): a kill while saving
-  // leaves the previous checkpoint; a link, or the simulation's own output file, is refused.
-  std::vector<std::filesystem::path> own_output;
-  if (m.options.output) own_output.push_back(*m.options.output);
-  const int claimed = io::claim_output(path, true, own_output);
-  const std::filesystem::path partial = io::partial_name(path);
-  int lock = -1;
-  hid_t file = -1;
-  try {
-    lock = io::create_partial(partial, path);
-    file = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(0));
-    if (file < 0) throw OutputError("cannot create " + path.string() + system_reason());
-    string_attribute(file, "format", "noether simulation checkpoint 1");
-    numeric_attribute<int>(file, "custom_potential", H5T_NATIVE_INT, {m.custom_potential ? 1 : 0});
-    hid_t g = make_group(file, "parameters");
-    string_dataset(g, "scene", m.scene.text, "the scene file's text, as given");
-    std::error_code ec;
-    const auto absolute = std::filesystem::absolute(m.scene.file, ec);
-    const std::string scene_path = ec ? m.scene.file : absolute.string();
-    string_attribute(g, "scene_path", scene_path);
-    std::string overrides;
-    for (const auto& o : m.scene.overrides) overrides += (overrides.empty() ? "" : "\n") + o;
-    string_attribute(g, "overrides", overrides);
-    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64,
-                                     {io::scene_checksum(m.scene.text, scene_path, overrides, m.custom_potential)});
-    H5Gclose(g);
-    const State& st = m.state;
-    const hsize_t nb = static_cast<hsize_t>(st.x.cols()), nr = st.R.size();
-    g = make_group(file, "state");
-    scalar_attribute(g, "t", st.t);
-    write_doubles(g, "x", st.x.data(), {nb, 3});
-    write_doubles(g, "p", st.p.data(), {nb, 3});
-    std::vector<double> R;
-    for (const auto& Rk : st.R)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) R.push_back(Rk(r, c));
-    write_doubles(g, "R", R.data(), {nr, 3, 3});
-    write_doubles(g, "Pi", st.Pi.data(), {nr, 3});
-    const std::vector<double> own = m.integrator->checkpoint();  // Integrator::checkpoint
-    write_doubles(g, "integrator", own.data(), {own.size()});
-    H5Gclose(g);
-    g = make_group(file, "run");
-    scalar_attribute(g, "t_origin", m.t_origin);
-    scalar_attribute(g, "steps_before", static_cast<double>(m.steps_before));
-    const WorkCounters w = m.work();
-    numeric_attribute<double>(g, "work", H5T_NATIVE_DOUBLE,
-                              {static_cast<double>(w.steps), static_cast<double>(w.potential_evaluations),
-                               static_cast<double>(w.newton_iterations), static_cast<double>(w.rejected_steps)});
-    scalar_attribute(g, "wall_seconds", m.wall_now());
-    const RunSummary& s = m.summary;
-    numeric_attribute<double>(g, "initial", H5T_NATIVE_DOUBLE, pack(s.initial));
-    numeric_attribute<double>(g, "final", H5T_NATIVE_DOUBLE, pack(s.final));
-    const auto [p_scale, L_scale] = m.observer->scales();
-    numeric_attribute<double>(g, "statistics", H5T_NATIVE_DOUBLE,
-                              {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
-                               s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0,
-                               s.conserves_angular_momentum ? 1.0 : 0.0, s.min_gap, s.min_gap_reach, s.min_distance,
-                               s.t_of_min_distance, static_cast<double>(s.frames),
-                               static_cast<double>(s.interpolated_frames), p_scale, L_scale});
-    string_attribute(g, "min_gap_pair", s.min_gap_pair);
-    string_attribute(g, "stop_reason", s.stop_reason);
-    numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::checksum_of_texts({&s.min_gap_pair, &s.stop_reason})});
-    H5Gclose(g);
-    check(H5Fclose(file), "closing the checkpoint");
-    file = -1;
-    io::publish_file(partial, path, claimed >= 0);
-  } catch (...) {
-    if (file >= 0) H5Fclose(file);
-    if (lock >= 0) ::unlink(partial.c_str());
-    if (lock >= 0) ::close(lock);
-    if (claimed >= 0) ::close(claimed);
-    throw;
-  }
-  ::close(lock);
-  if (claimed >= 0) ::close(claimed);
+  // The file is built under a hidden name and published once complete (io/safe_publish.hpp):
+  // a kill while saving leaves the previous checkpoint; a link, or the simulation's own output
+  // file, is refused.
+  OutputOptions output = m.output_options(false);
+  output.overwrite = true;
+  output.defer_publish = true;
+  output.expected_frames = 1;
+  output.inputs.clear();
+  if (m.options.output) output.inputs.push_back(*m.options.output);
+  H5Writer writer(path, m.scene, output);
+  Forces forces;  // U at the state saved (the frame's potential energy; no work is counted)
+  forces.resize(m.scene.system);
+  auto workspace = m.potential->make_workspace();
+  m.potential->evaluate(m.state, forces, *workspace);
+  const WorkCounters work = m.work();
+  const double wall = m.wall_now();
+  writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall,
+                     m.summary.interpolated_frames, m.integrator->checkpoint());
+  writer.flush();
+  const RunSummary& s = m.summary;
+  const auto [p_scale, L_scale] = m.observer->scales();
+  writer.write_summary_values(
+      {{"initial", pack(s.initial)},
+       {"final", pack(s.final)},
+       {"statistics",
+        {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
+         s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0, s.conserves_angular_momentum ? 1.0 : 0.0,
+         s.min_gap, s.min_gap_reach, s.min_distance, s.t_of_min_distance, p_scale, L_scale}},
+       {"frames", {static_cast<double>(s.frames)}}},
+      {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}});
+  writer.publish();
+  char outcome[96];
+  std::snprintf(outcome, sizeof outcome, "saved at t = %.17g", m.state.t);
+  writer.finish(work, wall, outcome);
 }
-
-namespace {
-
-// What Simulation::save wrote, read back and verified.
-struct SavedSimulation {
-  Scene scene;  // its initial state is where the saved simulation stood
-  std::vector<double> integrator, work, stats;
-  double t_origin = 0.0, steps_before = 0.0, wall = 0.0;
-  Diagnostics initial, final_;
-  std::string min_gap_pair, stop_reason;
-};
-
-SavedSimulation read_saved_simulation(const std::filesystem::path& path, bool potential_given) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
-  const io::H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, io::file_access(0)));
-  if (!file.valid())
-    throw OutputError(path.string() + " is not an HDF5 file" + system_reason() +
-                      " (or its first bytes, the HDF5 superblock, are damaged)");
-  if (read_string(file, "format", false) != "noether simulation checkpoint 1")
-    throw OutputError(path.string() + " is not a checkpoint saved by Simulation.save (an output file continues "
-                                      "with `noether run --resume`)");
-  const bool custom = read_scalar(file, "custom_potential") != 0;
-  if (custom && !potential_given)
-    throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
-                                "function), not by the scene: pass the same potential to load it");
-  // A checksum attribute, verified when the checkpoint has one (an older noether's has none).
-  const auto verify = [&path](hid_t group, const char* where, std::uint64_t expected) {
-    if (H5Aexists(group, "checksum") > 0 && io::read_u64_attribute(group, "checksum") != expected)
-      io::throw_damaged(path, std::string(where) + " does not match its checksum");
-  };
-  const auto open_group = [&path, &file](const char* name) {
-    io::H5Handle g(H5Gopen2(file, name, H5P_DEFAULT));
-    if (!g.valid()) io::throw_damaged(path, std::string("/") + name + " does not open");
-    return g;
-  };
-  SavedSimulation saved;
-  {
-    const io::H5Handle g = open_group("parameters");
-    const std::string text = read_string(g, "scene", true), scene_path = read_string(g, "scene_path", false),
-                      joined = read_string(g, "overrides", false);
-    verify(g, "/parameters (the scene's text, its path or the overrides)",
-           io::scene_checksum(text, scene_path, joined, custom));
-    saved.scene = parse_scene(text, scene_path, lines_of(joined));
-  }
-  const std::size_t nb = saved.scene.system.size(), nr = saved.scene.system.rigid_count();
-  State st = State::zeros(saved.scene.system);
-  {
-    const io::H5Handle g = open_group("state");
-    st.t = read_scalar(g, "t");
-    const auto x = read_doubles(path, g, "state", "x", 3 * nb), p = read_doubles(path, g, "state", "p", 3 * nb),
-               R = read_doubles(path, g, "state", "R", 9 * nr), Pi = read_doubles(path, g, "state", "Pi", 3 * nr);
-    std::size_t own_size = 0;
-    if (const io::H5Handle own = io::open_dataset(g, "integrator"); own.valid()) {
-      const io::H5Handle space(H5Dget_space(own));
-      own_size = static_cast<std::size_t>(std::max<hssize_t>(0, H5Sget_simple_extent_npoints(space)));
-    }
-    saved.integrator = read_doubles(path, g, "state", "integrator", own_size);
-    st.x = Eigen::Map<const Eigen::Matrix3Xd>(x.data(), 3, static_cast<Eigen::Index>(nb));
-    st.p = Eigen::Map<const Eigen::Matrix3Xd>(p.data(), 3, static_cast<Eigen::Index>(nb));
-    st.Pi = Eigen::Map<const Eigen::Matrix3Xd>(Pi.data(), 3, static_cast<Eigen::Index>(nr));
-    for (std::size_t k = 0; k < nr; ++k)
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) st.R[k](r, c) = R[9 * k + static_cast<std::size_t>(3 * r + c)];
-  }
-  saved.scene.initial = st;  // frame 0 of the loaded simulation is where the saved one stood
-  {
-    const io::H5Handle g = open_group("run");
-    saved.t_origin = read_scalar(g, "t_origin");
-    saved.steps_before = read_scalar(g, "steps_before");
-    saved.wall = read_scalar(g, "wall_seconds");
-    saved.work = read_vector(g, "work");
-    saved.stats = read_vector(g, "statistics");
-    saved.initial = unpack(read_vector(g, "initial"));
-    saved.final_ = unpack(read_vector(g, "final"));
-    saved.min_gap_pair = read_string(g, "min_gap_pair", false);
-    saved.stop_reason = read_string(g, "stop_reason", false);
-    verify(g, "/run's texts", io::checksum_of_texts({&saved.min_gap_pair, &saved.stop_reason}));
-  }
-  if (saved.work.size() != 4 || saved.stats.size() != 14) io::throw_damaged(path, "/run's work or statistics");
-  return saved;
-}
-
-}  // namespace
 
 std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, PluginRegistry& registry,
                                              RunOptions options, std::shared_ptr<const Potential> potential) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw OutputError(path.string() + ": no such file");
-  SavedSimulation saved;
-  try {  // read in a child first: a damaged file must not crash or hang this process (io/read_probe.hpp)
-    const bool given = potential != nullptr;
-    io::read_probe(path, [&path, given] { read_saved_simulation(path, given); }, io::read_probe_seconds(path),
-                   options.interrupt);
-    saved = read_saved_simulation(path, given);
-  } catch (const OutputError& e) {  // every refusal names the file
-    const std::string what = e.what();
-    if (what.rfind(path.string(), 0) == 0) throw;
-    throw OutputError(path.string() + ": " + what + " (a damaged checkpoint, or not one that Simulation.save wrote)");
-  }
-  const std::vector<double>& stats = saved.stats;
+  // Every read made first in a child: a damaged file must not crash or hang this process.
+  io::read_probe(path, [&path] {
+    const io::RunRecord run(path);
+    run.read(0, static_cast<std::size_t>(run.frames), [](std::size_t, const io::RecordedFrame&) {});
+  }, io::read_probe_seconds(path), options.interrupt);
+  const io::RunRecord run(path);
+  if (run.custom_potential && !potential)
+    throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
+                                "function), not by the scene: pass the same potential to load it");
+  Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
+  if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
+    throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
+  const std::size_t last = static_cast<std::size_t>(run.frames - 1);
+  io::RecordedFrame at_last;
+  run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
+  scene.initial = at_last.state;  // frame 0 of the loaded simulation is where the file stood
   const bool with_output = options.output.has_value();
-  auto sim = std::make_unique<Simulation>(std::move(saved.scene), registry, options, std::move(potential));
+  auto sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
-  if (!with_output) {  // the frame the constructor observed is the saved state's: not counted again
-    s.initial = saved.initial;
-    s.final = saved.final_;
-    s.max_abs_energy_error = stats[0], s.max_rel_linear_momentum_error = stats[1];
-    s.max_rel_angular_momentum_error = stats[2], s.max_orthogonality_error = stats[3];
-    s.conserves_linear_momentum = stats[4] != 0, s.conserves_angular_momentum = stats[5] != 0;
-    s.min_gap = stats[6], s.min_gap_reach = stats[7], s.min_distance = stats[8], s.t_of_min_distance = stats[9];
-    s.frames = static_cast<std::size_t>(stats[10]);
-    s.interpolated_frames = static_cast<std::int64_t>(stats[11]);
-    m.observer->set_scales(stats[12], stats[13]);
-    s.min_gap_pair = saved.min_gap_pair;
-    s.stop_reason = saved.stop_reason;
+  m.t_origin = origin_of(run);
+  m.steps_before = steps_to(m, at_last.state.t);
+  if (!with_output && run.saved()) {  // the saved summary, not the frame the constructor observed
+    const std::vector<double>& st = run.summary_number("statistics", kStatistics);
+    s.initial = unpack(run.summary_number("initial", 11));
+    s.final = unpack(run.summary_number("final", 11));
+    s.max_abs_energy_error = st[0], s.max_rel_linear_momentum_error = st[1];
+    s.max_rel_angular_momentum_error = st[2], s.max_orthogonality_error = st[3];
+    s.conserves_linear_momentum = st[4] != 0, s.conserves_angular_momentum = st[5] != 0;
+    s.min_gap = st[6], s.min_gap_reach = st[7], s.min_distance = st[8], s.t_of_min_distance = st[9];
+    m.observer->set_scales(st[10], st[11]);
+    s.frames = static_cast<std::size_t>(run.summary_number("frames", 1)[0]);
+    s.interpolated_frames = at_last.interpolated;
+    s.min_gap_pair = run.summary_text("min_gap_pair");
+    s.stop_reason = run.summary_text("stop_reason");
+  } else if (!with_output) {  // a run's file: its frames replayed into the summary, as --resume does
+    m.new_segment();
+    replay(run, m, last, options.interrupt);
+    s.interpolated_frames = at_last.interpolated;
   }
-  const std::vector<double>& work = saved.work;
-  m.t_origin = saved.t_origin;
-  m.steps_before = static_cast<std::int64_t>(saved.steps_before);
-  m.base_work = WorkCounters{static_cast<std::int64_t>(work[0]),
-                             static_cast<std::int64_t>(work[1]) - m.integrator->work().potential_evaluations,
-                             static_cast<std::int64_t>(work[2]), static_cast<std::int64_t>(work[3])};
-  m.wall_seconds = saved.wall;
-  // The integrator continues from its own variables where it has any, else from the state.
-  if (saved.integrator.size() != m.integrator->checkpoint().size())
-    throw OutputError(path.string() + ": its integrator checkpoint does not fit the scene's integrator");
-  m.integrator->restore(m.state, saved.integrator);
-  m.integrator_at_state = true;
+  m.restore(at_last, path);
   return sim;
 }
 }  // namespace noether

@@ -7,6 +7,7 @@
 #include "h5_helpers.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
+#include "io/h5_handle.hpp"
 #include "io/safe_publish.hpp"
 #include "output_impl.hpp"
 
@@ -166,6 +167,19 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
     H5Sclose(file_space);
     out.rows += rows;
   }
+}
+
+void H5Writer::write_summary_values(const std::vector<std::pair<std::string, std::vector<double>>>& numbers,
+                                    const std::vector<std::pair<std::string, std::string>>& texts) {
+  Impl& m = *impl_;
+  const io::H5Handle g(make_group(m.file, "/checkpoint/summary"));
+  string_attribute(g, "description",
+                   "the summary's running values where Simulation.save was called, from which "
+                   "Simulation.load continues it");
+  for (const auto& [name, values] : numbers) numeric_attribute<double>(g, name.c_str(), H5T_NATIVE_DOUBLE, values);
+  for (const auto& [name, text] : texts) string_attribute(g, name.c_str(), text);
+  numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::summary_checksum(numbers, texts)});
+  m.flush_file("flushing the output file");
 }
 
 void H5Writer::set_verdict(const std::string& verdict, const std::string& reasons,

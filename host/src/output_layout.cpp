@@ -175,6 +175,11 @@ void H5Writer::create_series(const Scene& scene) {
                      "the exact state and the work at every frame, from which `noether run --resume` "
                      "continues a run");
     if (!m.options.resumed.empty()) string_attribute(checkpoint, "resumed", m.options.resumed);
+    if (!std::isnan(m.options.t_origin)) {  // checksummed: a continuation's step grid starts there
+      scalar_attribute(checkpoint, "t_origin", m.options.t_origin);
+      numeric_attribute<std::uint64_t>(checkpoint, "t_origin_checksum", H5T_NATIVE_UINT64,
+                                       {io::checksum64(&m.options.t_origin, sizeof(double))});
+    }
   }
   const auto schema = io::frame_schema();
   const auto checkpointed = io::checkpointed_series();

@@ -4,6 +4,7 @@
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
 
+#include "io/frame_schema.hpp"
 #include "run_statistics.hpp"
 
 #include <chrono>
@@ -54,6 +55,18 @@ struct Simulation::Impl {
     s.min_gap_reach = 0.0;
     s.min_gap_pair.clear();
   }
+  // Stands at a recorded frame: its state, the integrator's own variables, the work and wall
+  // time spent to reach it (a continued or loaded run).
+  void restore(const io::RecordedFrame& at, const std::filesystem::path& file) {
+    state = at.state;
+    if (at.integrator.size() != integrator->checkpoint().size())
+      throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
+    const std::int64_t evaluations = integrator->work().potential_evaluations;
+    integrator->restore(state, at.integrator);  // its own variables where it has any, else the state
+    integrator_at_state = true;
+    base_work = at.work + WorkCounters{0, -evaluations, 0, 0};
+    wall_seconds = at.wall_seconds;
+  }
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
       if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
@@ -70,6 +83,7 @@ struct Simulation::Impl {
       output.checkpoint_width = 0;
     }
     output.custom_potential = custom_potential;
+    output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;
     output.defer_publish = continuation;
     // t0, every output time, and one more for an event or an interrupt (the stepping loop).

@@ -167,9 +167,11 @@ class Simulation:
 
     @classmethod
     def load(cls, path, output=None, force=False, potential=None):
-        """A simulation saved with save(): it continues as the saved one would have (bit for bit
-        with fixed-step integrators). With output, frames go to a new file whose frame 0 is the
-        saved state. A simulation saved with a Python potential needs it again: potential=."""
+        """A simulation saved with save(), or the run of an output file at its last complete
+        frame: it continues as the saved one would have (bit for bit with fixed-step
+        integrators; an output file's frames are replayed into the summary). With output, frames
+        go to a new file whose frame 0 is the loaded state. A simulation saved with a Python
+        potential needs it again: potential=."""
         return cls(_Simulation.load(os.fspath(path), _path(output), force, potential))
 
     @classmethod
@@ -205,8 +207,9 @@ class Simulation:
         return json.loads(self._sim.finish())
 
     def save(self, path):
-        """Saves the simulation where it stands (scene, exact state, step count, work, the
-        summary's running values) to an HDF5 checkpoint for Simulation.load()."""
+        """Saves the simulation where it stands to an output file with one frame (the scene, the
+        exact state, the work, the summary's running values in /checkpoint/summary), for
+        Simulation.load(), Simulation.resume() or noether.read()."""
         self._sim.save(os.fspath(path))
 
     def set_state(self, **parts):

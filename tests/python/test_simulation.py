@@ -2,6 +2,7 @@
 import json
 import subprocess
 
+import h5py
 import numpy as np
 import pytest
 
@@ -114,14 +115,42 @@ def test_save_and_load_continue_bit_for_bit(dumbbells, tmp_path):
             assert a[key] == b[key] + (1 if key == "output_frames" else 0), (integrator, key)
 
 
-def test_a_checkpoint_is_not_an_output_file(dumbbells, tmp_path):
-    sim = noether.Simulation(dumbbells, output=tmp_path / "run.h5")
-    sim.integrate(0.5)
-    sim.finish()
-    with pytest.raises(noether.OutputError, match="not a checkpoint saved by Simulation.save"):
-        noether.Simulation.load(tmp_path / "run.h5")
+def test_one_checkpoint_format_output_files_load_and_saved_files_resume(dumbbells, tmp_path):
+    """A saved simulation is an output file with one frame, and load() reads any output file:
+    each continues bit for bit whichever way it is opened."""
+    dumbbells["run"]["t_end"] = 1.0
+    whole = noether.Simulation(dumbbells)
+    whole.integrate(1.0)
+    # An output file, loaded: continues from its last frame with the whole run's summary.
+    run = noether.Simulation(dumbbells, output=tmp_path / "run.h5")
+    run.integrate(0.5)
+    run.finish()
+    loaded = noether.Simulation.load(tmp_path / "run.h5")
+    assert loaded.t == 0.5
+    loaded.integrate(1.0)
+    assert loaded.positions.tobytes() == whole.positions.tobytes()
+    assert loaded.attitudes.tobytes() == whole.attitudes.tobytes()
+    a, b = loaded.summary(), whole.summary()
+    for key in ["E0", "max_abs_energy_error", "max_rel_angular_momentum_error", "steps", "output_frames"]:
+        assert a[key] == b[key], key
+    # A saved simulation: an output file of one frame, read by noether.read and continued by resume.
+    part = noether.Simulation(dumbbells)
+    part.integrate(0.3702)
+    part.save(tmp_path / "saved.h5")
+    saved = noether.read(tmp_path / "saved.h5")
+    assert saved.frames == 1 and saved.outcome.startswith("saved at t = 0.3702")
+    assert saved["momenta"][0].tobytes() == part.momenta.tobytes()
+    resumed = noether.Simulation.resume(tmp_path / "saved.h5")
+    resumed.integrate(resumed.run["t_end"])
+    assert resumed.positions.tobytes() == whole.positions.tobytes()
+    assert resumed.angular_momenta.tobytes() == whole.angular_momenta.tobytes()
+    resumed.finish()
     with pytest.raises(noether.OutputError, match="no such file"):
         noether.Simulation.load(tmp_path / "missing.h5")
+    with h5py.File(tmp_path / "old.h5", "w") as f:  # Simulation.save's own layout before this version
+        f.attrs["format"] = "noether simulation checkpoint 1"
+    with pytest.raises(noether.OutputError, match="saved by an older noether"):
+        noether.Simulation.load(tmp_path / "old.h5")
 
 
 def test_plugins_are_listed():

@@ -12,8 +12,10 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace noether {
@@ -33,6 +35,9 @@ struct OutputOptions {
   // as it is until its frames have been read back, verified and copied).
   bool defer_publish = false;
   std::string resumed;  // /checkpoint/resumed: the continuations so far, one line each
+  // /checkpoint/t_origin: the time the run's step grid starts from (a fixed-step method's
+  // t = t_origin + n h); NaN: frame 0's time.
+  double t_origin = std::numeric_limits<double>::quiet_NaN();
 };
 
 class H5Writer {
@@ -60,6 +65,10 @@ class H5Writer {
   // The run's verdict, written with /work by finish().
   void set_verdict(const std::string& verdict, const std::string& reasons, double relative_energy_error,
                    const std::string& energy_scale);
+  // /checkpoint/summary: named numbers and texts a saved simulation continues its summary from
+  // (Simulation::save), checksummed together (attribute checksum).
+  void write_summary_values(const std::vector<std::pair<std::string, std::vector<double>>>& numbers,
+                            const std::vector<std::pair<std::string, std::string>>& texts);
   // Appends an integrator's per-step records to /integrator/<name> (created on first use).
   void append_step_series(const std::vector<StepSeries>& records);
   std::size_t frames_written() const { return frames_written_; }

@@ -124,8 +124,9 @@ class Simulation {
   // the summary. Calling integrate() afterwards is an error.
   RunSummary finish();
 
+  struct Impl;  // what a run held open consists of (internal: host/src/simulation_impl.hpp)
+
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

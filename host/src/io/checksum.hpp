@@ -4,10 +4,13 @@
 // shifted blocks and data moved between frames (the seed is the frame), not deliberate forgery.
 // Word-wise multiply-rotate mixing with MurmurHash3's 64-bit finaliser (Appleby 2011); a frame of
 // a few hundred bytes costs well under a microsecond.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <initializer_list>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace noether::io {
 
@@ -49,6 +52,21 @@ inline std::uint64_t scene_checksum(const std::string& text, const std::string& 
                                     bool custom_potential) {
   const std::string custom = custom_potential ? "1" : "0";
   return checksum_of_texts({&text, &path, &overrides, &custom});
+}
+
+// /checkpoint/summary's named numbers and texts, names included, in order.
+// Order does not matter (HDF5 lists attributes by name).
+inline std::uint64_t summary_checksum(std::vector<std::pair<std::string, std::vector<double>>> numbers,
+                                      std::vector<std::pair<std::string, std::string>> texts) {
+  std::sort(numbers.begin(), numbers.end());
+  std::sort(texts.begin(), texts.end());
+  std::uint64_t h = 0;
+  for (const auto& [name, values] : numbers) {
+    h = checksum64(name.data(), name.size(), h ^ name.size());
+    h = checksum64(values.data(), values.size() * sizeof(double), h ^ values.size());
+  }
+  for (const auto& [name, text] : texts) h = checksum_of_texts({&name, &text}) ^ checksum_mix(h);
+  return h;
 }
 
 }  // namespace noether::io

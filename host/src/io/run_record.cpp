@@ -69,6 +69,10 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   const htri_t has_parameters = H5Lexists(file, "parameters", H5P_DEFAULT),
                has_complete = H5Lexists(file, "frames_complete", H5P_DEFAULT);
   if (has_parameters < 0 || has_complete < 0) damaged("its root group does not read");
+  if (read_string(file, "format", false) == "noether simulation checkpoint 1")
+    throw OutputError(path.string() + " is a checkpoint saved by an older noether (format 1: its own layout), which "
+                                      "this version does not read; saved simulations are now output files with one "
+                                      "frame (docs/python.md, \"Saving and loading\"): run the scene again");
   if (has_parameters == 0 || has_complete == 0)
     throw OutputError(path.string() + " is not a noether run's output (no /parameters or /frames_complete)");
   const htri_t has_checkpoint = H5Lexists(file, "checkpoint", H5P_DEFAULT);
@@ -110,6 +114,12 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   {
     const H5Handle checkpoint(H5Gopen2(file, "checkpoint", H5P_DEFAULT));
     if (checkpoint.valid()) resumed = read_string(checkpoint, "resumed", false);
+    if (checkpoint.valid() && H5Aexists(checkpoint, "t_origin") > 0) {
+      const H5Handle a(H5Aopen(checkpoint, "t_origin", H5P_DEFAULT));
+      if (!a.valid() || H5Aread(a, H5T_NATIVE_DOUBLE, &t_origin) < 0 ||
+          read_u64_attribute(checkpoint, "t_origin_checksum") != checksum64(&t_origin, sizeof(double)))
+        damaged("/checkpoint's t_origin does not read or does not match its checksum");
+    }
     const H5Handle complete(H5Dopen2(file, "frames_complete", H5P_DEFAULT));
     if (!complete.valid() || H5Dread(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames) < 0)
       damaged("/frames_complete does not read");
@@ -154,6 +164,53 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
     if (dims.size() != 2 || dims[1] != columns || dims[0] < n)
       damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(columns) + "]");
   }
+  read_summary();
+}
+
+void RunRecord::read_summary() {
+  const htri_t exists = H5Lexists(h5_, "/checkpoint/summary", H5P_DEFAULT);
+  if (exists < 0) damaged("/checkpoint does not read");
+  if (exists == 0) return;
+  const H5Handle group(H5Gopen2(h5_, "/checkpoint/summary", H5P_DEFAULT));
+  H5O_info_t info{};
+  if (!group.valid() || H5Oget_info2(group, &info, H5O_INFO_NUM_ATTRS) < 0) damaged("/checkpoint/summary does not open");
+  for (hsize_t i = 0; i < info.num_attrs; ++i) {
+    const H5Handle a(H5Aopen_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT));
+    char name[128] = {0};
+    if (!a.valid() || H5Aget_name(a, sizeof name, name) < 0) damaged("/checkpoint/summary's attributes do not read");
+    const H5Handle type(H5Aget_type(a)), space(H5Aget_space(a));
+    const std::string key = name;
+    if (key == "checksum" || key == "description") continue;
+    if (H5Tget_class(type) == H5T_STRING) {
+      summary_texts.emplace_back(key, h5::read_string(group, name, false));
+    } else {
+      const hssize_t n = H5Sget_simple_extent_npoints(space);
+      std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(0, n)));
+      if (n < 0 || n > 1024 || (n > 0 && H5Aread(a, H5T_NATIVE_DOUBLE, values.data()) < 0))
+        damaged("/checkpoint/summary's " + key + " does not read");
+      summary_numbers.emplace_back(key, std::move(values));
+    }
+  }
+  if (read_u64_attribute(group, "checksum") != summary_checksum(summary_numbers, summary_texts))
+    damaged("/checkpoint/summary does not match its checksum");
+  if (summary_numbers.empty()) damaged("/checkpoint/summary holds no numbers");
+}
+
+const std::vector<double>& RunRecord::summary_number(const std::string& name, std::size_t size) const {
+  for (const auto& [key, values] : summary_numbers)
+    if (key == name) {
+      if (values.size() != size)
+        damaged("/checkpoint/summary's " + name + " has " + std::to_string(values.size()) + " numbers, not " +
+                std::to_string(size));
+      return values;
+    }
+  damaged("/checkpoint/summary has no " + name);
+}
+
+std::string RunRecord::summary_text(const std::string& name) const {
+  for (const auto& [key, text] : summary_texts)
+    if (key == name) return text;
+  damaged("/checkpoint/summary has no " + name);
 }
 
 bool RunRecord::read(std::size_t first, std::size_t count,

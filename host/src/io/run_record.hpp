@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,15 @@ class RunRecord {
   bool custom_potential = false;
   bool checksummed = false;  // false: a file from a noether before checksums, read unverified
   std::int64_t frames = 0;   // /frames_complete
+  double t_origin = std::numeric_limits<double>::quiet_NaN();  // /checkpoint/t_origin (NaN: frame 0's time)
   std::size_t bodies = 0, rigid = 0, integrator_width = 0;
+  // A saved simulation's file (Simulation::save): /checkpoint/summary's numbers and texts by
+  // name, verified; empty for a run's output.
+  std::vector<std::pair<std::string, std::vector<double>>> summary_numbers;
+  std::vector<std::pair<std::string, std::string>> summary_texts;
+  bool saved() const { return !summary_numbers.empty(); }
+  const std::vector<double>& summary_number(const std::string& name, std::size_t size) const;
+  std::string summary_text(const std::string& name) const;
 
   // Visits frames [first, first + count) in order, reading at most `block` frames at a time;
   // OutputError names the dataset and frame that does not read or does not match its checksum.
@@ -42,6 +51,7 @@ class RunRecord {
   void read_step_records(const std::function<void(const StepSeries&)>& visit) const;
 
  private:
+  void read_summary();
   [[noreturn]] void damaged(const std::string& what) const;
   std::filesystem::path file_;
   H5Handle h5_;
