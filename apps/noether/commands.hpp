@@ -1,18 +1,36 @@
 #pragma once
-// The driver's commands, one file each: run.cpp (run, plugins), compare.cpp, orbit.cpp,
-// check_potential.cpp. Each returns the process exit code; noether::Error escapes to main().
+// The driver's commands, one file each: run.cpp (run, plugins), compare.cpp, ensemble.cpp,
+// orbit.cpp (orbit and its subcommands), check_potential.cpp. Each file registers its command
+// and options (add_*_command); main() parses and runs the one chosen. Each command returns the
+// process exit code; noether::Error escapes to main().
 #include <noether/potential_check.hpp>
 
 #include <noether/scene.hpp>
 
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <ostream>
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace noether::app {
+
+// The command the user chose, ready to run: returns the exit code.
+using Command = std::function<int()>;
+// Each adds its subcommand, with its options, to `app`; when the user chooses it, `chosen`
+// becomes the call that runs it.
+void add_run_command(CLI::App& app, Command& chosen);
+void add_plugins_command(CLI::App& app, Command& chosen);
+void add_compare_command(CLI::App& app, Command& chosen);
+void add_ensemble_command(CLI::App& app, Command& chosen);
+void add_orbit_command(CLI::App& app, Command& chosen);
+void add_check_potential_command(CLI::App& app, Command& chosen);
 
 // One line per solid body: its shape, mass, density and, for a mesh, where its centre of
 // mass was in the file and by how much it was rotated onto its principal axes.

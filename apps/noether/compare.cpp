@@ -6,6 +6,9 @@
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 
+#include <CLI/CLI.hpp>
+
+#include <memory>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -44,6 +47,45 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
   for (const auto& row : result.rows)
     if (!row.ok) return 3;
   return 0;
+}
+
+void add_compare_command(CLI::App& app, Command& chosen) {
+  struct Options {
+    std::string scene, spec_file, csv, h5, png, reference_model;
+    std::vector<std::string> overrides, runs, models;
+    int repeats = 0;
+    bool no_plot = false;
+    double max_wall_time = 0.0;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "compare", "run a scene under several integrators against a reference: work against precision");
+  cmd->add_option("scene", o->scene, "scene file (YAML)")->required();
+  cmd->add_option("--set", o->overrides, "override a scene key")->take_all();
+  cmd->add_option("--run", o->runs,
+                  "an integrator setting as YAML, lists expand: "
+                  "'{plugin: lgvi, step: [1e-3, 5e-4]}' (repeatable; default: a standard sweep)");
+  cmd->add_option("--model", o->models,
+                  "a potential as YAML, lists expand: '{plugin: mutual-series, tolerance: [1e-3, 1e-6]}' "
+                  "(repeatable; runs the scene's integrator with each model)");
+  cmd->add_option("--reference-model", o->reference_model,
+                  "the potential of the reference run for --model (default {plugin: mutual-exact})");
+  cmd->add_option("--spec", o->spec_file, "compare file: {repeats, reference, runs: [...]}");
+  cmd->add_option("--repeats", o->repeats, "repeats per run for the median wall time (default 3)");
+  cmd->add_option("-o,--csv", o->csv, "CSV table (default SCENE-compare.csv)");
+  cmd->add_option("--h5", o->h5, "HDF5 table (default SCENE-compare.h5)");
+  cmd->add_option("--plot", o->png, "work–precision plot (default SCENE-compare.png)");
+  cmd->add_flag("--no-plot", o->no_plot, "do not draw the plot");
+  cmd->add_option("--max-wall-time", o->max_wall_time,
+                  "wall-time budget of each compared run in seconds (not the reference); a run that exhausts it is "
+                  "listed as stopped")
+      ->check(CLI::NonNegativeNumber);
+  cmd->callback([o, &chosen] {
+    chosen = [o] {
+      return compare(o->scene, o->overrides, o->runs, o->models, o->reference_model, o->spec_file, o->repeats, o->csv,
+                     o->h5, o->png, !o->no_plot, o->max_wall_time);
+    };
+  });
 }
 
 }  // namespace noether::app

@@ -3,13 +3,17 @@
 
 #include <noether/ensemble.hpp>
 #include <noether/error.hpp>
+
 #ifdef NOETHER_WITH_MPI
 #include "ensemble_mpi.hpp"
 #endif
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <unistd.h>
 
 namespace noether::app {
@@ -75,6 +79,33 @@ int ensemble(const std::string& scene_file, const std::vector<std::string>& over
                            "run the ensemble without mpirun, on one machine's threads");
 #endif
   return lead(nullptr);
+}
+
+void add_ensemble_command(CLI::App& app, Command& chosen) {
+  struct Options {
+    std::string scene;
+    std::vector<std::string> overrides, vary;
+    EnsembleCommand ensemble;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand(
+      "ensemble", "run a scene many times with keys drawn from distributions, on every core, into one HDF5 file");
+  cmd->add_option("scene", o->scene, "scene file (YAML)")->required();
+  cmd->add_option("--vary", o->vary,
+                  "KEY=DIST: normal(mean, sd), uniform(a, b), log-uniform(a, b), list(v1, ...), grid(a, b, n) "
+                  "(repeatable; KEY as for --set)")
+      ->required();
+  EnsembleCommand& e = o->ensemble;
+  cmd->add_option("--samples", e.samples, "number of samples (default: the grids' points)");
+  cmd->add_option("--seed", e.seed, "random seed: sample i draws from (seed, i)")->capture_default_str();
+  cmd->add_option("--threads", e.threads, "worker threads (default: one per core)");
+  cmd->add_option("--pair", e.pair, "a,b: the bodies whose mutual orbit is recorded (default: the first two)");
+  cmd->add_option("--trajectories", e.trajectories, "write full output files for the first K samples (ENS-sample-I.h5)");
+  cmd->add_option("-o,--output", e.output, "the ensemble's HDF5 file")->required();
+  cmd->add_option("--set", o->overrides, "override a scene key for every sample")->take_all();
+  cmd->add_flag("--resume", e.resume, "continue the ensemble in the output file: run only missing samples");
+  cmd->add_flag("--force", e.force, "replace an existing output file");
+  cmd->callback([o, &chosen] { chosen = [o] { return ensemble(o->scene, o->overrides, o->vary, o->ensemble); }; });
 }
 
 }  // namespace noether::app

@@ -6,15 +6,16 @@
 #include <noether/periodic_orbit.hpp>
 #include <noether/scene.hpp>
 
-#include <sstream>
+#include <CLI/CLI.hpp>
 
 #include <complex>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <numbers>
+#include <sstream>
 
 namespace noether::app {
 
@@ -209,6 +210,98 @@ int orbit_find(OrbitOptions o) {
   }
   std::printf("%d distinct orbits from %d starts (%d starts rejected)\n", k, o.starts, failures);
   return k > 0 ? 0 : 1;
+}
+
+void add_orbit_command(CLI::App& app, Command& chosen) {
+  auto o = std::make_shared<OrbitOptions>();
+  const CLI::Validator positive(
+      [](std::string& v) -> std::string {
+        try {
+          if (std::stod(v) > 0) return {};
+        } catch (const std::exception&) {
+        }
+        return "must be a positive number, not " + v;
+      },
+      "> 0");
+  auto* orbit_cmd = app.add_subcommand("orbit", "periodic orbits: find (least action), verify, stability, refine; relative equilibria of rigid bodies");
+  orbit_cmd->require_subcommand(1);
+  auto* find_cmd = orbit_cmd->add_subcommand("find", "minimize a Fourier-discretized action from random starts");
+  auto* bodies_opt = find_cmd->add_option("--bodies", o->bodies, "number of bodies (equal masses, G = 1, point-mass)")
+                         ->capture_default_str();
+  find_cmd->add_option("--masses", o->masses, "masses (overrides --bodies)")->delimiter(',');
+  find_cmd->add_option("--scene", o->scene,
+                       "take the bodies, G and potential from this scene instead (point masses, planar)");
+  find_cmd->add_option("--set", o->overrides, "override a key of --scene")->take_all();
+  find_cmd->add_option("--period", o->period, "period T of the orbits sought (default 2 pi)")->check(positive);
+  find_cmd->add_option("--modes", o->modes, "Fourier modes per coordinate")->capture_default_str();
+  find_cmd->add_option("--points", o->points, "quadrature points (default: 100, or more than 2 × modes)");
+  find_cmd->add_flag("--choreography", o->choreography, "all bodies on one curve, z_j(t) = z(t + 2 pi j/n)");
+  find_cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
+  find_cmd->add_option("--starts", o->starts, "random starts")->capture_default_str();
+  find_cmd->add_option("--out-dir", o->out_dir, "folder for orbit-K.yaml, .csv and .png")->capture_default_str();
+  find_cmd->add_flag_callback("--no-refine", [o] { o->refine = false; }, "skip the Newton (shooting) refinement");
+  find_cmd->add_option("--max-residual", o->max_residual,
+                       "largest equation-of-motion residual along the Fourier curve to try to refine")
+      ->capture_default_str();
+  std::vector<CLI::App*> orbit_scene_cmds;
+  for (auto [name, help] : {std::pair{"verify", "integrate one period and report the closure error"},
+                            std::pair{"stability", "monodromy multipliers with the first integrals projected out"},
+                            std::pair{"refine", "Newton (shooting) on the initial state and period"}}) {
+    auto* c = orbit_cmd->add_subcommand(name, help);
+    c->add_option("scene", o->scene, "scene of the orbit (YAML)")->required();
+    c->add_option("--period", o->period, "period (default: the scene's run.t_end)")->check(positive);
+    c->add_option("--set", o->overrides, "override a scene key")->take_all();
+    c->add_option("--rtol", o->rtol, "relative tolerance of the rkf78 integration")->capture_default_str();
+    orbit_scene_cmds.push_back(c);
+  }
+  orbit_scene_cmds[0]->add_option("--tolerance", o->tolerance, "closure accepted (relative)")->capture_default_str();
+  orbit_scene_cmds[1]->add_option("--tolerance", o->tolerance, "|lambda| <= 1 + tolerance is stable")->capture_default_str();
+  orbit_scene_cmds[1]->add_option("--first-order", o->first_order, "also Vanderbei's first-order product with N steps");
+  orbit_scene_cmds[1]->add_option("--plot", o->plot, "PNG: the multipliers and the unit circle; data in the .csv beside it");
+  orbit_scene_cmds[1]->add_option("--turns", o->angle_turns,
+                                  "rigid bodies: whole turns to add to the measured angle alpha")->capture_default_str();
+  orbit_scene_cmds[2]->add_option("-o,--output", o->output, "refined scene (default: overwrite the input)");
+
+  auto* equilibrium_cmd = orbit_cmd->add_subcommand(
+      "equilibrium", "relative equilibrium of rigid bodies (locked, turning about the angular momentum) and its stability");
+  equilibrium_cmd->add_option("scene", o->scene, "scene whose state is the first guess (YAML)")->required();
+  equilibrium_cmd->add_option("--set", o->overrides, "override a scene key")->take_all();
+  equilibrium_cmd->add_option("--fix", o->fix, "the member of the family: separation, angular-momentum or rate")
+      ->check(CLI::IsMember({"separation", "angular-momentum", "rate"}))->capture_default_str();
+  equilibrium_cmd->add_option("--value", o->value, "its value (default: the scene's)");
+  equilibrium_cmd->add_option("--pair", o->pair, "a,b: the bodies whose separation is fixed (default: the first two)")
+      ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--sweep", o->sweep, "from,to,count: a table along the family, each solution the next guess")
+      ->delimiter(',')->expected(3);
+  equilibrium_cmd->add_option("--sweep-key", o->sweep_key,
+                              "KEY: --sweep varies this scene key (a mass, a semi-axis) with the --fix quantity held");
+  equilibrium_cmd->add_option("--tolerance", o->tolerance, "|Re lambda| <= tolerance x max(omega, |lambda|) is stable")
+      ->capture_default_str();
+  equilibrium_cmd->add_flag_callback("--no-align", [o] { o->align = false; },
+                                     "keep the guess's attitudes (default: principal axes turned onto the angular momentum)");
+  equilibrium_cmd->add_option("-o,--output", o->output, "write the equilibrium as a scene (one period)");
+  equilibrium_cmd->add_option("--libration", o->libration,
+                              "NAME,DEG: with -o, that body turned by DEG about the axis, librating (four libration periods)")
+      ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--lyapunov", o->lyapunov,
+                              "NAME,DEG: the periodic orbit of that body's libration at that amplitude, on the scene's "
+                              "integrator; with -o, written as a scene of one period")
+      ->delimiter(',')->expected(2);
+  equilibrium_cmd->add_option("--plot", o->plot,
+                              "PNG: the eigenvalues (or, with --sweep, the modes along the family); data in the .csv beside it");
+
+  // The subcommand chosen runs with the options as parsed.
+  const auto choose = [o, &chosen](int (*command)(const OrbitOptions&)) {
+    return [o, &chosen, command] { chosen = [o, command] { return command(*o); }; };
+  };
+  find_cmd->callback([o, &chosen, bodies_opt] {
+    o->bodies_given = bodies_opt->count() > 0;
+    chosen = [o] { return orbit_find(*o); };
+  });
+  orbit_scene_cmds[0]->callback(choose(orbit_verify));
+  orbit_scene_cmds[1]->callback(choose(orbit_stability));
+  orbit_scene_cmds[2]->callback(choose(orbit_refine));
+  equilibrium_cmd->callback(choose(orbit_equilibrium));
 }
 
 }  // namespace noether::app

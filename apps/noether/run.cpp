@@ -7,7 +7,12 @@
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
 
+#include <CLI/CLI.hpp>
+
+#include <cmath>
 #include <csignal>
+#include <limits>
+#include <memory>
 #include <cstdio>
 #include <unistd.h>
 #include <iostream>
@@ -159,6 +164,55 @@ int list_plugins() {
   }
   for (const auto& f : failures) std::fprintf(stderr, "noether: %s\n", f.c_str());
   return failures.empty() ? 0 : 1;
+}
+
+void add_run_command(CLI::App& app, Command& chosen) {
+  struct Options {
+    std::string scene, output, resume, summary = "text";
+    std::vector<std::string> overrides;
+    bool no_progress = false, force = false;
+    double max_wall_time = 0.0, resume_t_end = std::numeric_limits<double>::quiet_NaN();
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("run", "integrate a scene and print a summary");
+  cmd->add_option("scene", o->scene, "scene file (YAML)");
+  cmd->add_option("-o,--output", o->output, "HDF5 output file");
+  cmd->add_option("--resume", o->resume,
+                  "continue the run recorded in this output file from its last complete frame, appending to it "
+                  "(instead of a scene)");
+  cmd->add_option("--t-end", o->resume_t_end, "with --resume: a later end time, to extend a run");
+  cmd->add_option("--set", o->overrides, "override a scene key: --set integrator.step=1e-3")->take_all();
+  cmd->add_flag("--no-progress", o->no_progress, "no progress line on stderr");
+  cmd->add_flag("--force", o->force, "overwrite an existing output file (never a link or the scene)");
+  cmd->add_option("--summary", o->summary, "the summary on stdout: text, or json (one object)")
+      ->check(CLI::IsMember({"text", "json"}))
+      ->capture_default_str();
+  cmd->add_option("--max-wall-time", o->max_wall_time,
+                  "stop after this many seconds of wall time, like an event (output complete up to there)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->callback([o, &chosen] {
+    chosen = [o] {
+      if (o->resume.empty() == o->scene.empty()) {
+        std::cerr << "noether run: give a scene, or --resume FILE.h5 (not both)\n";
+        return 2;
+      }
+      if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force)) {
+        std::cerr << "noether run: --resume appends to the file it continues, with the scene recorded there: "
+                     "-o, --set and --force do not apply (extend a run with --t-end)\n";
+        return 2;
+      }
+      if (o->resume.empty() && !std::isnan(o->resume_t_end)) {
+        std::cerr << "noether run: --t-end goes with --resume; for a new run use --set run.t_end=T\n";
+        return 2;
+      }
+      return run(o->scene, o->output, o->overrides, !o->no_progress, o->force, o->summary == "json", o->max_wall_time,
+                 o->resume, o->resume_t_end);
+    };
+  });
+}
+
+void add_plugins_command(CLI::App& app, Command& chosen) {
+  app.add_subcommand("plugins", "list every plugin found")->callback([&chosen] { chosen = list_plugins; });
 }
 
 }  // namespace noether::app
