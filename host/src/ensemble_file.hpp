@@ -1,0 +1,254 @@
+#pragma once
+// EnsembleFile: the HDF5 file of `noether ensemble` (internal to libnoether; ensemble.cpp runs
+// the samples and hands each result to it). docs/ensembles.md lists its layout.
+#include <noether/ensemble.hpp>
+#include <noether/error.hpp>
+
+#include "h5_helpers.hpp"
+#include "io/file_access.hpp"
+#include "io/safe_publish.hpp"
+
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace noether::detail {
+
+using namespace noether::h5;
+
+inline std::string override_of(const Variation& v, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return v.key + "=" + buf;
+}
+
+const char* const kSummary[] = {"final_time",   "max_abs_energy_error", "max_rel_energy_error",
+                                "max_rel_angular_momentum_error", "min_distance", "steps",
+                                "potential_evaluations"};
+constexpr std::size_t kSummaryCount = sizeof kSummary / sizeof kSummary[0];
+constexpr std::size_t kMessageBytes = 512;
+
+// The ensemble file: fixed-size datasets allocated up front (a kill changes raw data only), one
+// row per sample, /outcome written after the row (−1: not run).
+class EnsembleFile {
+ public:
+  EnsembleFile(const std::filesystem::path& path, const Scene& scene, const std::string& scene_text,
+               const std::vector<std::string>& overrides, const EnsembleOptions& options, std::size_t samples,
+               std::size_t pair_a, std::size_t pair_b)
+      : samples_(samples), nb_(scene.system.size()), nr_(scene.system.rigid_count()) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
+    std::error_code ec;
+    const bool exists = std::filesystem::exists(path, ec);
+    std::string recorded;
+    {
+      std::ostringstream id;  // what makes two ensembles the same one
+      id << scene_text << "\n--\n";
+      for (const auto& o : overrides) id << o << "\n";
+      for (const auto& v : options.vary) id << "vary " << v.text << "\n";
+      id << "seed " << options.seed << "\nsamples " << samples << "\npair " << pair_a << "," << pair_b << "\n";
+      identity_ = id.str();
+    }
+    if (exists && !options.resume && !options.overwrite)
+      throw OutputError(path.string() + " exists: pass --resume to continue that ensemble, or --force to replace it");
+    if (options.resume && exists) {
+      file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      if (file_ < 0) throw OutputError("cannot open " + path.string() + " to resume it" + system_reason());
+      recorded = read_string(file_, "identity", false);
+      if (recorded != identity_) {
+        H5Fclose(file_);
+        throw OutputError(path.string() + " holds another ensemble (scene, overrides, --vary, --seed, --samples or "
+                                          "--pair differ); resume it with the command that made it");
+      }
+      outcome_ = H5Dopen2(file_, "outcome", H5P_DEFAULT);
+      done_.assign(samples, -1);
+      H5Dread(outcome_, H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, done_.data());
+      return;
+    }
+    // Built under a hidden name and renamed into place once its layout is complete, so the path
+    // holds either nothing (or the file --force replaces) or a whole layout, whenever a kill comes.
+    // (io/safe_publish.hpp: a link, or another process writing the path, is refused.)
+    const int claimed = io::claim_output(path, true);
+    const std::filesystem::path partial = io::partial_name(path);
+    try {
+      lock_ = io::create_partial(partial, path);
+    } catch (...) {
+      if (claimed >= 0) ::close(claimed);
+      throw;
+    }
+    file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
+    if (file_ < 0) {
+      if (claimed >= 0) ::close(claimed);
+      ::close(lock_);
+      lock_ = -1;
+      std::filesystem::remove(partial, ec);
+      throw OutputError("cannot create " + path.string() + system_reason());
+    }
+    string_attribute(file_, "identity", identity_);
+    string_attribute(file_, "description",
+                     "noether ensemble: one row per sample; outcome -1 not run, 0 completed, 1 stopped by an "
+                     "event, 2 failed (message)");
+    string_dataset(file_, "scene", scene_text, "the scene file's text");
+    std::string joined;
+    for (const auto& o : overrides) joined += (joined.empty() ? "" : "\n") + o;
+    string_attribute(file_, "overrides", joined);
+    numeric_attribute<std::uint64_t>(file_, "seed", H5T_NATIVE_UINT64, {options.seed});
+    string_attribute(file_, "units", scene.units.describe());
+    string_attribute(file_, "pair", scene.system.body(pair_a).name + "," + scene.system.body(pair_b).name);
+    hid_t inputs = make_group(file_, "inputs");
+    for (const auto& v : options.vary) {
+      hid_t d = create(inputs, v.key.c_str(), H5T_NATIVE_DOUBLE, {});
+      string_attribute(d, "distribution", v.text);
+      H5Dclose(d);
+    }
+    H5Gclose(inputs);
+    outcome_ = create(file_, "outcome", H5T_NATIVE_INT8, {});
+    string_attribute(outcome_, "description", "-1 not run, 0 completed, 1 stopped by an event, 2 failed");
+    hid_t message_type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(message_type, kMessageBytes);
+    H5Dclose(create(file_, "message", message_type, {}));
+    H5Tclose(message_type);
+    hid_t summary = make_group(file_, "summary");
+    for (const char* name : kSummary) H5Dclose(create(summary, name, H5T_NATIVE_DOUBLE, {}));
+    H5Gclose(summary);
+    hid_t fin = make_group(file_, "final");
+    H5Dclose(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}));
+    H5Dclose(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}));
+    if (nr_ > 0) {
+      H5Dclose(create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3}));
+      H5Dclose(create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3}));
+    }
+    H5Gclose(fin);
+    hid_t orbit = make_group(file_, "orbit");
+    string_attribute(orbit, "description",
+                     "the pair's osculating mutual orbit at the end: semi-major axis, eccentricity, period "
+                     "(NaN when unbound)");
+    for (const char* name : {"a", "e", "period"}) H5Dclose(create(orbit, name, H5T_NATIVE_DOUBLE, {}));
+    H5Gclose(orbit);
+    hid_t timing = make_group(file_, "timing");
+    string_attribute(timing, "description", "wall times: not results, they differ from run to run");
+    H5Dclose(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}));
+    H5Dclose(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}));
+    hid_t trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
+    string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
+                                           "-1 not run or failed");
+    H5Dclose(trust);
+    H5Gclose(timing);
+    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    try {
+      io::publish_file(partial, path, claimed >= 0);
+    } catch (...) {
+      H5Fclose(file_);
+      file_ = -1;
+      std::filesystem::remove(partial, ec);
+      if (claimed >= 0) ::close(claimed);
+      throw;
+    }
+    if (claimed >= 0) ::close(claimed);
+    done_.assign(samples, -1);
+  }
+  ~EnsembleFile() {
+    if (outcome_ >= 0) H5Dclose(outcome_);
+    if (file_ >= 0) H5Fclose(file_);
+    if (lock_ >= 0) ::close(lock_);
+  }
+  bool done(std::size_t i) const { return done_[i] >= 0; }
+
+  // The row of sample i, then (after a flush) its outcome.
+  void write(std::size_t i, const std::vector<double>& inputs, const std::vector<Variation>& vary,
+             const SampleResult& r) {
+    for (std::size_t k = 0; k < vary.size(); ++k) put(("inputs/" + vary[k].key).c_str(), i, &inputs[k], 1);
+    char message[kMessageBytes] = {};
+    std::strncpy(message, r.message.c_str(), kMessageBytes - 1);
+    hid_t type = H5Tcopy(H5T_C_S1);
+    H5Tset_size(type, kMessageBytes);
+    put("message", i, message, 1, type);
+    H5Tclose(type);
+    for (std::size_t k = 0; k < kSummaryCount; ++k)
+      put((std::string("summary/") + kSummary[k]).c_str(), i, &r.summary[k], 1);
+    if (r.final_state.x.cols() > 0) {
+      put("final/positions", i, r.final_state.x.data(), 3 * nb_);
+      put("final/momenta", i, r.final_state.p.data(), 3 * nb_);
+      if (nr_ > 0) {
+        std::vector<double> R;
+        for (const auto& Rk : r.final_state.R)
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) R.push_back(Rk(a, b));
+        put("final/attitudes", i, R.data(), 9 * nr_);
+        put("final/angular_momenta", i, r.final_state.Pi.data(), 3 * nr_);
+      }
+    }
+    put("orbit/a", i, &r.a, 1);
+    put("orbit/e", i, &r.e, 1);
+    put("orbit/period", i, &r.period, 1);
+    put("trustworthy", i, &r.trustworthy, 1, H5T_NATIVE_INT8);
+    put("timing/wall_seconds", i, &r.wall, 1);
+    put("timing/setup_seconds", i, &r.setup, 1);
+    pending_.push_back({i, r.outcome});
+  }
+  // Flushes the rows, then writes their outcomes and flushes again: a kill leaves every
+  // sample with an outcome complete.
+  void commit() {
+    if (pending_.empty()) return;
+    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    for (const auto& [i, outcome] : pending_) {
+      put_id(outcome_, i, &outcome, 1, H5T_NATIVE_INT8);
+      done_[i] = outcome;
+    }
+    pending_.clear();
+    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+  }
+
+ private:
+  hid_t create(hid_t parent, const char* name, hid_t type, std::vector<hsize_t> shape) {
+    std::vector<hsize_t> dims{samples_};
+    dims.insert(dims.end(), shape.begin(), shape.end());
+    hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
+    H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
+    if (H5Tequal(type, H5T_NATIVE_DOUBLE) > 0) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      H5Pset_fill_value(plist, type, &nan);
+    } else if (H5Tequal(type, H5T_NATIVE_INT8) > 0) {
+      const std::int8_t none = -1;
+      H5Pset_fill_value(plist, type, &none);
+    }
+    hid_t d = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), name);
+    H5Pclose(plist);
+    H5Sclose(space);
+    return d;
+  }
+  void put(const char* path, std::size_t i, const void* data, std::size_t count, hid_t type = H5T_NATIVE_DOUBLE) {
+    hid_t d = check_id(H5Dopen2(file_, path, H5P_DEFAULT), path);
+    put_id(d, i, data, count, type);
+    H5Dclose(d);
+  }
+  void put_id(hid_t d, std::size_t i, const void* data, std::size_t count, hid_t type) {
+    hid_t space = H5Dget_space(d);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    std::vector<hsize_t> dims(static_cast<std::size_t>(rank)), start(dims.size(), 0);
+    H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    start[0] = i;
+    dims[0] = 1;
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, dims.data(), nullptr);
+    const hsize_t n = count;
+    hid_t mem = H5Screate_simple(1, &n, nullptr);
+    check(H5Dwrite(d, type, mem, space, H5P_DEFAULT, data), "writing a sample");
+    H5Sclose(mem);
+    H5Sclose(space);
+  }
+
+  hid_t file_ = -1, outcome_ = -1;
+  int lock_ = -1;  // the new file's lock (io::create_partial), held while it is written
+  hsize_t samples_;
+  hsize_t nb_, nr_;
+  std::string identity_;
+  std::vector<std::int8_t> done_;
+  std::vector<std::pair<std::size_t, std::int8_t>> pending_;
+};
+
+}  // namespace noether::detail

@@ -1,0 +1,139 @@
+// Ensemble sampling (docs/ensembles.md): --vary KEY=DIST parsed, and sample i's values drawn
+// from (seed, i) alone, so that any sample can be run, or run again, by itself.
+#include <noether/ensemble.hpp>
+#include <noether/error.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <sstream>
+
+namespace noether {
+
+namespace {
+
+double number(const std::string& text, const std::string& where) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  while (used < text.size() && std::isspace(static_cast<unsigned char>(text[used]))) ++used;
+  if (used != text.size() || text.empty() || !std::isfinite(v))
+    throw SceneError(where + ": '" + text + "' is not a finite number");
+  return v;
+}
+
+// splitmix64: a stateless, portable hash of (seed, index, k) to 64 random bits.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+// A uniform double in (0, 1) from (seed, index, stream): 53 bits, never 0.
+double uniform01(std::uint64_t seed, std::uint64_t index, std::uint64_t stream) {
+  const std::uint64_t bits = mix(mix(mix(seed) ^ index) ^ (stream * 0x632be59bd9b4e019ULL));
+  return (static_cast<double>(bits >> 11) + 0.5) * 0x1p-53;
+}
+
+}  // namespace
+
+Variation parse_variation(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--vary '" + text + "': expected KEY=DISTRIBUTION, e.g. bodies.beta.mass=normal(1, 0.01)");
+  Variation v;
+  v.key = text.substr(0, eq);
+  v.text = text;
+  const std::string spec = text.substr(eq + 1);
+  const auto open = spec.find('('), close = spec.rfind(')');
+  const std::string where = "--vary " + v.key;
+  if (open == std::string::npos || close == std::string::npos || close < open || close + 1 != spec.size())
+    throw SceneError(where + ": '" + spec +
+                     "' is not a distribution: normal(mean, sd), uniform(a, b), log-uniform(a, b), list(v1, ...), "
+                     "grid(a, b, n)");
+  const std::string name = spec.substr(0, open);
+  std::vector<std::string> parts;
+  {
+    std::stringstream ss(spec.substr(open + 1, close - open - 1));
+    for (std::string part; std::getline(ss, part, ',');) {
+      const auto a = part.find_first_not_of(" \t"), b = part.find_last_not_of(" \t");
+      parts.push_back(a == std::string::npos ? std::string() : part.substr(a, b - a + 1));
+    }
+  }
+  for (const auto& p : parts) v.args.push_back(number(p, where));
+  auto need = [&](std::size_t n, const char* form) {
+    if (v.args.size() != n) throw SceneError(where + ": " + name + " takes " + form + ", not '" + spec + "'");
+  };
+  if (name == "normal") {
+    v.kind = Variation::Kind::Normal;
+    need(2, "(mean, sd)");
+    if (!(v.args[1] >= 0)) throw SceneError(where + ": normal's standard deviation must be ≥ 0");
+  } else if (name == "uniform") {
+    v.kind = Variation::Kind::Uniform;
+    need(2, "(a, b)");
+    if (!(v.args[0] < v.args[1])) throw SceneError(where + ": uniform(a, b) needs a < b");
+  } else if (name == "log-uniform") {
+    v.kind = Variation::Kind::LogUniform;
+    need(2, "(a, b)");
+    if (!(v.args[0] > 0 && v.args[0] < v.args[1])) throw SceneError(where + ": log-uniform(a, b) needs 0 < a < b");
+  } else if (name == "list") {
+    v.kind = Variation::Kind::List;
+    if (v.args.empty()) throw SceneError(where + ": list() needs at least one value");
+  } else if (name == "grid") {
+    v.kind = Variation::Kind::Grid;
+    need(3, "(a, b, n)");
+    if (!(v.args[2] >= 1 && v.args[2] == std::floor(v.args[2]) && v.args[2] <= 1e9))
+      throw SceneError(where + ": grid(a, b, n) needs a whole n ≥ 1");
+    if (v.args[2] > 1 && !(v.args[0] < v.args[1])) throw SceneError(where + ": grid(a, b, n) needs a < b");
+  } else {
+    throw SceneError(where + ": unknown distribution '" + name +
+                     "' (normal, uniform, log-uniform, list, grid)");
+  }
+  return v;
+}
+
+std::size_t grid_size(const std::vector<Variation>& vary) {
+  std::size_t n = 1;
+  for (const auto& v : vary)
+    if (v.kind == Variation::Kind::Grid) n *= static_cast<std::size_t>(v.args[2]);
+  return n;
+}
+
+std::vector<double> sample_values(const std::vector<Variation>& vary, std::uint64_t seed, std::size_t index) {
+  std::vector<double> out;
+  // Grids: the index in mixed radix, the first grid the slowest digit.
+  std::size_t stride = grid_size(vary);
+  for (std::size_t k = 0; k < vary.size(); ++k) {
+    const Variation& v = vary[k];
+    const double u1 = uniform01(seed, index, 2 * k), u2 = uniform01(seed, index, 2 * k + 1);
+    switch (v.kind) {
+      case Variation::Kind::Normal:  // Box–Muller
+        out.push_back(v.args[0] + v.args[1] * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2));
+        break;
+      case Variation::Kind::Uniform:
+        out.push_back(v.args[0] + (v.args[1] - v.args[0]) * u1);
+        break;
+      case Variation::Kind::LogUniform:
+        out.push_back(std::exp(std::log(v.args[0]) + (std::log(v.args[1]) - std::log(v.args[0])) * u1));
+        break;
+      case Variation::Kind::List:
+        out.push_back(v.args[std::min(v.args.size() - 1, static_cast<std::size_t>(u1 * static_cast<double>(v.args.size())))]);
+        break;
+      case Variation::Kind::Grid: {
+        const auto n = static_cast<std::size_t>(v.args[2]);
+        stride /= n;
+        const std::size_t digit = (index / stride) % n;
+        out.push_back(n == 1 ? v.args[0] : v.args[0] + (v.args[1] - v.args[0]) * static_cast<double>(digit) /
+                                                           static_cast<double>(n - 1));
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace noether

@@ -1,0 +1,254 @@
+// Scene text → Params: YAML read with every node's "file:line", expansion limits against alias
+// bombs, --set overrides, and back to YAML (scene_as_run). parse_scene (scene.cpp) builds the
+// scene from the tree.
+#include "scene_yaml.hpp"
+
+#include <noether/error.hpp>
+#include <noether/scene.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+
+namespace noether {
+
+namespace {
+
+// The most values a document may expand to. YAML aliases are shared, not copied, by the
+// parser; expanding them here is where a few lines (an "alias bomb") could take gigabytes.
+// Beyond kFreeExpansion values, a document may also expand to at most kMaxExpansionRatio
+// times the values it writes: aliases that repeat a body's inertia are fine, aliases repeated
+// within aliases are not.
+constexpr std::size_t kMaxValues = 1'000'000;
+constexpr std::size_t kFreeExpansion = 100'000;
+constexpr std::size_t kMaxExpansionRatio = 100;
+
+// YAML → Params, keeping "file:line" of every node; `budget` counts the values left.
+Params to_params(const YAML::Node& node, const std::string& file, std::size_t& budget) {
+  const std::string where =
+      node.Mark().line >= 0 ? file + ":" + std::to_string(node.Mark().line + 1) : file;
+  if (budget-- == 0)
+    throw SceneError(where + ": the document expands to more than " + std::to_string(kMaxValues) +
+                     " values (aliases repeated within aliases?); noether refuses it");
+  switch (node.Type()) {
+    case YAML::NodeType::Scalar: return Params::scalar(node.Scalar(), where);
+    case YAML::NodeType::Sequence: {
+      std::vector<Params> items;
+      for (const auto& item : node) items.push_back(to_params(item, file, budget));
+      return Params::sequence(std::move(items), where);
+    }
+    case YAML::NodeType::Map: {
+      std::vector<std::pair<std::string, Params>> entries;
+      for (const auto& kv : node) {
+        if (!kv.first.IsScalar())
+          throw SceneError(file + ":" + std::to_string(kv.first.Mark().line + 1) +
+                           ": a key must be a plain name, not a list or a mapping");
+        const std::string key = kv.first.Scalar();
+        for (const auto& e : entries)
+          if (e.first == key)
+            throw SceneError(file + ":" + std::to_string(kv.first.Mark().line + 1) +
+                             ": key '" + key + "' appears twice");
+        entries.emplace_back(key, to_params(kv.second, file, budget));
+      }
+      return Params::map(std::move(entries), where);
+    }
+    default: return Params::scalar("", where);  // an empty value
+  }
+}
+
+// The number of values `node` expands to, counted without expanding anything: an alias is the
+// anchored node itself (it carries the anchor's position), so each distinct node is counted
+// once and its count reused wherever it is repeated (`written` counts the values visited, not
+// repeated). Stops past `limit`; `line` is then the line of the first (innermost) node found to
+// exceed it. An alias inside the node it names (a
+// cycle, which yaml-cpp accepts) and nesting deeper than kMaxDepth are refused.
+constexpr int kMaxDepth = 200;
+constexpr std::size_t kCounting = std::numeric_limits<std::size_t>::max();
+using SizeMemo = std::map<std::pair<std::size_t, int>, std::size_t>;
+struct Expansion {
+  SizeMemo memo;
+  std::size_t written = 0;  // values visited once (not through a repeated alias)
+  int line = -1;
+};
+std::size_t expanded_size(const YAML::Node& node, const std::string& file, Expansion& e, std::size_t limit,
+                          int depth = 0) {
+  SizeMemo& memo = e.memo;
+  const YAML::Mark mark = node.Mark();
+  if (depth > kMaxDepth)
+    throw SceneError(file + ":" + std::to_string(mark.line + 1) + ": values nested deeper than " +
+                     std::to_string(kMaxDepth) + " levels; noether refuses the document");
+  if (!node.IsSequence() && !node.IsMap()) {
+    ++e.written;
+    return 1;
+  }
+  const std::pair<std::size_t, int> key{static_cast<std::size_t>(mark.pos), static_cast<int>(node.Type())};
+  if (mark.pos >= 0) {
+    if (const auto found = memo.find(key); found != memo.end()) {
+      if (found->second == kCounting)
+        throw SceneError(file + ":" + std::to_string(mark.line + 1) +
+                         ": an alias refers to a value that contains it (an endless document); noether refuses it");
+      return found->second;
+    }
+    memo[key] = kCounting;
+  }
+  ++e.written;
+  std::size_t n = 1;
+  if (node.IsSequence()) {
+    for (const auto& item : node)
+      if ((n += expanded_size(item, file, e, limit, depth + 1)) > limit) break;
+  } else {
+    for (const auto& kv : node)
+      if ((n += expanded_size(kv.second, file, e, limit, depth + 1)) > limit) break;
+  }
+  n = std::min(n, limit + 1);
+  if (n > limit && e.line < 0) e.line = mark.line;
+  if (mark.pos >= 0) memo[key] = n;
+  return n;
+}
+
+}  // namespace
+
+Params parse_yaml(const std::string& text, const std::string& file) {
+  try {
+    const YAML::Node document = YAML::Load(text);
+    Expansion expansion;
+    const std::size_t values = expanded_size(document, file, expansion, kMaxValues);
+    if (values > kMaxValues)
+      throw SceneError(file + ":" + std::to_string(expansion.line + 1) + ": the document expands to more than " + std::to_string(kMaxValues) +
+                       " values (aliases repeated within aliases?); noether refuses it");
+    if (values > kFreeExpansion && values > kMaxExpansionRatio * expansion.written)
+      throw SceneError(file + ": aliases expand the document's " + std::to_string(expansion.written) +
+                       " values to " + std::to_string(values) + ", more than " + std::to_string(kMaxExpansionRatio) +
+                       " times (aliases repeated within aliases?); noether refuses it");
+    std::size_t budget = kMaxValues;  // the same bound, kept while expanding
+    return to_params(document, file, budget);
+  } catch (const YAML::Exception& e) {  // a parse error, or anything else yaml-cpp refuses
+    std::ostringstream msg;
+    msg << file << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+        << ": malformed YAML: " << e.msg;
+    throw SceneError(msg.str());
+  }
+}
+
+// "--set a.b.c=value": edits the tree in place.
+void apply_override(Params& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError("--set '" + assignment + "': expected key=value, e.g. integrator.step=1e-3");
+  const std::string key = assignment.substr(0, eq);
+  const std::string where = "--set " + key;
+  Params value = parse_yaml(assignment.substr(eq + 1), where);
+  if (value.is_null()) value = Params::scalar("", where);
+
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  Params* node = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    Params* next = nullptr;
+    if (node->is_map()) {
+      next = node->find(part);
+      if (!next) {  // an optional mapping the scene leaves out (run.trust): made here; a
+                    // misspelt key is refused by the scene's key checks
+        node->set(part, Params::map({}, where));
+        next = node->find(part);
+      }
+    } else if (node->is_sequence()) {
+      auto& items = node->mutable_items();
+      // An index: digits only, and short enough to be one (longer ones are no element either).
+      const bool numeric = !part.empty() && part.size() <= 9 && part.find_first_not_of("0123456789") == std::string::npos;
+      if (numeric && std::stoul(part) < items.size()) next = &items[std::stoul(part)];
+      // Bodies by name; a name with dots ("a.b") spans several parts: the longest that names
+      // a body is taken.
+      for (std::size_t j = parts.size() - 1; !next && j-- > i;) {
+        std::string name = parts[i];
+        for (std::size_t k = i + 1; k <= j; ++k) name += "." + parts[k];
+        for (auto& item : items)
+          if (!next && item.is_map() && item.has("name") && item.at("name").is_scalar() &&
+              item.at("name").as_string() == name) {
+            next = &item;
+            i = j;
+          }
+      }
+    }
+    if (!next)
+      throw SceneError("--set " + key + ": the scene has no '" + part + "' at '" +
+                       (node->path().empty() ? std::string("top level") : node->path()) + "'");
+    node = next;
+  }
+  if (node->is_sequence()) {  // one item of a list: velocity.1=0.17
+    auto& items = node->mutable_items();
+    const std::string& last = parts.back();
+    const bool numeric = !last.empty() && last.size() <= 9 && last.find_first_not_of("0123456789") == std::string::npos;
+    if (numeric && std::stoul(last) < items.size()) {
+      items[std::stoul(last)] = std::move(value);
+      return;
+    }
+    throw SceneError("--set " + key + ": '" + key.substr(0, key.size() - last.size() - 1) + "' has no item '" +
+                     last + "' (it has " + std::to_string(items.size()) + ", numbered from 0)");
+  }
+  if (!node->is_map() && !node->is_null())
+    throw SceneError("--set " + key + ": '" + node->path() + "' is not a mapping");
+  node->set(parts.back(), std::move(value));
+}
+namespace {
+std::string read_file(const std::filesystem::path& file, const char* what) {
+  std::ifstream in(file);
+  if (!in) throw SceneError(file.string() + ": cannot open the " + what);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+}  // namespace
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  return parse_scene(read_file(file, "scene file"), file.string(), overrides);
+}
+
+Params parse_params(const std::string& text, const std::string& file) {
+  Params p = parse_yaml(text, file);
+  p.set_path("");
+  return p;
+}
+
+Params load_params_file(const std::filesystem::path& file) {
+  return parse_params(read_file(file, "file"), file.string());
+}
+
+namespace {
+
+void emit(YAML::Emitter& out, const Params& p) {
+  if (p.is_scalar()) {
+    out << p.as_string();
+  } else if (p.is_sequence()) {  // [x, y, z] on one line; a list of mappings (bodies) in blocks
+    bool mappings = false;
+    for (const auto& item : p.items()) mappings = mappings || item.is_map();
+    if (!mappings) out << YAML::Flow;
+    out << YAML::BeginSeq;
+    for (const auto& item : p.items()) emit(out, item);
+    out << YAML::EndSeq;
+  } else if (p.is_map()) {
+    out << YAML::BeginMap;
+    for (const auto& [key, value] : p.entries()) {
+      out << YAML::Key << key << YAML::Value;
+      emit(out, value);
+    }
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Null;
+  }
+}
+
+}  // namespace
+
+std::string scene_as_run(const Scene& scene) {
+  YAML::Emitter out;
+  emit(out, scene.root);
+  return std::string(out.c_str()) + "\n";
+}
+}  // namespace noether
