@@ -14,7 +14,6 @@
 // (our sign of M is the negative of Lee et al.'s in the relative equations). Attitudes are
 // carried as nine plain numbers, as Lee et al.'s Runge–Kutta does: a general-purpose solver lets
 // them drift off SO(3), and that drift is part of what noether reports.
-#include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
@@ -32,7 +31,7 @@ namespace noether {
 
 // An interface only: the forms live in continuous_equations.cpp. Each holds the potential
 // with a workspace of its own (PotentialEvaluator), so it is one thread's.
-class NOETHER_API ContinuousEquations {
+class ContinuousEquations {
  public:
   virtual ~ContinuousEquations();
   virtual std::size_t size() const = 0;

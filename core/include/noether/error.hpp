@@ -5,7 +5,6 @@
 // Each class has its destructor defined in libnoether (its key function), so that its vtable
 // lives there and not in a plugin: an exception thrown by a plugin stays valid after the
 // plugin library is unloaded during stack unwinding.
-#include <noether/export.hpp>
 
 #include <stdexcept>
 #include <string>
@@ -15,7 +14,7 @@
 
 namespace noether {
 
-class NOETHER_API Error : public std::runtime_error {
+class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
   ~Error() override;
@@ -23,14 +22,14 @@ class NOETHER_API Error : public std::runtime_error {
 
 // A scene that cannot be run: malformed YAML, a missing or unknown key, impossible physics.
 // The message starts with "file:line:" when the place is known.
-class NOETHER_API SceneError : public Error {
+class SceneError : public Error {
  public:
   using Error::Error;
   ~SceneError() override;
 };
 
 // A plugin that cannot be found, loaded or used.
-class NOETHER_API PluginError : public Error {
+class PluginError : public Error {
  public:
   using Error::Error;
   ~PluginError() override;
@@ -38,7 +37,7 @@ class NOETHER_API PluginError : public Error {
 
 // An integrator that cannot continue (a Newton solve that fails, a step too large for the
 // spin, a solver error). `t_reached` is the last time at which the state was valid.
-class NOETHER_API IntegrationError : public Error {
+class IntegrationError : public Error {
  public:
   IntegrationError(const std::string& what, double t_reached)
       : Error(what), t_reached_(t_reached) {}
@@ -50,7 +49,7 @@ class NOETHER_API IntegrationError : public Error {
 };
 
 // Output files that cannot be written.
-class NOETHER_API OutputError : public Error {
+class OutputError : public Error {
  public:
   using Error::Error;
   ~OutputError() override;

@@ -2,7 +2,6 @@
 // The exact mutual potential of two homogeneous bodies (docs/equations.md §14): one body's
 // exact exterior field integrated over the other's surface, refined until two successive
 // quadrature levels agree to a tolerance. Same frames and outputs as MutualSeries.
-#include <noether/export.hpp>
 #include <noether/gravity_field.hpp>
 #include <noether/mutual_series.hpp>
 #include <noether/solid.hpp>
@@ -20,7 +19,7 @@ struct ExactMutualOptions {
   enum class Surface { Automatic, A, B } surface = Surface::Automatic;  // whose surface
 };
 
-class NOETHER_API ExactMutual {
+class ExactMutual {
  public:
   // A null solid is a point mass of the given mass.
   ExactMutual(double G, std::shared_ptr<const Solid> A, double mass_A,

@@ -2,7 +2,6 @@
 // Exact exterior gravity fields of homogeneous bodies, per unit mass: the potential Φ (< 0)
 // and the acceleration g = −∇Φ (docs/equations.md §14), and quadrature rules over their
 // surfaces. The fields are the oracle of the mutual potential (mutual-exact plugin, tests).
-#include <noether/export.hpp>
 #include <noether/lie.hpp>
 #include <noether/mesh.hpp>
 
@@ -20,7 +19,7 @@ struct FieldValue {
 };
 
 // Werner & Scheeres 1997 Eq. 8, 15: sums over edges and faces of a closed polyhedron.
-class NOETHER_API PolyhedronField {
+class PolyhedronField {
  public:
   PolyhedronField(const Mesh& mesh, double G_density);
   FieldValue operator()(const Vec3& r) const;
@@ -42,7 +41,7 @@ class NOETHER_API PolyhedronField {
 };
 
 // MacMillan 1930: Φ = −πGρabc [I₀(λ) − Σ x_i² I_i(λ)], with Carlson's R_F and R_D.
-class NOETHER_API EllipsoidField {
+class EllipsoidField {
  public:
   EllipsoidField(const Vec3& semi_axes, double G_density);
   FieldValue operator()(const Vec3& r) const;
@@ -59,12 +58,12 @@ struct SurfaceRule {
 };
 
 // Collapsed (Duffy) Gauss–Legendre with n × n points on every face.
-NOETHER_API SurfaceRule polyhedron_surface_rule(const Mesh& mesh, int n);
+SurfaceRule polyhedron_surface_rule(const Mesh& mesh, int n);
 // Gauss–Legendre in cos θ (n_theta points) × trapezoid in φ (n_phi points): spectral.
-NOETHER_API SurfaceRule ellipsoid_surface_rule(const Vec3& semi_axes, int n_theta, int n_phi);
+SurfaceRule ellipsoid_surface_rule(const Vec3& semi_axes, int n_theta, int n_phi);
 
 // Gauss–Legendre nodes and weights on [0, 1].
-NOETHER_API void gauss_legendre01(int n, std::vector<double>& nodes, std::vector<double>& weights);
+void gauss_legendre01(int n, std::vector<double>& nodes, std::vector<double>& weights);
 
 }  // namespace noether
 

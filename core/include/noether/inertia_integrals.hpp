@@ -2,7 +2,6 @@
 // Inertia integrals T^{lmn} = ∫ x^l y^m z^n dm of a body about its centre of mass, in its
 // body frame, for l + m + n ≤ N (docs/equations.md §12; Hou, Scheeres & Xin 2017 Eq. 16, 20).
 // Not mass-normalised: T^{000} = M, and the second moments give the inertia tensor.
-#include <noether/export.hpp>
 #include <noether/lie.hpp>
 #include <noether/mesh.hpp>
 
@@ -27,10 +26,10 @@ constexpr int index(int l, int m, int n) {
   return first_of_degree(d) + r * (r + 1) / 2 + n;
 }
 // (l, m, n) of every index below count(kMaxDegree).
-NOETHER_API const std::array<int, 3>& exponents(int index);
-NOETHER_API int degree(int index);
+const std::array<int, 3>& exponents(int index);
+int degree(int index);
 // n! for n ≤ 2 kMaxDegree + 3, as a double.
-NOETHER_API double factorial(int n);
+double factorial(int n);
 }  // namespace multi_index
 
 struct InertiaIntegrals {
@@ -45,25 +44,25 @@ struct InertiaIntegrals {
 
 // Homogeneous ellipsoid with semi-axes (a, b, c) along (x, y, z) (Hou et al. 2017 Eq. 26):
 // T^{lmn} = 3M (l−1)!! (m−1)!! (n−1)!! a^l b^m c^n / (l+m+n+3)!! when l, m, n are all even.
-NOETHER_API InertiaIntegrals ellipsoid_integrals(double mass, const Vec3& semi_axes, int order);
+InertiaIntegrals ellipsoid_integrals(double mass, const Vec3& semi_axes, int order);
 
 // Homogeneous polyhedron of density ρ, exactly, as a sum over the signed tetrahedra
 // (origin, v1, v2, v3) of its faces: correct for non-star-shaped bodies. About the origin
 // of the mesh's coordinates (docs/equations.md (12.4)).
-NOETHER_API InertiaIntegrals polyhedron_integrals(const Mesh& mesh, double density, int order);
+InertiaIntegrals polyhedron_integrals(const Mesh& mesh, double density, int order);
 
 // Point masses m_p at ρ_p: T^α = Σ m_p ρ_p^α.
-NOETHER_API InertiaIntegrals point_integrals(const std::vector<double>& masses,
+InertiaIntegrals point_integrals(const std::vector<double>& masses,
                                              const std::vector<Vec3>& positions, int order);
 
 // Integrals of degree ≤ 2 of a body known only by its mass and inertia tensor J (about
 // its centre of mass): ∫ x xᵀ dm = ½ tr(J) I − J.
-NOETHER_API InertiaIntegrals integrals_from_inertia(double mass, const Mat3& J);
+InertiaIntegrals integrals_from_inertia(double mass, const Mat3& J);
 
 // T'^α = ∫ (C x)^α dm: the integrals of a body seen in axes rotated by C (Hou et al. 2017
 // Eq. 21). Each degree maps onto itself through the coefficients of the monomials of y = Cx,
 // built degree by degree (y^α = y_k y^{α − e_k}). Holds its scratch: one per thread.
-class NOETHER_API IntegralRotation {
+class IntegralRotation {
  public:
   explicit IntegralRotation(int order);
   // `out` is resized to min(T.order, max_degree) (all of T when max_degree < 0).

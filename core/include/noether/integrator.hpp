@@ -16,7 +16,6 @@
 //    threads may share one potential.
 //  * interpolate(t, s): the state at t inside the last step, [t_prev, time()], by the method's
 //    own dense output; false when it has none.
-#include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
@@ -46,7 +45,7 @@ struct StepSeries {
   std::string description;
 };
 
-class NOETHER_API Integrator {
+class Integrator {
  public:
   virtual ~Integrator();
   virtual void start(const State& state) = 0;

@@ -1,7 +1,6 @@
 #pragma once
 // Mesh: a closed triangulated surface read from a shape file, and its validation
 // (docs/equations.md §11). Faces are vertex triples, counter-clockwise seen from outside.
-#include <noether/export.hpp>
 #include <noether/lie.hpp>
 
 #include <array>
@@ -24,21 +23,21 @@ struct Mesh {
 // Wavefront OBJ: `v x y z` and `f i j k` lines (1-based indices, `i/t/n` forms accepted,
 // negative indices relative to the end); polygons with more than three vertices are
 // fanned into triangles. Other lines are ignored. Coordinates are multiplied by `scale`.
-NOETHER_API Mesh read_obj(const std::filesystem::path& file, double scale);
+Mesh read_obj(const std::filesystem::path& file, double scale);
 
 // The vertex + facet CSV pair of GUBAS: vertex rows `id, x, y, z` (or `x, y, z`), facet rows
 // `i, j, k` with 1-based indices (trailing empty fields allowed).
-NOETHER_API Mesh read_vertex_facet_csv(const std::filesystem::path& vertices,
+Mesh read_vertex_facet_csv(const std::filesystem::path& vertices,
                                        const std::filesystem::path& facets, double scale);
 
 // Throws SceneError naming the file and the first offending face unless the mesh is a
 // closed, consistently oriented, outward-facing triangulated surface: no face repeats a
 // vertex or has zero area, every edge is shared by exactly two faces that traverse it in
 // opposite directions, and the enclosed volume is positive.
-NOETHER_API void validate_mesh(const Mesh& mesh);
+void validate_mesh(const Mesh& mesh);
 
 // Signed volume, Σ det[v1 v2 v3]/6 over faces (positive for outward faces).
-NOETHER_API double mesh_volume(const Mesh& mesh);
+double mesh_volume(const Mesh& mesh);
 
 }  // namespace noether
 

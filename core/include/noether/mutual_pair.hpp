@@ -2,7 +2,6 @@
 // A pair of bodies seen from the first one's frame, and its mutual terms added into noether's
 // forces and body-frame moments (docs/equations.md (13.7)): shared by the mutual-series and
 // mutual-exact potentials.
-#include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/mutual_series.hpp>
 #include <noether/state.hpp>
@@ -23,10 +22,10 @@ struct PairFrame {
   Mat3 C;       // R_aᵀ R_b: b's frame → a's
 };
 
-NOETHER_API PairFrame pair_frame(const State& s, const MutualPair& p);
+PairFrame pair_frame(const State& s, const MutualPair& p);
 
 // out.U += U; f_a += R_a ∂U/∂R, f_b −= R_a ∂U/∂R; M_a += τ_a; M_b += Cᵀ τ_b.
-NOETHER_API void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out);
+void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out);
 
 }  // namespace noether
 

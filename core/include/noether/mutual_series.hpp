@@ -5,7 +5,6 @@
 //
 // Frames: everything is in body A's frame. R is B's centre of mass minus A's, C rotates
 // B's frame into A's (x_A = C x_B). U is the potential energy (negative).
-#include <noether/export.hpp>
 #include <noether/inertia_integrals.hpp>
 #include <noether/lie.hpp>
 
@@ -25,7 +24,7 @@ struct MutualTerms {
 };
 
 // One evaluator per order; it keeps its scratch, so use one per thread.
-class NOETHER_API MutualSeries {
+class MutualSeries {
  public:
   explicit MutualSeries(int order);
   int order() const { return order_; }

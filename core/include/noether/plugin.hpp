@@ -8,6 +8,8 @@
 // System, State, Forces, Params and the shared mathematics) changes in a way that breaks
 // binary compatibility. Plugins link libnoether-core only; the host library (scenes, registry,
 // stepping loop, output) is not part of the interface (tests/abi checks both).
+// Version 1: the first Potential and Integrator interfaces (an integrator ran a whole run).
+// Version 2: Body::solid (a homogeneous ellipsoid or polyhedron, with its mesh) added to System.
 // Version 3: Integrator is one step at a time (start/step/current/interpolate); the host's
 // stepping loop owns outputs and events; Potential::needs_attitudes removed,
 // Potential::position_hessian added.
@@ -16,6 +18,11 @@
 // Integrator::potential_evaluator; ContinuousEquations is an interface without data members.
 // Version 5: Integrator::take_step_series (per-step records handed over and forgotten, streamed
 // to the output) replaces step_series.
+// Version 6 (current): Integrator::checkpoint and Integrator::restore (an integrator whose
+// variables are not the State — a relative frame, a two-step form — hands them to the output
+// and takes them back, so a continued run is bit for bit the uninterrupted one).
+// Exported: every header of core/include/noether wraps its declarations in
+// `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
 #include <noether/integrator.hpp>

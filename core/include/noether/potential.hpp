@@ -3,7 +3,6 @@
 // A Potential is immutable once made: every method is const and thread-safe. What an
 // evaluation writes (scratch, the orders a tolerance chose, what a run came close to) lives in
 // a Workspace the caller owns (noether/workspace.hpp); PotentialEvaluator pairs the two.
-#include <noether/export.hpp>
 #include <noether/forces.hpp>
 #include <noether/state.hpp>
 #include <noether/workspace.hpp>
@@ -32,7 +31,7 @@ struct PairModel {
   double exceeded_time = 0.0, exceeded_separation = 0.0, exceeded_error = 0.0;
 };
 
-class NOETHER_API Potential {
+class Potential {
  public:
   virtual ~Potential();
   // A workspace for one evaluating thread. The default is empty: models that write nothing
@@ -55,7 +54,7 @@ class NOETHER_API Potential {
 };
 
 // A shared model with a workspace of one's own: what one integrator (one thread) evaluates.
-class NOETHER_API PotentialEvaluator {
+class PotentialEvaluator {
  public:
   explicit PotentialEvaluator(std::shared_ptr<const Potential> potential);
   void operator()(const State& state, Forces& forces) { potential_->evaluate(state, forces, *workspace_); }
@@ -70,7 +69,7 @@ class NOETHER_API PotentialEvaluator {
 };
 
 // The sum of several models: U = Σ U_m, forces and moments add.
-class NOETHER_API SumPotential final : public Potential {
+class SumPotential final : public Potential {
  public:
   explicit SumPotential(std::vector<std::shared_ptr<const Potential>> terms);
   std::unique_ptr<Workspace> make_workspace() const override;

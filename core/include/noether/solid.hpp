@@ -2,7 +2,6 @@
 // Solid: a homogeneous body of a given shape — a triaxial ellipsoid or a closed polyhedron —
 // in its body frame: origin at its centre of mass and, unless asked otherwise, axes along
 // its principal axes (docs/equations.md §11).
-#include <noether/export.hpp>
 #include <noether/inertia_integrals.hpp>
 #include <noether/lie.hpp>
 #include <noether/mesh.hpp>
@@ -34,12 +33,12 @@ struct Solid {
   std::string describe() const;  // "ellipsoid 400 × 395 × 340" or "polyhedron (1148 vertices, 2292 faces)"
 };
 
-NOETHER_API std::shared_ptr<const Solid> make_ellipsoid(const Vec3& semi_axes, double density);
+std::shared_ptr<const Solid> make_ellipsoid(const Vec3& semi_axes, double density);
 
 // Validates the mesh, moves it to its centre of mass and — if `principal_axes` — rotates it
 // onto its principal axes (taken in the order and sense closest to the file's axes; left
 // alone when the file's products of inertia already vanish to 1e-12).
-NOETHER_API std::shared_ptr<const Solid> make_polyhedron(Mesh mesh, double density, bool principal_axes);
+std::shared_ptr<const Solid> make_polyhedron(Mesh mesh, double density, bool principal_axes);
 
 }  // namespace noether
 

@@ -5,7 +5,6 @@
 // ensemble sample) evaluates it with a workspace of its own from Potential::make_workspace(),
 // as Pinocchio separates its Model from its Data.
 #include <noether/error.hpp>
-#include <noether/export.hpp>
 
 #include <string>
 
@@ -14,7 +13,7 @@
 
 namespace noether {
 
-class NOETHER_API Workspace {
+class Workspace {
  public:
   virtual ~Workspace();
 };
