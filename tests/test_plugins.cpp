@@ -92,6 +92,37 @@ TEST(Plugins, KindAndParametersAreChecked) {
   }
 }
 
+// ParamDoc is the one place of every default: each literal default of a bundled plugin reads as
+// its declared type (the host fills it in, and the plugin reads it with at()); a default the
+// plugin works out itself is a description in parentheses. A plugin made with no parameters
+// but the required ones therefore reads every key from its documentation.
+TEST(Plugins, DocumentedDefaultsAreValuesOfTheirType) {
+  auto r = test::bundled_plugins();
+  int literal = 0;
+  for (const auto& name : r.names()) {
+    for (const auto& doc : r.info(name).params) {
+      if (!doc.default_value || doc.default_value[0] == '(') continue;
+      ++literal;
+      const std::string type = doc.type, where = name + "." + doc.name;
+      const Params value = Params::scalar(doc.default_value);
+      if (type == "number") EXPECT_NO_THROW(value.as_double()) << where;
+      else if (type == "integer") EXPECT_NO_THROW(value.as_int()) << where;
+      else if (type == "bool") EXPECT_NO_THROW(value.as_bool()) << where;
+      else if (type == "list") EXPECT_EQ(doc.default_value[0], '[') << where;
+      else EXPECT_EQ(type, "string") << where;
+    }
+  }
+  EXPECT_GE(literal, 20);
+  // Every integrator made from its required keys alone (each reads its defaults with at()).
+  const Scene scene = test::dumbbell_scene();
+  auto potential = r.make_potential("sphere-cluster", scene.system, Params());
+  for (const char* integrator : {"lgvi", "rk", "cvode"}) {
+    Params params = Params::map({{"plugin", Params::scalar(integrator)}});
+    if (std::string(integrator) == "lgvi") params.set("step", Params::scalar("0.001"));
+    EXPECT_NO_THROW(r.make_integrator(integrator, scene.system, potential, params)) << integrator;
+  }
+}
+
 // Objects made by a plugin keep its library loaded after the registry is gone.
 TEST(Plugins, ObjectsOutliveTheRegistry) {
   const Scene scene = test::dumbbell_scene();

@@ -143,6 +143,14 @@ int run(const std::string& scene_file, const std::string& output_given,
   return 0;
 }
 
+// A documented default as `noether plugins` shows it: a value, or what the plugin works out
+// ("(0.9 x osculating periapsis)" shown without its parentheses).
+std::string default_text(const noether::ParamDoc& d) {
+  if (!d.default_value) return "";
+  const std::string text = d.default_value;
+  return text.size() > 1 && text.front() == '(' && text.back() == ')' ? text.substr(1, text.size() - 2) : text;
+}
+
 int list_plugins() {
   noether::PluginRegistry registry;
   std::vector<std::string> failures;
@@ -158,8 +166,7 @@ int list_plugins() {
                 p.description.c_str());
     for (const auto& d : p.params)
       std::printf("%30s%-22s %s (%s%s%s)\n", "", d.name, d.description, d.type,
-                  d.default_value ? ", default " : ", required",
-                  d.default_value ? d.default_value : "");
+                  d.default_value ? ", default " : ", required", default_text(d).c_str());
     std::printf("%30sfrom %s\n", "", p.file.string().c_str());
   }
   for (const auto& f : failures) std::fprintf(stderr, "noether: %s\n", f.c_str());

@@ -209,6 +209,32 @@ const PluginRegistry::Loaded& PluginRegistry::load_kind(const std::string& name,
 
 namespace {
 
+// A documented default the host fills in (ParamDoc::default_value; "(...)" describes one the
+// plugin works out itself).
+bool literal_default(const ParamDoc& doc) { return doc.default_value && doc.default_value[0] != '('; }
+
+// The scene's parameters with every documented default the scene omits filled in (where():
+// kPluginDefault), so that a plugin reads each documented key with at().
+Params with_defaults(const PluginInfo& info, const Params& given_params) {
+  Params params = given_params.is_null() ? Params::map({}, given_params.where()) : given_params;
+  for (const auto& doc : info.params) {
+    if (!literal_default(doc) || params.has(doc.name)) continue;
+    const std::string text = doc.default_value;
+    if (std::string(doc.type) == "list") {  // "[a, b, c]"
+      std::vector<Params> items;
+      std::stringstream in(text.substr(1, text.size() - 2));
+      for (std::string item; std::getline(in, item, ',');) {
+        const auto b = item.find_first_not_of(' '), e = item.find_last_not_of(' ');
+        items.push_back(Params::scalar(item.substr(b, e - b + 1), kPluginDefault));
+      }
+      params.set(doc.name, Params::sequence(std::move(items), kPluginDefault));
+    } else {
+      params.set(doc.name, Params::scalar(text, kPluginDefault));
+    }
+  }
+  return params;
+}
+
 void check_params(const PluginInfo& info, const Params& params) {
   if (params.is_null()) return;
   const std::string what = std::string(to_string(info.kind)) + " plugin '" + info.name + "'";
@@ -301,7 +327,8 @@ std::shared_ptr<const Potential> PluginRegistry::make_potential(const std::strin
                                                                 const Params& params) {
   const Loaded& l = load_kind(name, PluginKind::Potential);
   check_params(l.info, params);
-  auto object = construct(l.info, [&] { return l.descriptor->make_potential(system, params); });
+  const Params filled = with_defaults(l.info, params);
+  auto object = construct(l.info, [&] { return l.descriptor->make_potential(system, filled); });
   return std::make_shared<FiniteChecked>(
       keep_library_alive<Potential>(std::move(object), l.library), name, system);
 }
@@ -311,8 +338,9 @@ std::shared_ptr<Integrator> PluginRegistry::make_integrator(
     const Params& params) {
   const Loaded& l = load_kind(name, PluginKind::Integrator);
   check_params(l.info, params);
+  const Params filled = with_defaults(l.info, params);
   auto object =
-      construct(l.info, [&] { return l.descriptor->make_integrator(system, potential, params); });
+      construct(l.info, [&] { return l.descriptor->make_integrator(system, potential, filled); });
   return keep_library_alive<Integrator>(std::move(object), l.library);
 }
 

@@ -83,4 +83,15 @@ std::string closest_match(const std::string& word, const std::vector<std::string
 
 }  // namespace noether
 
+namespace noether {
+
+// The where() of a value the host filled in from a plugin's documented default (ParamDoc).
+inline constexpr const char* kPluginDefault = "the plugin's documented default";
+// Whether the scene gave `key` (not the host from the plugin's ParamDoc default).
+inline bool given(const Params& params, const std::string& key) {
+  return params.has(key) && params.at(key).where() != kPluginDefault;
+}
+
+}  // namespace noether
+
 #pragma GCC visibility pop

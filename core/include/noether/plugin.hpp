@@ -45,7 +45,12 @@ enum class PluginKind : std::uint32_t { Potential = 1, Integrator = 2 };
 
 const char* to_string(PluginKind kind);
 
-// One documented parameter. `default_value` is nullptr for a required parameter.
+// One documented parameter. `default_value`: the value the host fills in when the scene omits
+// the key (YAML text, read as `type` says: "1e-8", "inertial", "[0, 0, 0]"), so a plugin reads
+// every documented key with at() and keeps no second copy of its defaults; or, in parentheses,
+// a description of a default the plugin works out itself ("(0.9 x osculating periapsis)": the
+// key is then absent unless given); nullptr for a required parameter. given() (params.hpp) tells
+// a key the scene gave from one the host filled in.
 struct ParamDoc {
   const char* name;
   const char* type;  // "number", "integer", "string", "bool", "list"

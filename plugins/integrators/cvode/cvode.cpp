@@ -57,15 +57,15 @@ class Cvode final : public noether::Integrator {
   Cvode(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
         const Params& p)
       : equations_(noether::make_continuous_equations(
-            system, std::move(potential), p.get("frame", std::string("inertial")),
-            p.get("form", std::string("hamiltonian")))) {
-    method_ = p.get("method", std::string("adams"));
+            system, std::move(potential), p.at("frame").as_string(),
+            p.at("form").as_string())) {
+    method_ = p.at("method").as_string();
     if (method_ != "adams" && method_ != "bdf")
       throw SceneError(p.at("method").here() + "cvode: method must be adams or bdf, not '" +
                        method_ + "'");
-    rtol_ = p.get("rtol", 1e-8);
-    atol_ = p.get("atol", 1e-10);
-    max_steps_ = p.get("max_steps", 0L);  // 0: no cap
+    rtol_ = p.at("rtol").as_double();
+    atol_ = p.at("atol").as_double();
+    max_steps_ = p.at("max_steps").as_int();  // 0: no cap
     if (rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
       throw SceneError(p.here() + "cvode: rtol must be positive, atol and max_steps non-negative");
   }

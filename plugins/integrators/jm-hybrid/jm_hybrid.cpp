@@ -57,10 +57,10 @@ class JmHybrid final : public noether::Integrator {
     h_ = p.at("step").as_double();
     theta_ = p.get("theta", h_);
     Kc_ = p.at("Kc").as_double();
-    tol_ = p.get("newton_tolerance", 1e-12);
-    max_iter_ = static_cast<int>(p.get("newton_max_iterations", 25L));
-    ratio_ = p.get("rechoose_ratio", 1.2);
-    record_ = p.get("record_steps", false);
+    tol_ = p.at("newton_tolerance").as_double();
+    max_iter_ = static_cast<int>(p.at("newton_max_iterations").as_int());
+    ratio_ = p.at("rechoose_ratio").as_double();
+    record_ = p.at("record_steps").as_bool();
     if (!(h_ > 0) || !(theta_ > 0) || !(tol_ > 0) || max_iter_ < 1 || !(ratio_ >= 1))
       throw SceneError(p.here() + "jm-hybrid: step, theta, newton_tolerance must be positive, "
                                   "rechoose_ratio ≥ 1");
@@ -413,7 +413,7 @@ class JmHybrid final : public noether::Integrator {
 const noether::ParamDoc params[] = {
     {"step", "number", nullptr, "h, the step of the variational (Störmer–Verlet) phase"},
     {"Kc", "number", nullptr, "critical kinetic energy: Jacobi–Maupertuis above, variational below"},
-    {"theta", "number", "step", "θ, the increment of the parameter coordinate per JM step"},
+    {"theta", "number", "(step)", "θ, the increment of the parameter coordinate per JM step"},
     {"newton_tolerance", "number", "1e-12", "JM Newton: stop when ‖Δq‖ ≤ tolerance × step length"},
     {"newton_max_iterations", "integer", "25", "JM Newton iterations before giving up"},
     {"rechoose_ratio", "number", "1.2",

@@ -25,13 +25,13 @@ class Lgvi final : public noether::Integrator {
     h_ = params.at("step").as_double();
     if (!(h_ > 0.0)) throw SceneError(params.at("step").here() + "lgvi: 'step' must be positive");
     lgvi::Settings settings;
-    settings.newton.tolerance = params.get("newton_tolerance", 1e-15);
-    settings.newton.max_iterations = static_cast<int>(params.get("newton_max_iterations", 30L));
+    settings.newton.tolerance = params.at("newton_tolerance").as_double();
+    settings.newton.max_iterations = static_cast<int>(params.at("newton_max_iterations").as_int());
     if (settings.newton.tolerance <= 0.0 || settings.newton.max_iterations < 1)
       throw SceneError(params.here() + "lgvi: newton_tolerance and newton_max_iterations must be positive");
-    const std::string frame = params.get("frame", std::string("inertial"));
-    const std::string form = params.get("form", std::string("hamiltonian"));
-    order_ = static_cast<int>(params.get("order", 2L));
+    const std::string frame = params.at("frame").as_string();
+    const std::string form = params.at("form").as_string();
+    order_ = static_cast<int>(params.at("order").as_int());
     const std::string composition = params.get("composition", std::string(order_ == 6 ? "kahan-li" : "yoshida"));
     if (frame != "inertial" && frame != "relative")
       throw SceneError(params.at("frame").here() + "lgvi: frame must be inertial or relative, not '" + frame + "'");
@@ -142,7 +142,7 @@ const noether::ParamDoc params[] = {
      "inertial (93)–(97) / (78)–(80), or relative (118)–(127) / (112)–(117): two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (one-step) or lagrangian (two-step)"},
     {"order", "integer", "2", "2, or 4 or 6 by a symmetric composition of the order-2 map (hamiltonian form)"},
-    {"composition", "string", "yoshida (order 4), kahan-li (order 6)",
+    {"composition", "string", "(yoshida at order 4, kahan-li at order 6)",
      "order 4: yoshida (3 stages), suzuki or mclachlan (5 stages); order 6: yoshida (7), kahan-li (9)"},
     {"newton_tolerance", "number", "1e-15",
      "relative tolerance ‖Δf‖/‖f‖ of the Newton solve for F_k (128)"},

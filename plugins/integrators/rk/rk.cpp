@@ -33,19 +33,19 @@ class Rk final : public noether::Integrator {
   Rk(const noether::System& system, std::shared_ptr<const noether::Potential> potential,
      const Params& p)
       : equations_(noether::make_continuous_equations(
-            system, std::move(potential), p.get("frame", std::string("inertial")),
-            p.get("form", std::string("hamiltonian")))) {
-    method_ = p.get("method", std::string("dopri5"));
+            system, std::move(potential), p.at("frame").as_string(),
+            p.at("form").as_string())) {
+    method_ = p.at("method").as_string();
     if (method_ != "rk4" && method_ != "dopri5" && method_ != "rkf78")
       throw SceneError(p.at("method").here() + "rk: method must be rk4, dopri5 or rkf78, not '" +
                        method_ + "'");
     if (method_ == "rk4" && !p.has("step"))
       throw SceneError(p.here() + "rk: method rk4 needs a fixed 'step'");
     step_ = p.get("step", 0.0);
-    rtol_ = p.get("rtol", 1e-8);
-    atol_ = p.get("atol", 1e-10);
-    renormalize_ = p.get("renormalize", false);
-    max_steps_ = p.get("max_steps", 0L);  // 0: no cap (a run is bounded by t_end, events, signals, run budgets)
+    rtol_ = p.at("rtol").as_double();
+    atol_ = p.at("atol").as_double();
+    renormalize_ = p.at("renormalize").as_bool();
+    max_steps_ = p.at("max_steps").as_int();  // 0: no cap (a run is bounded by t_end, events, signals, run budgets)
     dopri5_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>());
     rkf78_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>());
     if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
@@ -251,7 +251,7 @@ class Rk final : public noether::Integrator {
 const noether::ParamDoc params[] = {
     {"method", "string", "dopri5",
      "rk4 (classic, fixed step), dopri5 (Dormand–Prince 5(4)), rkf78 (Fehlberg 7(8))"},
-    {"step", "number", "automatic",
+    {"step", "number", "(automatic)",
      "rk4: the fixed step (required); adaptive methods: the first trial step (default: "
      "Hairer–Nørsett–Wanner's starting step, 0.01 ‖y‖/‖y'‖)"},
     {"rtol", "number", "1e-8", "relative tolerance (adaptive methods)"},

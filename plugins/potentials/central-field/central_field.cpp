@@ -15,11 +15,9 @@ class CentralField final : public noether::Potential {
   CentralField(const noether::System& system, const noether::Params& p) {
     mu_ = p.at("mu").as_double();
     if (!(mu_ > 0)) throw noether::SceneError(p.at("mu").here() + "central-field: mu must be positive");
-    if (p.has("center")) {
-      const auto c = p.at("center").as_doubles();
-      if (c.size() != 3) throw noether::SceneError(p.at("center").here() + "central-field: center needs 3 numbers");
-      c_ = Eigen::Vector3d(c[0], c[1], c[2]);
-    }
+    const auto c = p.at("center").as_doubles();
+    if (c.size() != 3) throw noether::SceneError(p.at("center").here() + "central-field: center needs 3 numbers");
+    c_ = Eigen::Vector3d(c[0], c[1], c[2]);
     for (const auto& b : system.bodies()) {
       mass_.push_back(b.mass);
       name_.push_back(b.name);

@@ -30,8 +30,8 @@ class MutualExactPotential final : public noether::Potential {
  public:
   MutualExactPotential(const System& system, const Params& params) : names_() {
     noether::ExactMutualOptions options;
-    options.tolerance = params.get("tolerance", 1e-12);
-    options.max_level = static_cast<int>(params.get("max_level", 7L));
+    options.tolerance = params.at("tolerance").as_double();
+    options.max_level = static_cast<int>(params.at("max_level").as_int());
     if (!(options.tolerance > 0.0))
       throw SceneError(params.at("tolerance").here() + "mutual-exact: tolerance must be positive");
     if (options.max_level < 1 || options.max_level > 9)

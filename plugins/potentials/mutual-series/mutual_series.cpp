@@ -159,7 +159,7 @@ class MutualSeriesPotential final : public noether::Potential {
         throw SceneError(params.at("order").here() + "mutual-series: order " + std::to_string(N) +
                          " is outside 0.." + std::to_string(kMaxOrder));
       for (const char* key : {"min_separation", "max_order", "on_exceed"})
-        if (params.has(key))
+        if (given(params, key))
           throw SceneError(params.at(key).here() + "mutual-series: '" + key + "' goes with 'tolerance', not with a fixed 'order'");
       fixed_order_ = static_cast<int>(N);
       return;
@@ -168,7 +168,7 @@ class MutualSeriesPotential final : public noether::Potential {
     if (!(tolerance_ > 0.0 && tolerance_ < 1.0))
       throw SceneError(params.at("tolerance").here() + "mutual-series: tolerance must be between 0 and 1 "
                        "(a relative error), not " + params.at("tolerance").as_string());
-    const long M = params.get("max_order", 12L);
+    const long M = params.at("max_order").as_int();
     if (M < 0 || M > kMaxOrder - 2)
       throw SceneError(params.at("max_order").here() + "mutual-series: max_order must be 0.." +
                        std::to_string(kMaxOrder - 2));
@@ -178,7 +178,7 @@ class MutualSeriesPotential final : public noether::Potential {
       if (!(min_separation_ > 0.0))
         throw SceneError(params.at("min_separation").here() + "mutual-series: min_separation must be positive");
     }
-    const std::string on_exceed = params.get("on_exceed", std::string("warn"));
+    const std::string on_exceed = params.at("on_exceed").as_string();
     if (on_exceed != "warn" && on_exceed != "stop")
       throw SceneError(params.at("on_exceed").here() + "mutual-series: on_exceed must be 'warn' or 'stop', not '" +
                        on_exceed + "'");
@@ -277,11 +277,11 @@ std::unique_ptr<noether::Potential> make(const System& system, const Params& par
 }
 
 const noether::ParamDoc kParams[] = {
-    {"order", "integer", "give order or tolerance",
+    {"order", "integer", "(give order or tolerance)",
      "total degree N of the inertia-integral expansion, 0..24 (0 = point masses); or give 'tolerance'"},
-    {"tolerance", "number", "give order or tolerance",
+    {"tolerance", "number", "(give order or tolerance)",
      "relative error of force and torques per pair; noether picks each pair's lowest sufficient order"},
-    {"min_separation", "number", "0.9 x osculating periapsis",
+    {"min_separation", "number", "(0.9 x osculating periapsis)",
      "with tolerance: the closest separation the orders must hold for"},
     {"max_order", "integer", "12", "with tolerance: the highest order to consider"},
     {"on_exceed", "string", "warn",
