@@ -5,8 +5,13 @@
 #include <noether/error.hpp>
 
 #include "h5_helpers.hpp"
+#include "io/checksum.hpp"
 #include "io/file_access.hpp"
+#include "io/h5_handle.hpp"
+#include "io/read_probe.hpp"
 #include "io/safe_publish.hpp"
+
+#include <spdlog/spdlog.h>
 
 #include <cstring>
 #include <sstream>
@@ -43,7 +48,6 @@ class EnsembleFile {
     ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
     std::error_code ec;
     const bool exists = std::filesystem::exists(path, ec);
-    std::string recorded;
     {
       std::ostringstream id;  // what makes two ensembles the same one
       id << scene_text << "\n--\n";
@@ -55,17 +59,15 @@ class EnsembleFile {
     if (exists && !options.resume && !options.overwrite)
       throw OutputError(path.string() + " exists: pass --resume to continue that ensemble, or --force to replace it");
     if (options.resume && exists) {
-      file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+      // Every read made first in a child (io/read_probe.hpp): a damaged file must not crash or
+      // hang this process; then the recorded outcomes, each verified against its checksum.
+      io::read_probe(path, [&] { EnsembleFile::read_recorded(path, samples, identity_); },
+                     io::read_probe_seconds(path));
+      done_ = read_recorded(path, samples, identity_);
+      file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, io::file_access(64 * 1024));
       if (file_ < 0) throw OutputError("cannot open " + path.string() + " to resume it" + system_reason());
-      recorded = read_string(file_, "identity", false);
-      if (recorded != identity_) {
-        H5Fclose(file_);
-        throw OutputError(path.string() + " holds another ensemble (scene, overrides, --vary, --seed, --samples or "
-                                          "--pair differ); resume it with the command that made it");
-      }
       outcome_ = H5Dopen2(file_, "outcome", H5P_DEFAULT);
-      done_.assign(samples, -1);
-      H5Dread(outcome_, H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, done_.data());
+      checksum_ = H5Dopen2(file_, "outcome_checksum", H5P_DEFAULT);  // absent in an older noether's file
       return;
     }
     // Built under a hidden name and renamed into place once its layout is complete, so the path
@@ -107,6 +109,10 @@ class EnsembleFile {
     H5Gclose(inputs);
     outcome_ = create(file_, "outcome", H5T_NATIVE_INT8, {});
     string_attribute(outcome_, "description", "-1 not run, 0 completed, 1 stopped by an event, 2 failed");
+    checksum_ = create(file_, "outcome_checksum", H5T_NATIVE_UINT64, {});
+    string_attribute(checksum_, "description",
+                     "checksum64 of each sample's outcome byte, seeded with its index (0: not written); "
+                     "`noether ensemble --resume` verifies every outcome it reads");
     hid_t message_type = H5Tcopy(H5T_C_S1);
     H5Tset_size(message_type, kMessageBytes);
     H5Dclose(create(file_, "message", message_type, {}));
@@ -151,6 +157,7 @@ class EnsembleFile {
     done_.assign(samples, -1);
   }
   ~EnsembleFile() {
+    if (checksum_ >= 0) H5Dclose(checksum_);
     if (outcome_ >= 0) H5Dclose(outcome_);
     if (file_ >= 0) H5Fclose(file_);
     if (lock_ >= 0) ::close(lock_);
@@ -196,6 +203,10 @@ class EnsembleFile {
     check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
     for (const auto& [i, outcome] : pending_) {
       put_id(outcome_, i, &outcome, 1, H5T_NATIVE_INT8);
+      if (checksum_ >= 0) {
+        const std::uint64_t sum = outcome_checksum(i, outcome);
+        put_id(checksum_, i, &sum, 1, H5T_NATIVE_UINT64);
+      }
       done_[i] = outcome;
     }
     pending_.clear();
@@ -203,6 +214,43 @@ class EnsembleFile {
   }
 
  private:
+  static std::uint64_t outcome_checksum(std::size_t i, std::int8_t outcome) {
+    return io::checksum64(&outcome, 1, i) | 1;  // never 0, the fill of a row not written
+  }
+  // The outcomes recorded in an ensemble file of this identity, verified: a row whose checksum
+  // is 0 was not committed (a kill between the outcome and its checksum) and runs again; any
+  // other mismatch is damage, refused by sample.
+  static std::vector<std::int8_t> read_recorded(const std::filesystem::path& path, std::size_t samples,
+                                                const std::string& identity) {
+    const io::H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, io::file_access(0)));
+    if (!file.valid()) throw OutputError("cannot open " + path.string() + " to resume it" + system_reason());
+    if (read_string(file, "identity", false) != identity)
+      throw OutputError(path.string() + " holds another ensemble (scene, overrides, --vary, --seed, --samples or "
+                                        "--pair differ), or its identity is damaged; resume it with the command "
+                                        "that made it");
+    std::vector<std::int8_t> outcome(samples, -1);
+    const io::H5Handle d = io::open_dataset(file, "/outcome");
+    if (!d.valid() || H5Dread(d, H5T_NATIVE_INT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, outcome.data()) < 0)
+      io::throw_damaged(path, "/outcome does not read");
+    const io::H5Handle sums_dataset = io::open_dataset(file, "/outcome_checksum");
+    if (!sums_dataset.valid()) {
+      spdlog::warn("{} was written by a noether without checksums: its outcomes are read unverified", path.string());
+      return outcome;
+    }
+    std::vector<std::uint64_t> sums(samples, 0);
+    if (H5Dread(sums_dataset, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, sums.data()) < 0)
+      io::throw_damaged(path, "/outcome_checksum does not read");
+    for (std::size_t i = 0; i < samples; ++i) {
+      if (sums[i] == 0) {  // never committed: run it (again)
+        outcome[i] = -1;
+        continue;
+      }
+      if (outcome[i] < 0 || outcome[i] > 2 || sums[i] != outcome_checksum(i, outcome[i]))
+        io::throw_damaged(path, "the outcome of sample " + std::to_string(i) + " does not match its checksum");
+    }
+    return outcome;
+  }
+
   hid_t create(hid_t parent, const char* name, hid_t type, std::vector<hsize_t> shape) {
     std::vector<hsize_t> dims{samples_};
     dims.insert(dims.end(), shape.begin(), shape.end());
@@ -242,7 +290,7 @@ class EnsembleFile {
     H5Sclose(space);
   }
 
-  hid_t file_ = -1, outcome_ = -1;
+  hid_t file_ = -1, outcome_ = -1, checksum_ = -1;
   int lock_ = -1;  // the new file's lock (io::create_partial), held while it is written
   hsize_t samples_;
   hsize_t nb_, nr_;

@@ -10,6 +10,8 @@
   3. A sample whose integrator fails is recorded as failed with its message; the others run; exit 3.
   (and --trajectories K writes the first K samples' full output files).
   4. Bad distributions and unknown keys are refused (exit 2) before any sample runs: no file.
+  5. A damaged outcome (a flipped byte) is refused by sample, the file unchanged; an outcome
+     whose checksum was never written (a kill between the two) runs again and ends identical.
 """
 import os
 import random
@@ -211,6 +213,28 @@ if p.returncode != 2 or "exists" not in p.stderr:
 p = ensemble("one.h5", "--samples", "24", "--resume", check=False)
 if p.returncode != 2 or "holds another ensemble" not in p.stderr:
     failures.append(f"resuming another ensemble: {p.returncode} {p.stderr!r}")
+
+# 5. Damaged outcomes: refused by sample (exit 2, the file unchanged), or run again.
+import shutil
+shutil.copy("one.h5", "damaged.h5")
+with h5py.File("damaged.h5", "r+") as f:
+    o = f["outcome"][()]
+    o[5] = 1 - o[5] if o[5] in (0, 1) else 0
+    f["outcome"][5] = o[5]
+before = open("damaged.h5", "rb").read()
+p = ensemble("damaged.h5", "--samples", N, "--resume", check=False)
+if p.returncode != 2 or "the outcome of sample 5 does not match its checksum" not in p.stderr:
+    failures.append(f"a damaged outcome: exit {p.returncode}, {p.stderr.strip()!r}")
+if open("damaged.h5", "rb").read() != before:
+    failures.append("a refused ensemble file was changed")
+shutil.copy("one.h5", "uncommitted.h5")
+with h5py.File("uncommitted.h5", "r+") as f:
+    f["outcome_checksum"][7] = 0
+p = ensemble("uncommitted.h5", "--samples", N, "--resume")
+if p.returncode == 0:
+    same("one.h5", "uncommitted.h5", "an uncommitted outcome run again")
+    if "(1 run here," not in p.stdout:
+        failures.append(f"an uncommitted outcome: not run again alone: {p.stdout.strip()!r}")
 
 for f in failures:
     print("FAIL:", f)

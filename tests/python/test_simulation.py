@@ -201,6 +201,7 @@ def test_damaged_checkpoints_are_refused_by_name_or_load_the_same(dumbbells, tmp
         got = {k: v for k, v in loaded.summary().items() if "wall" not in k}
         assert got == expected_summary, case
         outcomes["same"] += 1
+    print("damaged checkpoints:", outcomes, "file", len(original), "bytes")
     assert outcomes["refused"] > 0 and outcomes["same"] > 0, outcomes
 
 

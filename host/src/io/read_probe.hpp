@@ -17,8 +17,8 @@ namespace noether::io {
 void read_probe(const std::filesystem::path& file, const std::function<void()>& read, double seconds,
                 const volatile std::sig_atomic_t* interrupt = nullptr);
 
-// The time a probe of `file` may take: 30 s, and 10 s more per 100 MB (a healthy file reads at
-// several hundred MB/s here).
+// The time a probe of `file` may take: 10 s (or $NOETHER_READ_PROBE_SECONDS), and 10 s more per
+// 100 MB (a healthy file reads at several hundred MB/s here).
 double read_probe_seconds(const std::filesystem::path& file);
 
 }  // namespace noether::io

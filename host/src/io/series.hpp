@@ -34,8 +34,10 @@ struct Series {
     if (H5Tget_size(type) != sizeof(std::uint64_t)) throw OutputError("a series of numbers that are not 8 bytes");
     for (auto d : frame_shape) frame_size *= d;
     std::vector<hsize_t> dims{frames}, maxdims{H5S_UNLIMITED}, chunk;
-    const hsize_t frames_per_chunk =
-        std::max<hsize_t>(1, std::min<hsize_t>(1024, 8192 / std::max<std::size_t>(1, frame_size)));
+    // Chunks of about 8 KiB (at most 1024 frames), no larger than the frames allocated: a file of
+    // one frame (a saved simulation) is not padded to a thousand.
+    const hsize_t frames_per_chunk = std::max<hsize_t>(
+        1, std::min<hsize_t>({1024, 8192 / std::max<std::size_t>(1, frame_size), std::max<hsize_t>(1, frames)}));
     chunk.push_back(frames_per_chunk);
     for (auto d : frame_shape) {
       dims.push_back(d);
