@@ -158,6 +158,31 @@ Diagnostics unpack(const std::vector<double>& v) {
 }
 constexpr std::size_t kStatistics = 12;
 
+// The orbits the verdict judges (RunSummary::orbits): "body\tabout" lines, and their scales.
+std::string orbit_names(const std::vector<OrbitScale>& orbits) {
+  std::string out;
+  for (const auto& o : orbits) out += o.body + "\t" + o.about + "\n";
+  return out;
+}
+std::vector<double> orbit_scales(const std::vector<OrbitScale>& orbits) {
+  std::vector<double> out;  // (never empty: an attribute of no numbers is refused by HDF5)
+  if (orbits.empty()) return {0.0};
+  for (const auto& o : orbits) out.push_back(o.energy_scale);
+  return out;
+}
+std::vector<OrbitScale> orbits_of(const io::RunRecord& run) {
+  std::vector<OrbitScale> out;
+  std::istringstream lines(run.summary_text("orbits"));
+  for (std::string line; std::getline(lines, line);) {
+    const auto tab = line.find('\t');
+    out.push_back({line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1), 0.0, 0.0});
+  }
+  if (out.empty()) return out;
+  const std::vector<double>& scales = run.summary_number("orbit_scales", out.size());
+  for (std::size_t k = 0; k < out.size(); ++k) out[k].energy_scale = scales[k];
+  return out;
+}
+
 }  // namespace
 
 void Simulation::save(const std::filesystem::path& path) const {
@@ -192,8 +217,10 @@ void Simulation::save(const std::filesystem::path& path) const {
         {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
          s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0, s.conserves_angular_momentum ? 1.0 : 0.0,
          s.min_gap, s.min_gap_reach, s.min_distance, s.t_of_min_distance, p_scale, L_scale}},
-       {"frames", {static_cast<double>(s.frames)}}},
-      {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}});
+       {"frames", {static_cast<double>(s.frames)}},
+       {"orbit_scales", orbit_scales(s.orbits)}},
+      {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
+       {"orbits", orbit_names(s.orbits)}});
   writer.publish();
   char outcome[96];
   std::snprintf(outcome, sizeof outcome, "saved at t = %.17g", m.state.t);
@@ -238,6 +265,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     s.frames = static_cast<std::size_t>(run.summary_number("frames", 1)[0]);
     s.interpolated_frames = at_last.interpolated;
     s.min_gap_pair = run.summary_text("min_gap_pair");
+    s.min_distance_pair = run.summary_text("min_distance_pair");
+    s.orbits = orbits_of(run);
     s.stop_reason = run.summary_text("stop_reason");
   } else if (!with_output) {  // a run's file: its frames replayed into the summary, as --resume does
     m.new_segment();

@@ -7,6 +7,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -57,6 +58,7 @@ class RunStatistics final : public Observer {
       }
       for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
       s_.min_distance = std::numeric_limits<double>::infinity();
+      s_.orbits = orbit_scales(state);
       detect_conservation(state, forces);
     }
     s_.final = d;
@@ -73,11 +75,12 @@ class RunStatistics final : public Observer {
       for (Eigen::Index i = 0; i < state.x.cols(); ++i)
         for (Eigen::Index j = i + 1; j < state.x.cols(); ++j) {
           const double r = (state.x.col(i) - state.x.col(j)).norm();
+          const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(j));
           if (r < s_.min_distance) {
             s_.min_distance = r;
             s_.t_of_min_distance = state.t;
+            s_.min_distance_pair = a.name + "–" + b.name;
           }
-          const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(j));
           if (a.radius + b.radius > 0 && r - (a.radius + b.radius) < s_.min_gap) {
             s_.min_gap = r - (a.radius + b.radius);
             s_.min_gap_reach = a.radius + b.radius;
@@ -93,6 +96,44 @@ class RunStatistics final : public Observer {
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
 
  private:
+  // Each body's orbit about the body that attracts it most (largest G m_j / r²) at t0, one per
+  // pair, with the pair's two-body energy as its scale (RunSummary::orbits). Scenes of more than
+  // 64 bodies are judged on E0 alone (O(n²)).
+  std::vector<OrbitScale> orbit_scales(const State& state) const {
+    std::vector<OrbitScale> orbits;
+    const Eigen::Index n = state.x.cols();
+    if (n < 2 || n > 64) return orbits;
+    const double G = system_.G();
+    std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Eigen::Index best = -1;
+      double strongest = 0.0;
+      for (Eigen::Index j = 0; j < n; ++j) {
+        if (j == i) continue;
+        const double r2 = (state.x.col(i) - state.x.col(j)).squaredNorm();
+        const double pull = system_.body(static_cast<std::size_t>(j)).mass / r2;
+        if (r2 > 0 && pull > strongest) strongest = pull, best = j;
+      }
+      if (best < 0) continue;
+      const std::pair<Eigen::Index, Eigen::Index> pair(std::min(i, best), std::max(i, best));
+      if (std::find(pairs.begin(), pairs.end(), pair) != pairs.end()) continue;
+      pairs.push_back(pair);
+      const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(best));
+      const double mu = a.mass * b.mass / (a.mass + b.mass);
+      const Vec3 v = state.p.col(i) / a.mass - state.p.col(best) / b.mass;
+      const double kinetic = 0.5 * mu * v.squaredNorm(),
+                   potential = G * a.mass * b.mass / (state.x.col(i) - state.x.col(best)).norm();
+      const double bound = std::abs(kinetic - potential);
+      // The lighter body's orbit about the heavier one (a near-parabolic pair: the sum of the parts).
+      const bool lighter = a.mass <= b.mass;
+      orbits.push_back({lighter ? a.name : b.name, lighter ? b.name : a.name,
+                        bound >= 1e-3 * (kinetic + potential) ? bound : kinetic + potential, 0.0});
+    }
+    std::sort(orbits.begin(), orbits.end(),
+              [](const OrbitScale& x, const OrbitScale& y) { return x.energy_scale < y.energy_scale; });
+    return orbits;
+  }
+
   // The forces at t0 tell what the scene conserves: a net force or a net torque about the
   // origin larger than 10⁻⁶ of the sum of their parts is an external field.
   void detect_conservation(const State& state, const Forces& forces) {

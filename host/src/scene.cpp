@@ -431,10 +431,10 @@ Scene parse_scene(const std::string& text, const std::string& file,
   run.check_keys({"t_end", "output_every", "close_approach", "collisions", "trust"}, "'run'");
   if (run.has("trust")) {
     const Params& trust = run.at("trust");
-    trust.check_keys({"energy", "momentum", "orthogonality"}, "'run.trust'");
+    trust.check_keys({"energy", "momentum", "orthogonality", "position"}, "'run.trust'");
     TrustThresholds& t = scene.run.trust;
     for (auto [key, value] : {std::pair<const char*, double*>{"energy", &t.energy}, {"momentum", &t.momentum},
-                              {"orthogonality", &t.orthogonality}}) {
+                              {"orthogonality", &t.orthogonality}, {"position", &t.position}}) {
       *value = trust.get(key, *value);
       if (!(*value > 0.0))
         throw SceneError(trust.at(key).here() + "'run.trust." + key + "' must be a positive number");

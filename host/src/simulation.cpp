@@ -25,6 +25,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.scene = std::move(scene);
+  m.registry = &registry;
   m.options = std::move(options);
   const Scene& sc = m.scene;
   if (potential) {
@@ -229,6 +230,7 @@ RunSummary Simulation::summary() const {
 
 RunSummary Simulation::finish() {
   Impl& m = *impl_;
+  if (!m.finished && m.failure.empty()) m.summary.resolution = check_resolution(m, summary());
   RunSummary s = summary();
   if (!m.finished && m.writer)
     m.finish_output(m.failure.empty() ? (s.stop_reason.empty() ? "completed" : "stopped: " + s.stop_reason)

@@ -18,6 +18,7 @@ using detail::operator+;
 
 struct Simulation::Impl {
   Scene scene;
+  PluginRegistry* registry = nullptr;  // what made the plugins (the resolution check makes more)
   RunOptions options;
   std::shared_ptr<const Potential> potential;
   std::shared_ptr<Integrator> integrator;
@@ -108,5 +109,9 @@ struct Simulation::Impl {
     writer.reset();
   }
 };
+
+// The step-halving check of the smallest orbit, when the energy cannot certify it and the
+// integrator has a fixed step (resolution_check.cpp); `judged` is the summary so far.
+ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged);
 
 }  // namespace noether

@@ -44,9 +44,23 @@ std::string format_summary(const RunSummary& s) {
     optional += line;
   }
   if (std::isfinite(s.min_distance)) {
-    std::snprintf(line, sizeof line, "closest approach              %.6f at t = %.4f\n", s.min_distance,
-                  s.t_of_min_distance);
+    std::snprintf(line, sizeof line, "closest approach              %.6g (%s) at t = %.6g\n", s.min_distance,
+                  s.min_distance_pair.c_str(), s.t_of_min_distance);
     optional += line;
+  }
+  if (!s.orbits.empty()) {
+    // The smallest orbit's scale: what the energy error means for the most fragile motion.
+    const OrbitScale& o = s.orbits.front();
+    std::snprintf(line, sizeof line, "smallest orbit                %s about %s: two-body energy %.4g, |E - E0| %.2e of it\n",
+                  o.body.c_str(), o.about.c_str(), o.energy_scale, o.relative_energy_error);
+    optional += line;
+    if (s.resolution.done) {
+      std::snprintf(line, sizeof line,
+                    "step-halving check            %s about %s moves by %.2e of its radius in %.6g, %.2e over the run\n",
+                    s.resolution.body.c_str(), s.resolution.about.c_str(), s.resolution.per_window, s.resolution.window,
+                    s.resolution.over_run);
+      optional += line;
+    }
   }
   // Frames between the method's steps are interpolated states, not the method's own: say so.
   const std::string where_energy =
@@ -132,6 +146,19 @@ std::string format_summary_json(const RunSummary& s) {
   field("max_orthogonality_error", s.final_state.R.empty() ? "null" : json_number(s.max_orthogonality_error));
   field("closest_approach", json_number(s.min_distance));
   field("t_of_closest_approach", std::isfinite(s.min_distance) ? json_number(s.t_of_min_distance) : "null");
+  field("closest_approach_pair", std::isfinite(s.min_distance) ? json_string(s.min_distance_pair) : "null");
+  std::string orbits = "[";
+  for (const auto& o : s.orbits)
+    orbits += std::string(orbits.size() > 1 ? ", " : "") + "{\"body\": " + json_string(o.body) +
+              ", \"about\": " + json_string(o.about) + ", \"energy_scale\": " + json_number(o.energy_scale) +
+              ", \"relative_energy_error\": " + json_number(o.relative_energy_error) + "}";
+  field("orbits", orbits + "]");
+  field("resolution_check",
+        s.resolution.done ? "{\"body\": " + json_string(s.resolution.body) + ", \"about\": " +
+                                json_string(s.resolution.about) + ", \"window\": " + json_number(s.resolution.window) +
+                                ", \"per_window\": " + json_number(s.resolution.per_window) +
+                                ", \"over_run\": " + json_number(s.resolution.over_run) + "}"
+                          : "null");
   field("output_frames", std::to_string(s.frames));
   field("interpolated_frames", std::to_string(s.interpolated_frames));
   field("final_time", json_number(s.final_state.t));

@@ -16,12 +16,47 @@ void judge(RunSummary& s, const Scene& scene) {
   s.max_rel_energy_error = scale > 0 ? s.max_abs_energy_error / scale : s.max_abs_energy_error;
   Verdict& v = s.verdict;
   v = {};
-  char why[256];
+  char why[512];
   if (s.max_rel_energy_error > limit.energy) {
     std::snprintf(why, sizeof why, "relative energy error %.2e (of %s) > %.0e", s.max_rel_energy_error,
                   s.energy_scale.c_str(), limit.energy);
     v.reasons.push_back(why);
   }
+  // Each orbit on its own scale (a small body's motion is lost in E0): the run's energy error,
+  // which includes that orbit's, as a fraction of the orbit's two-body energy. When that cannot
+  // certify the smallest orbit, the step-halving check decides, if it ran (fixed-step methods).
+  for (auto& orbit : s.orbits)
+    orbit.relative_energy_error = orbit.energy_scale > 0 ? s.max_abs_energy_error / orbit.energy_scale : 0.0;
+  const ResolutionCheck& check = s.resolution;
+  if (check.done) {
+    if (check.over_run > limit.position) {
+      std::snprintf(why, sizeof why,
+                    "%s's orbit about %s is not resolved: halving the step moves it by %.2e of its radius in one "
+                    "orbit (%.6g), %.2e over the run > %.0e (a smaller step?)",
+                    check.body.c_str(), check.about.c_str(), check.per_window, check.window, check.over_run,
+                    limit.position);
+      v.reasons.push_back(why);
+    }
+  } else if (!s.orbits.empty() && s.max_rel_energy_error <= limit.energy) {
+    const OrbitScale& orbit = s.orbits.front();  // the smallest scale: the largest fraction
+    if (orbit.energy_scale < scale && orbit.relative_energy_error > limit.energy) {
+      std::snprintf(why, sizeof why,
+                    "the energy error %.2e is %.2e of the two-body energy of %s's orbit about %s (%.3e) > %.0e: "
+                    "its motion is not certified (a fixed-step run checks it by halving the step when it finishes)",
+                    s.max_abs_energy_error, orbit.relative_energy_error, orbit.body.c_str(), orbit.about.c_str(),
+                    orbit.energy_scale, limit.energy);
+      v.reasons.push_back(why);
+    }
+  }
+  for (const auto& m : s.pair_models)
+    if (m.exceeded) {
+      std::snprintf(why, sizeof why,
+                    "the model of pair %s–%s exceeded its tolerance at t = %.6g (separation %.6g, estimated error "
+                    "%.1e > %.0e)",
+                    m.body_a.c_str(), m.body_b.c_str(), m.exceeded_time, m.exceeded_separation, m.exceeded_error,
+                    m.tolerance);
+      v.reasons.push_back(why);
+    }
   if (s.conserves_linear_momentum && s.max_rel_linear_momentum_error > limit.momentum) {
     std::snprintf(why, sizeof why, "relative linear momentum error %.2e > %.0e", s.max_rel_linear_momentum_error,
                   limit.momentum);

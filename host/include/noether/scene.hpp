@@ -23,6 +23,9 @@ struct TrustThresholds {
   double energy = 1e-2;         // max |E − E0| / energy scale
   double momentum = 1e-6;       // relative linear and angular momentum errors, where conserved
   double orthogonality = 1e-6;  // max ‖I − RᵀR‖_F
+  // An orbit the energy cannot certify (a small body's): its relative position error over the
+  // run, estimated by halving the step over one orbit (docs/user-guide.md, "Verdict").
+  double position = 1e-2;
 };
 
 struct RunSettings {

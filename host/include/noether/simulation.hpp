@@ -38,6 +38,28 @@ struct Verdict {
   std::vector<std::string> reasons;
 };
 
+// An orbit the verdict judges on its own scale (docs/user-guide.md, "Verdict"): a body and the
+// body that attracts it most at t0, one per pair, with the magnitude of the pair's two-body
+// energy then, |½ μ v² − G m_a m_b / r| (or ½ μ v² + G m_a m_b / r for a near-parabolic
+// pair). The run's energy error is judged against it as well as against E0, so that a small
+// body's motion is not lost in the energy of large ones.
+struct OrbitScale {
+  std::string body, about;
+  double energy_scale = 0.0;
+  double relative_energy_error = 0.0;  // max |E − E0| / energy_scale (filled by judge)
+};
+
+// The step-halving check of an orbit the energy cannot certify (run when a fixed-step run
+// finishes): the scene integrated over one period of that orbit at h and at h/2, and how far the
+// orbit's relative position moved, as a fraction of the pair's separation.
+struct ResolutionCheck {
+  bool done = false;
+  std::string body, about;
+  double window = 0.0;          // the time integrated twice (one period of the orbit, whole steps)
+  double per_window = 0.0;      // |Δ(x_body − x_about)| / |x_body − x_about| at its end
+  double over_run = 0.0;        // extrapolated linearly to the run's length (at least per_window)
+};
+
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
   std::string integrator;
@@ -59,8 +81,11 @@ struct RunSummary {
   double min_gap_reach = 0.0;  // r_a + r_b of that pair
   std::string min_gap_pair;
   Verdict verdict;
+  std::vector<OrbitScale> orbits;  // set at frame 0; the smallest scale first
+  ResolutionCheck resolution;      // set when a run finishes (Simulation::finish)
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
+  std::string min_distance_pair;                // "a–b"
   std::size_t frames = 0;
   std::int64_t interpolated_frames = 0;  // frames interpolated between the method's steps
   std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it
