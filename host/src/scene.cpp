@@ -244,10 +244,10 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
     if (!(el.e >= 0.0 && el.e < 1.0))
       throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
                        "only; give position and velocity for others)");
-    if (o.has("nu") == o.has("M"))
+    if (o.has("nu") && o.has("M"))
       throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
-                       "'M' (degrees), one of them");
-    el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.at("M").as_double() * deg, el.e);
+                       "'M' (degrees), not both (neither: M = 0, at periapsis)");
+    el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.get("M", 0.0) * deg, el.e);
     if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
       throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
     const double mu = sys.G() * (sys.body(i).mass + sys.body(*c).mass);

@@ -41,10 +41,22 @@ def plugins():
     return _noether.plugins()
 
 
+def _json_value(value):
+    """NumPy arrays and scalars in a scene dict, as the lists and numbers they hold."""
+    if hasattr(value, "tolist"):  # numpy.ndarray, numpy.float64, numpy.int64, numpy.bool_
+        return value.tolist()
+    raise TypeError(f"a scene value of type {type(value).__name__} ({value!r}) is not a number, string, "
+                    "list or dict")
+
+
 def _scene_text(scene):
     """(text, name) of a scene given as a dict: JSON is YAML, so the scene reader reads it as
-    it reads a file, with the same checks and messages."""
-    return json.dumps(scene, indent=1), "<dict>"
+    it reads a file, with the same checks and messages. NumPy arrays and scalars are taken as
+    the lists and numbers they hold."""
+    try:
+        return json.dumps(scene, indent=1, default=_json_value), "<dict>"
+    except (TypeError, ValueError) as e:
+        raise SceneError(f"<dict>: {e}") from None
 
 
 def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None, align=True, tolerance=1e-6):

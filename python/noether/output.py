@@ -21,9 +21,15 @@ class Output:
     def __init__(self, path):
         self.path = str(path)
         self._arrays, self._units, self._descriptions = {}, {}, {}
-        with h5py.File(self.path, "r", locking=False) as f:
+        try:
+            f = h5py.File(self.path, "r", locking=False)
+        except FileNotFoundError:
+            raise _noether.OutputError(f"{self.path}: no such file") from None
+        except OSError as e:  # not HDF5, damaged, unreadable
+            raise _noether.OutputError(f"{self.path} is not an HDF5 file noether can read ({e})") from None
+        with f:
             if "frames_complete" not in f or "parameters" not in f:
-                raise ValueError(f"{self.path} is not an output file of noether (no /frames_complete)")
+                raise _noether.OutputError(f"{self.path} is not an output file of noether (no /frames_complete)")
             self.frames = int(f["frames_complete"][()])
             self.names = [n.decode() if isinstance(n, bytes) else n for n in f["particles/bodies/name"][()]]
             self.masses = f["particles/bodies/mass"][()]

@@ -134,4 +134,10 @@ assert max(abs(i - 120), abs(Omega - 200), abs(omega - 300)) < 1e-9, (i, Omega, 
 E = 2 * math.atan(math.sqrt(0.3 / 1.7) * math.tan(math.radians(nu) / 2))
 M = math.degrees(E - 0.7 * math.sin(E)) % 360
 assert abs(M - 250) < 1e-9, M
+# No anomaly given: M = 0, the body at periapsis (r = a (1 − e)).
+with run("periapsis.yaml", text=relative.replace(", M: 250}", "}")) as f:
+    x = f["particles/bodies/position/value"][0]
+    v = f["particles/bodies/velocity/value"][0]
+assert abs(np.linalg.norm(x[2] - x[1]) / (0.01 * 0.3) - 1) < 1e-12, np.linalg.norm(x[2] - x[1])
+assert abs((x[2] - x[1]) @ (v[2] - v[1])) < 1e-12 * np.linalg.norm(x[2] - x[1]) * np.linalg.norm(v[2] - v[1])
 print("initial states and units: ok")

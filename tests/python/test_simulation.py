@@ -153,6 +153,39 @@ def test_one_checkpoint_format_output_files_load_and_saved_files_resume(dumbbell
         noether.Simulation.load(tmp_path / "old.h5")
 
 
+def test_numpy_values_in_a_scene_dict_are_their_numbers(dumbbells, tmp_path):
+    """Arrays and NumPy scalars in a scene dict (what a script computes) are taken as the lists
+    and numbers they hold: the same run, bit for bit; anything else is a SceneError naming it."""
+    plain = noether.Simulation(dumbbells, set=["run.t_end=0.1"])
+    plain.integrate(0.1)
+    arrays = dict(dumbbells)
+    arrays["bodies"] = [dict(b) for b in dumbbells["bodies"]]
+    for b in arrays["bodies"]:
+        b["position"] = np.array(b["position"], dtype=float)
+        b["inertia"] = np.array(b["inertia"])
+    arrays["bodies"][0]["mass"] = np.float64(1.5)
+    arrays["G"] = np.float64(dumbbells["G"])
+    arrays["run"] = dict(dumbbells["run"], output_every=np.float64(0.01))
+    sim = noether.Simulation(arrays, set=["run.t_end=0.1"])
+    sim.integrate(0.1)
+    assert sim.positions.tobytes() == plain.positions.tobytes()
+    arrays["bodies"][1]["mass"] = object()
+    with pytest.raises(noether.SceneError, match="is not a number, string, list or dict"):
+        noether.Simulation(arrays)
+
+
+def test_reading_what_is_not_an_output_file_is_an_output_error(tmp_path):
+    with pytest.raises(noether.OutputError, match="no such file"):
+        noether.read(tmp_path / "missing.h5")
+    (tmp_path / "text.h5").write_text("not HDF5")
+    with pytest.raises(noether.OutputError, match="not an HDF5 file"):
+        noether.read(tmp_path / "text.h5")
+    with h5py.File(tmp_path / "other.h5", "w") as f:
+        f["x"] = 1
+    with pytest.raises(noether.OutputError, match="not an output file of noether"):
+        noether.read(tmp_path / "other.h5")
+
+
 def test_plugins_are_listed():
     names = {p["name"]: p for p in noether.plugins()}
     for name in ["lgvi", "rk", "cvode", "point-mass", "sphere-cluster", "mutual-series", "mutual-exact"]:
