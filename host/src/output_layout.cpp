@@ -17,6 +17,34 @@ namespace noether {
 namespace fs = std::filesystem;
 using namespace noether::h5;
 
+namespace {
+
+// /parameters/shapes/<body>/{vertices [n][3], faces [m][3]}: a polyhedron in its body frame.
+void write_mesh(hid_t group, const Mesh& mesh, const Units& units) {
+  const hsize_t n = static_cast<hsize_t>(mesh.vertices.cols()), m = mesh.faces.size();
+  {
+    const hsize_t dims[2] = {n, 3};
+    const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
+    const io::H5Handle d(check_id(H5Dcreate2(group, "vertices", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                             H5P_DEFAULT), "vertices"));
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, mesh.vertices.data()), "vertices");
+    string_attribute(d, "unit", units.of_length());
+    string_attribute(d, "description", "the polyhedron's vertices in the body frame (centre of mass, principal axes) "
+                                       "[vertex][xyz]");
+  }
+  std::vector<int> faces;
+  for (const auto& f : mesh.faces) faces.insert(faces.end(), f.begin(), f.end());
+  const hsize_t dims[2] = {m, 3};
+  const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
+  const io::H5Handle d(
+      check_id(H5Dcreate2(group, "faces", H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "faces"));
+  if (m) check(H5Dwrite(d, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, faces.data()), "faces");
+  string_attribute(d, "description", "the polyhedron's triangles: 0-based vertex indices, counter-clockwise seen "
+                                     "from outside [face][3]");
+}
+
+}  // namespace
+
 void H5Writer::create_layout(const Scene& scene) {
   Impl& m = *impl_;
   const OutputOptions& options = m.options;
@@ -87,8 +115,12 @@ void H5Writer::create_layout(const Scene& scene) {
     string_attribute(g, "description", b.solid->describe());
     numeric_attribute<double>(g, "density", H5T_NATIVE_DOUBLE, {b.solid->density});
     numeric_attribute<double>(g, "volume", H5T_NATIVE_DOUBLE, {b.solid->volume});
-    numeric_attribute<double>(g, "semi_axes", H5T_NATIVE_DOUBLE,
-                              {b.solid->semi_axes.x(), b.solid->semi_axes.y(), b.solid->semi_axes.z()});
+    if (b.solid->kind == Solid::Kind::Ellipsoid) {
+      numeric_attribute<double>(g, "semi_axes", H5T_NATIVE_DOUBLE,
+                                {b.solid->semi_axes.x(), b.solid->semi_axes.y(), b.solid->semi_axes.z()});
+    } else {  // the mesh in the body frame, so that the file alone can draw the body
+      write_mesh(g, b.solid->mesh, scene.units);
+    }
     numeric_attribute<double>(g, "offset", H5T_NATIVE_DOUBLE,
                               {b.solid->offset.x(), b.solid->offset.y(), b.solid->offset.z()});
     std::vector<double> rotation;

@@ -45,6 +45,16 @@ class Output:
                     self._descriptions[name] = d.attrs.get("description", "")
             if "particles/bodies/inertia" in f:
                 self.inertias = f["particles/bodies/inertia"][()]
+            # Each solid body's shape in its body frame: {"kind": "ellipsoid", "semi_axes": [a, b, c]}
+            # or {"kind": "polyhedron", "vertices": [n][3], "faces": [m][3]}.
+            self.shapes = {}
+            for name, g in (f["parameters/shapes"].items() if "parameters/shapes" in f else []):
+                shape = {"kind": _text(g.attrs["kind"]), "description": _text(g.attrs["description"])}
+                if "semi_axes" in g.attrs:
+                    shape["semi_axes"] = g.attrs["semi_axes"]
+                if "vertices" in g:
+                    shape["vertices"], shape["faces"] = g["vertices"][()], g["faces"][()]
+                self.shapes[name] = shape
 
     def keys(self):
         return list(self._arrays)

@@ -102,6 +102,28 @@ def test_the_user_guide_names_every_series(source):
             assert "/".join(parts[:-1]) + "/{" in layout, s["path"]
 
 
+def test_the_file_holds_each_shape_in_its_body_frame(source, tmp_path):
+    """A polyhedron's mesh and an ellipsoid's semi-axes are in the output, so the file alone can
+    draw the bodies: the mesh read back has the volume the run used (divergence theorem over its
+    faces) and its centre of mass at the origin of the body frame."""
+    out = tmp_path / "didymos.h5"
+    sim = noether.Simulation(source / "examples/didymos.yaml", output=out, set=["run.t_end=60"])
+    sim.integrate(60)
+    sim.finish()
+    shapes = noether.read(out).shapes
+    assert shapes["dimorphos"]["kind"] == "ellipsoid"
+    assert sorted(shapes["dimorphos"]["semi_axes"]) == sorted([103.16, 79.35, 66.13])
+    mesh = shapes["didymos"]
+    assert mesh["kind"] == "polyhedron" and mesh["vertices"].shape == (1000, 3) and mesh["faces"].shape == (1996, 3)
+    v = mesh["vertices"][mesh["faces"]]  # [face][corner][xyz]
+    signed = np.einsum("ij,ij->i", v[:, 0], np.cross(v[:, 1], v[:, 2])) / 6  # tetrahedra from the origin
+    with h5py.File(out, "r") as f:
+        volume = f["parameters/shapes/didymos"].attrs["volume"][0]
+    assert abs(signed.sum() / volume - 1) < 1e-12
+    centroid = (signed[:, None] * v.sum(axis=1) / 4).sum(axis=0) / signed.sum()
+    assert np.abs(centroid).max() < 1e-9 * np.abs(mesh["vertices"]).max()
+
+
 def test_angular_velocity_is_the_attitudes_rate(source, tmp_path):
     """The output quantity added through the schema table alone (one row and its function):
     Ω = J⁻¹Π, checked against the attitudes' own rate, Ω̂ ≈ Rᵀ (R(t+h) − R(t−h)) / 2h."""
