@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 namespace noether::detail {
@@ -59,6 +60,7 @@ class RunStatistics final : public Observer {
       for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
       s_.min_distance = std::numeric_limits<double>::infinity();
       s_.orbits = orbit_scales(state);
+      start_mutual_orbit(state);
       detect_conservation(state, forces);
     }
     s_.final = d;
@@ -87,6 +89,7 @@ class RunStatistics final : public Observer {
             s_.min_gap_pair = a.name + "–" + b.name;
           }
         }
+    track_mutual_orbit(state);
     ++s_.frames;
     return d;
   }
@@ -96,6 +99,55 @@ class RunStatistics final : public Observer {
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
 
  private:
+  // The mutual orbit of a two-body-like scene (RunSummary::mutual_period): its plane at t0.
+  void start_mutual_orbit(const State& state) {
+    s_.mutual_pair.clear();
+    s_.mutual_period = std::numeric_limits<double>::quiet_NaN();
+    s_.mutual_revolutions = 0;
+    mutual_ = {};
+    const Eigen::Index n = state.x.cols();
+    if (n < 2) return;
+    double total = 0.0;
+    Eigen::Index a = -1, b = -1;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double m = system_.body(static_cast<std::size_t>(i)).mass;
+      total += m;
+      if (a < 0 || m > system_.body(static_cast<std::size_t>(a)).mass) b = a, a = i;
+      else if (b < 0 || m > system_.body(static_cast<std::size_t>(b)).mass) b = i;
+    }
+    const double pair = system_.body(static_cast<std::size_t>(a)).mass + system_.body(static_cast<std::size_t>(b)).mass;
+    if (pair < 0.99 * total) return;
+    if (a > b) std::swap(a, b);
+    const Vec3 r = relative(state, a, b), v = state.p.col(b) / system_.body(static_cast<std::size_t>(b)).mass -
+                                             state.p.col(a) / system_.body(static_cast<std::size_t>(a)).mass;
+    const Vec3 h = r.cross(v);
+    if (!(h.norm() > 0)) return;  // a radial fall: no orbit to time
+    mutual_.a = a, mutual_.b = b;
+    mutual_.e1 = r.normalized();
+    mutual_.e2 = h.cross(r).normalized();
+    mutual_.t0 = mutual_.t_prev = state.t;
+    s_.mutual_pair = system_.body(static_cast<std::size_t>(a)).name + "–" + system_.body(static_cast<std::size_t>(b)).name;
+  }
+  // The angle swept since t0, unwrapped; each whole revolution's time interpolated linearly.
+  void track_mutual_orbit(const State& state) {
+    if (mutual_.a < 0 || state.t <= mutual_.t_prev) return;
+    const Vec3 r = relative(state, mutual_.a, mutual_.b);
+    const double angle = std::atan2(r.dot(mutual_.e2), r.dot(mutual_.e1));
+    double step = angle - mutual_.angle_prev;
+    step -= 2 * std::numbers::pi * std::round(step / (2 * std::numbers::pi));  // to (−π, π]
+    const double before = mutual_.swept, after = before + step;
+    for (double turn = 2 * std::numbers::pi * (s_.mutual_revolutions + 1); after >= turn && after > before;
+         turn += 2 * std::numbers::pi) {
+      const double t_turn = mutual_.t_prev + (turn - before) / (after - before) * (state.t - mutual_.t_prev);
+      ++s_.mutual_revolutions;
+      s_.mutual_period = (t_turn - mutual_.t0) / s_.mutual_revolutions;
+    }
+    mutual_.swept = after;
+    mutual_.angle_prev = angle;
+    mutual_.t_prev = state.t;
+  }
+  static Vec3 relative(const State& state, Eigen::Index a, Eigen::Index b) { return state.x.col(b) - state.x.col(a); }
+
   // Each body's orbit about the body that attracts it most (largest G m_j / r²) at t0, one per
   // pair, with the pair's two-body energy as its scale (RunSummary::orbits). Scenes of more than
   // 64 bodies are judged on E0 alone (O(n²)).
@@ -156,6 +208,11 @@ class RunStatistics final : public Observer {
   RunSummary& s_;
   std::function<void(const State&, const Diagnostics&)> write_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
+  struct MutualOrbit {
+    Eigen::Index a = -1, b = -1;
+    Vec3 e1 = Vec3::Zero(), e2 = Vec3::Zero();  // the orbit's plane at t0: r0 and its prograde normal
+    double t0 = 0.0, t_prev = 0.0, angle_prev = 0.0, swept = 0.0;
+  } mutual_;
 };
 
 // Work counters added up; −1 (not reported) stays −1.

@@ -39,6 +39,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   m.integrator = registry.make_integrator(sc.integrator.plugin, sc.system, m.potential, sc.integrator.params);
   m.summary.integrator = sc.integrator.plugin;
   if (sc.units.declared) m.summary.units = sc.units.describe();
+  m.summary.time_unit = sc.units.of_time();
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
   m.t_origin = sc.initial.t;

@@ -25,6 +25,16 @@ std::string format_pair_models(const std::vector<PairModel>& models) {
   return out;
 }
 
+namespace {
+// " = 11.9326 h" after a time in seconds (none in other units).
+std::string hours(double t, const std::string& unit) {
+  if (unit != "s") return "";
+  char text[48];
+  std::snprintf(text, sizeof text, " = %.6g h", t / 3600.0);
+  return text;
+}
+}  // namespace
+
 std::string format_summary(const RunSummary& s) {
   char buf[2048];
   const double steps = static_cast<double>(std::max<std::int64_t>(1, s.work.steps));
@@ -46,6 +56,17 @@ std::string format_summary(const RunSummary& s) {
   if (std::isfinite(s.min_distance)) {
     std::snprintf(line, sizeof line, "closest approach              %.6g (%s) at t = %.6g\n", s.min_distance,
                   s.min_distance_pair.c_str(), s.t_of_min_distance);
+    optional += line;
+  }
+  if (!s.mutual_pair.empty()) {
+    if (s.mutual_revolutions > 0) {
+      std::snprintf(line, sizeof line, "mutual orbit period           %.10g %s%s (%s, %d revolution%s of the trajectory)\n",
+                    s.mutual_period, s.time_unit.c_str(), hours(s.mutual_period, s.time_unit).c_str(),
+                    s.mutual_pair.c_str(), s.mutual_revolutions, s.mutual_revolutions == 1 ? "" : "s");
+    } else {
+      std::snprintf(line, sizeof line, "mutual orbit period           not measured: %s made less than one revolution\n",
+                    s.mutual_pair.c_str());
+    }
     optional += line;
   }
   if (!s.orbits.empty()) {
@@ -146,6 +167,9 @@ std::string format_summary_json(const RunSummary& s) {
   field("max_orthogonality_error", s.final_state.R.empty() ? "null" : json_number(s.max_orthogonality_error));
   field("closest_approach", json_number(s.min_distance));
   field("t_of_closest_approach", std::isfinite(s.min_distance) ? json_number(s.t_of_min_distance) : "null");
+  field("mutual_pair", s.mutual_pair.empty() ? "null" : json_string(s.mutual_pair));
+  field("mutual_period", s.mutual_revolutions > 0 ? json_number(s.mutual_period) : "null");
+  field("mutual_revolutions", std::to_string(s.mutual_revolutions));
   field("closest_approach_pair", std::isfinite(s.min_distance) ? json_string(s.min_distance_pair) : "null");
   std::string orbits = "[";
   for (const auto& o : s.orbits)

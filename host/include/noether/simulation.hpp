@@ -83,6 +83,14 @@ struct RunSummary {
   Verdict verdict;
   std::vector<OrbitScale> orbits;  // set at frame 0; the smallest scale first
   ResolutionCheck resolution;      // set when a run finishes (Simulation::finish)
+  // Two-body-like scenes (two bodies hold 99 % of the mass): the period of their mutual orbit
+  // measured from the trajectory — the time of the last whole revolution of their relative
+  // position (in the plane of its t0 angular momentum, crossings interpolated between output
+  // frames) divided by the revolutions. NaN before one revolution.
+  std::string mutual_pair;  // "a–b" (empty: not two-body-like)
+  double mutual_period = std::numeric_limits<double>::quiet_NaN();
+  int mutual_revolutions = 0;
+  std::string time_unit;    // the scene's unit of time, for the summary
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::string min_distance_pair;                // "a–b"
