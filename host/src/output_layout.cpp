@@ -7,6 +7,7 @@
 #include "io/frame_schema.hpp"
 #include "io/h5_handle.hpp"
 #include "io/checksum.hpp"
+#include "binary_pair.hpp"
 #include "output_impl.hpp"
 
 #include <cmath>
@@ -52,13 +53,18 @@ void H5Writer::create_layout(const Scene& scene) {
   m.n_bodies = sys.size();
   m.n_rigid = sys.rigid_count();
   m.system = sys;
+  if (const auto pair = binary_pair(sys)) {
+    m.primary = static_cast<std::ptrdiff_t>(pair->primary);
+    m.secondary = static_cast<std::ptrdiff_t>(pair->secondary);
+  }
   // Every series is allocated for the frames the run will write, up to a budget; a run that
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
+  m.layout = io::layout_of(sys, options.checkpoint_width);
   for (const auto& q : io::frame_schema()) {
-    if (!io::present(q, m.n_rigid, options.checkpoint_width)) continue;
+    if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
-    for (const auto d : io::frame_shape(q, m.n_bodies, m.n_rigid, options.checkpoint_width))
+    for (const auto d : io::frame_shape(q, m.layout))
       bytes *= static_cast<double>(d);
     frame_bytes += bytes;
   }
@@ -221,7 +227,7 @@ void H5Writer::create_series(const Scene& scene) {
   const std::int64_t integer_fill = -1;
   const double real_fill = std::numeric_limits<double>::quiet_NaN();
   for (const auto& q : schema) {
-    if (!io::present(q, m.n_rigid, m.options.checkpoint_width)) continue;
+    if (!io::present(q, m.layout)) continue;
     const std::string path = q.path, parent = path.substr(0, path.rfind('/')), name = path.substr(path.rfind('/') + 1);
     bool created = false;
     const io::H5Handle group(group_at(m.file, parent, &created));
@@ -235,9 +241,13 @@ void H5Writer::create_series(const Scene& scene) {
       }
       if (q.extent == io::Extent::kRigidVector || q.extent == io::Extent::kRigidQuaternion)
         numeric_attribute<int>(group, "body_index", H5T_NATIVE_INT, rigid_index);
+      if (const auto pair = binary_pair(sys); pair && io::binary_only(q)) {  // the binary's series
+        string_attribute(group, "primary", sys.body(pair->primary).name);
+        string_attribute(group, "secondary", sys.body(pair->secondary).name);
+      }
     }
     std::vector<hsize_t> shape;
-    for (auto d : io::frame_shape(q, m.n_bodies, m.n_rigid, m.options.checkpoint_width)) shape.push_back(d);
+    for (auto d : io::frame_shape(q, m.layout)) shape.push_back(d);
     const bool integer = io::is_integer(q);
     auto series = std::make_unique<Series>(group, name.c_str(), integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
                                            shape, m.allocated,

@@ -7,6 +7,8 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "binary_pair.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -105,18 +107,9 @@ class RunStatistics final : public Observer {
     s_.mutual_period = std::numeric_limits<double>::quiet_NaN();
     s_.mutual_revolutions = 0;
     mutual_ = {};
-    const Eigen::Index n = state.x.cols();
-    if (n < 2) return;
-    double total = 0.0;
-    Eigen::Index a = -1, b = -1;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double m = system_.body(static_cast<std::size_t>(i)).mass;
-      total += m;
-      if (a < 0 || m > system_.body(static_cast<std::size_t>(a)).mass) b = a, a = i;
-      else if (b < 0 || m > system_.body(static_cast<std::size_t>(b)).mass) b = i;
-    }
-    const double pair = system_.body(static_cast<std::size_t>(a)).mass + system_.body(static_cast<std::size_t>(b)).mass;
-    if (pair < 0.99 * total) return;
+    const auto pair = binary_pair(system_);
+    if (!pair) return;
+    auto a = static_cast<Eigen::Index>(pair->primary), b = static_cast<Eigen::Index>(pair->secondary);
     if (a > b) std::swap(a, b);
     const Vec3 r = relative(state, a, b), v = state.p.col(b) / system_.body(static_cast<std::size_t>(b)).mass -
                                              state.p.col(a) / system_.body(static_cast<std::size_t>(a)).mass;

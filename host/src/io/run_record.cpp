@@ -135,7 +135,7 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
     const std::string p = q->path;
     const H5Handle d = open_dataset(file, q->path);
     if (!d.valid()) {
-      if (!present(*q, 0, 0)) continue;  // rigid bodies' and the integrator's series are optional
+      if (rigid_only(*q) || optional(*q)) continue;  // rigid bodies' and the integrator's series
       damaged(p + " is missing or does not open");
     }
     const std::vector<hsize_t> dims = extent(d);
@@ -144,13 +144,13 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
       damaged(p + " has " + std::to_string(dims[0]) + " frames, /frames_complete says " + std::to_string(frames) +
               " (a run that ended writes exactly that many)");
     const std::size_t axis = dims.size() > 1 ? dims[1] : 0;
-    const std::vector<std::size_t> shape = frame_shape(*q, axis, axis, axis);
+    const std::vector<std::size_t> shape = frame_shape(*q, FrameLayout{axis, axis, axis, true, true, true});
     if (dims.size() != shape.size() + 1 || !std::equal(shape.begin(), shape.end(), dims.begin() + 1))
       damaged(p + " is not " + describe_extent(q->extent));
     if (q->extent == Extent::kBodyVector) {
       if (bodies != 0 && bodies != axis) damaged(p + " has " + std::to_string(axis) + " bodies, not " + std::to_string(bodies));
       bodies = axis;
-    } else if (!present(*q, 0, 1)) {  // a rigid bodies' series
+    } else if (rigid_only(*q)) {
       if (rigid_seen && rigid != axis) damaged(p + " has " + std::to_string(axis) + " rigid bodies, not " + std::to_string(rigid));
       rigid = axis;
       rigid_seen = true;
