@@ -92,7 +92,7 @@ std::string format_summary(const RunSummary& s) {
       buf, sizeof buf,
       "potential                     %s\n"
       "integrator                    %s\n"
-      "E0                            %.10f\n"
+      "E0                            %.10g\n"
       "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames%s)\n"
       "%s"
       "output frames                 %zu\n"
