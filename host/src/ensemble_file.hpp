@@ -64,10 +64,10 @@ class EnsembleFile {
       io::read_probe(path, [&] { EnsembleFile::read_recorded(path, samples, identity_); },
                      io::read_probe_seconds(path));
       done_ = read_recorded(path, samples, identity_);
-      file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, io::file_access(64 * 1024));
+      file_ = io::H5Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, io::file_access(64 * 1024)));
       if (file_ < 0) throw OutputError("cannot open " + path.string() + " to resume it" + system_reason());
-      outcome_ = H5Dopen2(file_, "outcome", H5P_DEFAULT);
-      checksum_ = H5Dopen2(file_, "outcome_checksum", H5P_DEFAULT);  // absent in an older noether's file
+      outcome_ = io::H5Handle(H5Dopen2(file_, "outcome", H5P_DEFAULT));
+      checksum_ = io::H5Handle(H5Dopen2(file_, "outcome_checksum", H5P_DEFAULT));  // absent in an older noether's file
       return;
     }
     // Built under a hidden name and renamed into place once its layout is complete, so the path
@@ -81,7 +81,7 @@ class EnsembleFile {
       if (claimed >= 0) ::close(claimed);
       throw;
     }
-    file_ = H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
+    file_ = io::H5Handle(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024)));
     if (file_ < 0) {
       if (claimed >= 0) ::close(claimed);
       ::close(lock_);
@@ -100,55 +100,46 @@ class EnsembleFile {
     numeric_attribute<std::uint64_t>(file_, "seed", H5T_NATIVE_UINT64, {options.seed});
     string_attribute(file_, "units", scene.units.describe());
     string_attribute(file_, "pair", scene.system.body(pair_a).name + "," + scene.system.body(pair_b).name);
-    hid_t inputs = make_group(file_, "inputs");
+    const io::H5Handle inputs(make_group(file_, "inputs"));
     for (const auto& v : options.vary) {
-      hid_t d = create(inputs, v.key.c_str(), H5T_NATIVE_DOUBLE, {});
+      const io::H5Handle d = create(inputs, v.key.c_str(), H5T_NATIVE_DOUBLE, {});
       string_attribute(d, "distribution", v.text);
-      H5Dclose(d);
     }
-    H5Gclose(inputs);
     outcome_ = create(file_, "outcome", H5T_NATIVE_INT8, {});
     string_attribute(outcome_, "description", "-1 not run, 0 completed, 1 stopped by an event, 2 failed");
     checksum_ = create(file_, "outcome_checksum", H5T_NATIVE_UINT64, {});
     string_attribute(checksum_, "description",
                      "checksum64 of each sample's outcome byte, seeded with its index (0: not written); "
                      "`noether ensemble --resume` verifies every outcome it reads");
-    hid_t message_type = H5Tcopy(H5T_C_S1);
+    const io::H5Handle message_type(H5Tcopy(H5T_C_S1));
     H5Tset_size(message_type, kMessageBytes);
-    H5Dclose(create(file_, "message", message_type, {}));
-    H5Tclose(message_type);
-    hid_t summary = make_group(file_, "summary");
-    for (const char* name : kSummary) H5Dclose(create(summary, name, H5T_NATIVE_DOUBLE, {}));
-    H5Gclose(summary);
-    hid_t fin = make_group(file_, "final");
-    H5Dclose(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}));
-    H5Dclose(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}));
+    create(file_, "message", message_type, {});
+    const io::H5Handle summary(make_group(file_, "summary"));
+    for (const char* name : kSummary) create(summary, name, H5T_NATIVE_DOUBLE, {});
+    const io::H5Handle fin(make_group(file_, "final"));
+    create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3});
+    create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3});
     if (nr_ > 0) {
-      H5Dclose(create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3}));
-      H5Dclose(create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3}));
+      create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3});
+      create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3});
     }
-    H5Gclose(fin);
-    hid_t orbit = make_group(file_, "orbit");
+    const io::H5Handle orbit(make_group(file_, "orbit"));
     string_attribute(orbit, "description",
                      "the pair's osculating mutual orbit at the end: semi-major axis, eccentricity, period "
                      "(NaN when unbound)");
-    for (const char* name : {"a", "e", "period"}) H5Dclose(create(orbit, name, H5T_NATIVE_DOUBLE, {}));
-    H5Gclose(orbit);
-    hid_t timing = make_group(file_, "timing");
+    for (const char* name : {"a", "e", "period"}) create(orbit, name, H5T_NATIVE_DOUBLE, {});
+    const io::H5Handle timing(make_group(file_, "timing"));
     string_attribute(timing, "description", "wall times: not results, they differ from run to run");
-    H5Dclose(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}));
-    H5Dclose(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}));
-    hid_t trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
+    create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {});
+    create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {});
+    const io::H5Handle trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
     string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
                                            "-1 not run or failed");
-    H5Dclose(trust);
-    H5Gclose(timing);
     check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
     try {
       io::publish_file(partial, path, claimed >= 0);
     } catch (...) {
-      H5Fclose(file_);
-      file_ = -1;
+      file_.reset();
       std::filesystem::remove(partial, ec);
       if (claimed >= 0) ::close(claimed);
       throw;
@@ -157,9 +148,9 @@ class EnsembleFile {
     done_.assign(samples, -1);
   }
   ~EnsembleFile() {
-    if (checksum_ >= 0) H5Dclose(checksum_);
-    if (outcome_ >= 0) H5Dclose(outcome_);
-    if (file_ >= 0) H5Fclose(file_);
+    checksum_.reset();  // the datasets, then the file, then its lock
+    outcome_.reset();
+    file_.reset();
     if (lock_ >= 0) ::close(lock_);
   }
   bool done(std::size_t i) const { return done_[i] >= 0; }
@@ -170,10 +161,9 @@ class EnsembleFile {
     for (std::size_t k = 0; k < vary.size(); ++k) put(("inputs/" + vary[k].key).c_str(), i, &inputs[k], 1);
     char message[kMessageBytes] = {};
     std::strncpy(message, r.message.c_str(), kMessageBytes - 1);
-    hid_t type = H5Tcopy(H5T_C_S1);
+    const io::H5Handle type(H5Tcopy(H5T_C_S1));
     H5Tset_size(type, kMessageBytes);
     put("message", i, message, 1, type);
-    H5Tclose(type);
     for (std::size_t k = 0; k < kSummaryCount; ++k)
       put((std::string("summary/") + kSummary[k]).c_str(), i, &r.summary[k], 1);
     if (r.final_state.x.cols() > 0) {
@@ -251,11 +241,11 @@ class EnsembleFile {
     return outcome;
   }
 
-  hid_t create(hid_t parent, const char* name, hid_t type, std::vector<hsize_t> shape) {
+  io::H5Handle create(hid_t parent, const char* name, hid_t type, std::vector<hsize_t> shape) {
     std::vector<hsize_t> dims{samples_};
     dims.insert(dims.end(), shape.begin(), shape.end());
-    hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
-    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    const io::H5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr));
+    const io::H5Handle plist(H5Pcreate(H5P_DATASET_CREATE));
     H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
     H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
     if (H5Tequal(type, H5T_NATIVE_DOUBLE) > 0) {
@@ -265,18 +255,14 @@ class EnsembleFile {
       const std::int8_t none = -1;
       H5Pset_fill_value(plist, type, &none);
     }
-    hid_t d = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), name);
-    H5Pclose(plist);
-    H5Sclose(space);
-    return d;
+    return io::H5Handle(check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), name));
   }
   void put(const char* path, std::size_t i, const void* data, std::size_t count, hid_t type = H5T_NATIVE_DOUBLE) {
-    hid_t d = check_id(H5Dopen2(file_, path, H5P_DEFAULT), path);
+    const io::H5Handle d(check_id(H5Dopen2(file_, path, H5P_DEFAULT), path));
     put_id(d, i, data, count, type);
-    H5Dclose(d);
   }
   void put_id(hid_t d, std::size_t i, const void* data, std::size_t count, hid_t type) {
-    hid_t space = H5Dget_space(d);
+    const io::H5Handle space(H5Dget_space(d));
     const int rank = H5Sget_simple_extent_ndims(space);
     std::vector<hsize_t> dims(static_cast<std::size_t>(rank)), start(dims.size(), 0);
     H5Sget_simple_extent_dims(space, dims.data(), nullptr);
@@ -284,13 +270,11 @@ class EnsembleFile {
     dims[0] = 1;
     H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, dims.data(), nullptr);
     const hsize_t n = count;
-    hid_t mem = H5Screate_simple(1, &n, nullptr);
+    const io::H5Handle mem(H5Screate_simple(1, &n, nullptr));
     check(H5Dwrite(d, type, mem, space, H5P_DEFAULT, data), "writing a sample");
-    H5Sclose(mem);
-    H5Sclose(space);
   }
 
-  hid_t file_ = -1, outcome_ = -1, checksum_ = -1;
+  io::H5Handle file_, outcome_, checksum_;
   int lock_ = -1;  // the new file's lock (io::create_partial), held while it is written
   hsize_t samples_;
   hsize_t nb_, nr_;

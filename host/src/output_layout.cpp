@@ -73,15 +73,13 @@ void H5Writer::create_layout(const Scene& scene) {
   m.allocated = static_cast<hsize_t>(
       std::min(options.expected_frames > 0 ? static_cast<double>(options.expected_frames) : 1024.0, budget));
 
-  hid_t h5md = make_group(m.file, "h5md");
+  const io::H5Handle h5md(make_group(m.file, "h5md"));
   numeric_attribute<int>(h5md, "version", H5T_NATIVE_INT, {1, 1});
-  hid_t creator = make_group(h5md, "creator");
+  const io::H5Handle creator(make_group(h5md, "creator"));
   string_attribute(creator, "name", "noether");
   string_attribute(creator, "version", NOETHER_VERSION);
-  H5Gclose(creator);
-  H5Gclose(h5md);
 
-  hid_t parameters = make_group(m.file, "parameters");
+  const io::H5Handle parameters(make_group(m.file, "parameters"));
   string_attribute(parameters, "scene_file", scene.file);
   // Where the scene was, so that a continued run finds its shape files from any folder.
   std::error_code ec;
@@ -112,11 +110,11 @@ void H5Writer::create_layout(const Scene& scene) {
   scalar_attribute(parameters, "output_every", scene.run.output_every);
   // Bodies with a solid shape: what it is and how its mesh was placed in the body frame
   // (x_file = offset + rotation · x_body).
-  hid_t shapes = -1;
+  io::H5Handle shapes;
   for (const auto& b : sys.bodies()) {
     if (!b.solid) continue;
-    if (shapes < 0) shapes = make_group(parameters, "shapes");
-    hid_t g = make_group(shapes, b.name.c_str());
+    if (!shapes.valid()) shapes = io::H5Handle(make_group(parameters, "shapes"));
+    const io::H5Handle g(make_group(shapes, b.name.c_str()));
     string_attribute(g, "kind", b.solid->kind == Solid::Kind::Ellipsoid ? "ellipsoid" : "polyhedron");
     string_attribute(g, "description", b.solid->describe());
     numeric_attribute<double>(g, "density", H5T_NATIVE_DOUBLE, {b.solid->density});
@@ -133,13 +131,10 @@ void H5Writer::create_layout(const Scene& scene) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) rotation.push_back(b.solid->rotation(r, c));
     numeric_attribute<double>(g, "rotation", H5T_NATIVE_DOUBLE, rotation);  // row-major
-    H5Gclose(g);
   }
-  if (shapes >= 0) H5Gclose(shapes);
-  H5Gclose(parameters);
 
-  hid_t particles = make_group(m.file, "particles");
-  hid_t bodies = make_group(particles, "bodies");
+  const io::H5Handle particles(make_group(m.file, "particles"));
+  const io::H5Handle bodies(make_group(particles, "bodies"));
   std::vector<std::string> names;
   std::vector<double> masses;
   for (const auto& b : sys.bodies()) {
@@ -149,13 +144,11 @@ void H5Writer::create_layout(const Scene& scene) {
   string_list_dataset(bodies, "name", names);
   double_dataset(bodies, "mass", masses);
   {
-    hid_t d = H5Dopen2(bodies, "mass", H5P_DEFAULT);
-    string_attribute(d, "unit", scene.units.of_mass());
-    string_attribute(d, "description", "mass of each body");
-    H5Dclose(d);
-    d = H5Dopen2(bodies, "name", H5P_DEFAULT);
-    string_attribute(d, "description", "the bodies' names, in the order of every [body] axis");
-    H5Dclose(d);
+    const io::H5Handle mass(check_id(H5Dopen2(bodies, "mass", H5P_DEFAULT), "mass"));
+    string_attribute(mass, "unit", scene.units.of_mass());
+    string_attribute(mass, "description", "mass of each body");
+    const io::H5Handle name(check_id(H5Dopen2(bodies, "name", H5P_DEFAULT), "name"));
+    string_attribute(name, "description", "the bodies' names, in the order of every [body] axis");
   }
   if (m.n_rigid > 0) {  // J_k, principal-axes body frame, [rigid body][3][3]
     std::vector<double> inertia;
@@ -167,30 +160,23 @@ void H5Writer::create_layout(const Scene& scene) {
         for (int c = 0; c < 3; ++c) inertia.push_back(b.inertia(r, c));
     }
     const hsize_t dims[3] = {m.n_rigid, 3, 3};
-    hid_t space = H5Screate_simple(3, dims, nullptr);
-    hid_t d = check_id(H5Dcreate2(bodies, "inertia", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
-                                  H5P_DEFAULT), "inertia");
+    const io::H5Handle space(H5Screate_simple(3, dims, nullptr));
+    const io::H5Handle d(check_id(H5Dcreate2(bodies, "inertia", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
+                                             H5P_DEFAULT), "inertia"));
     check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, inertia.data()), "inertia");
     numeric_attribute<int>(d, "body_index", H5T_NATIVE_INT, rigid_index);
     string_attribute(d, "description", "inertia tensor J of each rigid body in its body frame");
     string_attribute(d, "unit", scene.units.of_inertia());
-    H5Dclose(d);
-    H5Sclose(space);
   }
-  H5Gclose(bodies);
-  H5Gclose(particles);
   create_series(scene);
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
   // their allocated length, with fill (NaN, step −1) or an unfinished block after it.
   {
-    hid_t space = H5Screate(H5S_SCALAR);
-    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    const io::H5Handle space(H5Screate(H5S_SCALAR)), plist(H5Pcreate(H5P_DATASET_CREATE));
     H5Pset_layout(plist, H5D_CONTIGUOUS);
     H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
     m.complete = check_id(H5Dcreate2(m.file, "frames_complete", H5T_NATIVE_INT64, space, H5P_DEFAULT,
                                      plist, H5P_DEFAULT), "frames_complete");
-    H5Pclose(plist);
-    H5Sclose(space);
     string_attribute(m.complete, "description",
                      "the number of complete frames: every series holds exactly this many after a "
                      "run that ended; after a killed run, read series[:frames_complete]");
@@ -275,11 +261,11 @@ void H5Writer::create_series(const Scene& scene) {
 void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
   if (models.empty()) return;
   Impl& m = *impl_;
-  hid_t parameters = H5Gopen2(m.file, "parameters", H5P_DEFAULT);
+  const io::H5Handle parameters(check_id(H5Gopen2(m.file, "parameters", H5P_DEFAULT), "/parameters"));
   if (H5Lexists(parameters, "pair_models", H5P_DEFAULT) > 0) H5Ldelete(parameters, "pair_models", H5P_DEFAULT);
-  hid_t group = make_group(parameters, "pair_models");
+  const io::H5Handle group(make_group(parameters, "pair_models"));
   for (const auto& p : models) {
-    hid_t g = make_group(group, (p.body_a + "–" + p.body_b).c_str());
+    const io::H5Handle g(make_group(group, (p.body_a + "–" + p.body_b).c_str()));
     string_attribute(g, "body_a", p.body_a);
     string_attribute(g, "body_b", p.body_b);
     string_attribute(g, "model", p.model);
@@ -293,10 +279,7 @@ void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
       numeric_attribute<double>(g, "exceeded_separation", H5T_NATIVE_DOUBLE, {p.exceeded_separation});
       numeric_attribute<double>(g, "exceeded_error", H5T_NATIVE_DOUBLE, {p.exceeded_error});
     }
-    H5Gclose(g);
   }
-  H5Gclose(group);
-  H5Gclose(parameters);
   m.flush_file("flushing the output file");
 }
 
