@@ -15,16 +15,6 @@
 
 namespace noether {
 
-namespace {
-
-std::size_t index_of(const System& system, const std::string& name) {
-  for (std::size_t i = 0; i < system.size(); ++i)
-    if (system.body(i).name == name) return i;
-  throw Error("resolution check: no body '" + name + "'");
-}
-
-}  // namespace
-
 ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged) {
   ResolutionCheck check;
   const Scene& scene = m.scene;
@@ -32,19 +22,16 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
   if (judged.orbits.empty() || !(h > 0) || !m.registry || !judged.stop_reason.empty() ||
       !scene.integrator.params.has("step"))
     return check;
-  // Only an orbit the energy cannot certify (judge: the global check passes, this one fails).
-  const TrustThresholds& limit = scene.run.trust;
+  // Only an orbit the energy cannot certify (as judge() found it).
   const OrbitScale& orbit = judged.orbits.front();
-  const double T0 = judged.initial.kinetic_translational + judged.initial.kinetic_rotational;
-  const double E0 = std::abs(judged.initial.energy), global = E0 >= 1e-3 * T0 ? E0 : T0;
-  if (!(orbit.energy_scale < global) || judged.max_rel_energy_error > limit.energy ||
-      judged.max_abs_energy_error <= limit.energy * orbit.energy_scale)
-    return check;
+  if (!orbit.uncertified) return check;
 
   // One period of the orbit at t0 (vis-viva; an unbound pair: the time to cross its separation),
   // in whole steps, no longer than the run.
   const System& system = scene.system;
-  const std::size_t b = index_of(system, orbit.body), a = index_of(system, orbit.about);
+  const int body = system.index_of(orbit.body), about = system.index_of(orbit.about);
+  if (body < 0 || about < 0) return check;
+  const auto b = static_cast<std::size_t>(body), a = static_cast<std::size_t>(about);
   const State& initial = scene.initial;
   const double M = system.G() * (system.body(a).mass + system.body(b).mass);
   const Vec3 r = initial.x.col(static_cast<Eigen::Index>(b)) - initial.x.col(static_cast<Eigen::Index>(a));

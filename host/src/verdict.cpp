@@ -25,8 +25,15 @@ void judge(RunSummary& s, const Scene& scene) {
   // Each orbit on its own scale (a small body's motion is lost in E0): the run's energy error,
   // which includes that orbit's, as a fraction of the orbit's two-body energy. When that cannot
   // certify the smallest orbit, the step-halving check decides, if it ran (fixed-step methods).
-  for (auto& orbit : s.orbits)
+  for (auto& orbit : s.orbits) {
     orbit.relative_energy_error = orbit.energy_scale > 0 ? s.max_abs_energy_error / orbit.energy_scale : 0.0;
+    orbit.uncertified = false;
+  }
+  if (!s.orbits.empty()) {  // the smallest scale: the largest fraction
+    OrbitScale& smallest = s.orbits.front();
+    smallest.uncertified = s.max_rel_energy_error <= limit.energy && smallest.energy_scale < scale &&
+                           smallest.relative_energy_error > limit.energy;
+  }
   const ResolutionCheck& check = s.resolution;
   if (check.done) {
     if (check.over_run > limit.position) {
@@ -37,16 +44,14 @@ void judge(RunSummary& s, const Scene& scene) {
                     limit.position);
       v.reasons.push_back(why);
     }
-  } else if (!s.orbits.empty() && s.max_rel_energy_error <= limit.energy) {
-    const OrbitScale& orbit = s.orbits.front();  // the smallest scale: the largest fraction
-    if (orbit.energy_scale < scale && orbit.relative_energy_error > limit.energy) {
-      std::snprintf(why, sizeof why,
-                    "the energy error %.2e is %.2e of the two-body energy of %s's orbit about %s (%.3e) > %.0e: "
-                    "its motion is not certified (a fixed-step run checks it by halving the step when it finishes)",
-                    s.max_abs_energy_error, orbit.relative_energy_error, orbit.body.c_str(), orbit.about.c_str(),
-                    orbit.energy_scale, limit.energy);
-      v.reasons.push_back(why);
-    }
+  } else if (!s.orbits.empty() && s.orbits.front().uncertified) {
+    const OrbitScale& orbit = s.orbits.front();
+    std::snprintf(why, sizeof why,
+                  "the energy error %.2e is %.2e of the two-body energy of %s's orbit about %s (%.3e) > %.0e: "
+                  "its motion is not certified (a fixed-step run checks it by halving the step when it finishes)",
+                  s.max_abs_energy_error, orbit.relative_energy_error, orbit.body.c_str(), orbit.about.c_str(),
+                  orbit.energy_scale, limit.energy);
+    v.reasons.push_back(why);
   }
   for (const auto& m : s.pair_models)
     if (m.exceeded) {

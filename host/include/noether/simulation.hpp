@@ -47,6 +47,9 @@ struct OrbitScale {
   std::string body, about;
   double energy_scale = 0.0;
   double relative_energy_error = 0.0;  // max |E − E0| / energy_scale (filled by judge)
+  // The smallest orbit, when the energy certifies the run but not this orbit (filled by judge):
+  // the step-halving check decides.
+  bool uncertified = false;
 };
 
 // The step-halving check of an orbit the energy cannot certify (run when a fixed-step run
