@@ -7,6 +7,7 @@
 #include "h5_helpers.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
+#include "io/flush.hpp"
 #include "io/h5_handle.hpp"
 #include "io/read_probe.hpp"
 #include "io/safe_publish.hpp"
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace noether::detail {
@@ -43,7 +45,7 @@ class EnsembleFile {
   EnsembleFile(const std::filesystem::path& path, const Scene& scene, const std::string& scene_text,
                const std::vector<std::string>& overrides, const EnsembleOptions& options, std::size_t samples,
                std::size_t pair_a, std::size_t pair_b)
-      : samples_(samples), nb_(scene.system.size()), nr_(scene.system.rigid_count()) {
+      : path_(path), samples_(samples), nb_(scene.system.size()), nr_(scene.system.rigid_count()) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
     std::error_code ec;
@@ -66,6 +68,7 @@ class EnsembleFile {
       done_ = read_recorded(path, samples, identity_);
       file_ = io::H5Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, io::file_access(64 * 1024)));
       if (file_ < 0) throw OutputError("cannot open " + path.string() + " to resume it" + system_reason());
+      lock_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);  // for io::flush_extended
       outcome_ = io::H5Handle(H5Dopen2(file_, "outcome", H5P_DEFAULT));
       checksum_ = io::H5Handle(H5Dopen2(file_, "outcome_checksum", H5P_DEFAULT));  // absent in an older noether's file
       return;
@@ -81,7 +84,7 @@ class EnsembleFile {
       if (claimed >= 0) ::close(claimed);
       throw;
     }
-    file_ = io::H5Handle(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024)));
+    file_ = io::H5Handle(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024)));
     if (file_ < 0) {
       if (claimed >= 0) ::close(claimed);
       ::close(lock_);
@@ -135,7 +138,7 @@ class EnsembleFile {
     const io::H5Handle trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
     string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
                                            "-1 not run or failed");
-    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    io::flush_extended(file_, lock_, "flushing the ensemble file");
     try {
       io::publish_file(partial, path, claimed >= 0);
     } catch (...) {
@@ -151,7 +154,10 @@ class EnsembleFile {
     checksum_.reset();  // the datasets, then the file, then its lock
     outcome_.reset();
     file_.reset();
-    if (lock_ >= 0) ::close(lock_);
+    if (lock_ >= 0) {
+      io::trim_extension(path_, lock_);
+      ::close(lock_);
+    }
   }
   bool done(std::size_t i) const { return done_[i] >= 0; }
 
@@ -190,7 +196,7 @@ class EnsembleFile {
   // sample with an outcome complete.
   void commit() {
     if (pending_.empty()) return;
-    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    io::flush_extended(file_, lock_, "flushing the ensemble file");
     for (const auto& [i, outcome] : pending_) {
       put_id(outcome_, i, &outcome, 1, H5T_NATIVE_INT8);
       if (checksum_ >= 0) {
@@ -200,7 +206,7 @@ class EnsembleFile {
       done_[i] = outcome;
     }
     pending_.clear();
-    check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the ensemble file");
+    io::flush_extended(file_, lock_, "flushing the ensemble file");
   }
 
  private:
@@ -275,6 +281,7 @@ class EnsembleFile {
   }
 
   io::H5Handle file_, outcome_, checksum_;
+  std::filesystem::path path_;
   int lock_ = -1;  // the new file's lock (io::create_partial), held while it is written
   hsize_t samples_;
   hsize_t nb_, nr_;

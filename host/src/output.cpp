@@ -35,7 +35,7 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   m.partial = partial_name(path);
   try {
     m.lock = create_partial(m.partial, path);
-    m.file = H5Fcreate(m.partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, io::file_access(64 * 1024));
+    m.file = H5Fcreate(m.partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024));
     if (m.file < 0)
       throw OutputError("cannot create the output file " + path.string() + system_reason() +
                         " (does its folder exist, and is it writable?)");
@@ -63,6 +63,7 @@ void H5Writer::abandon() {
     m.close_datasets();
     H5Fclose(m.file);
     m.file = -1;
+    if (m.published) io::trim_extension(m.path, m.lock);
   }
   if (m.lock >= 0) {
     if (!m.published) ::unlink(m.partial.c_str());
@@ -224,6 +225,7 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   m.flush_file("closing the output file");
   check(H5Fclose(m.file), "closing the output file");
   m.file = -1;
+  io::trim_extension(m.path, m.lock);
   ::close(m.lock);
   m.lock = -1;
 }

@@ -3,6 +3,7 @@
 // libnoether; output.cpp writes frames, output_layout.cpp creates the layout).
 #include <noether/output.hpp>
 
+#include "io/flush.hpp"
 #include "io/frame_schema.hpp"
 #include "io/series.hpp"
 
@@ -85,18 +86,7 @@ struct H5Writer::Impl {
     flush_file("resizing the output's series");
     if (configured) H5Fset_mdc_config(file, &saved);
   }
-  // Flushes the file, having first extended it to HDF5's end of allocation: the superblock the
-  // flush writes records that address, and HDF5 refuses to open a file shorter than it says
-  // ("truncated file"), which a kill between the superblock and the last block of metadata
-  // would otherwise leave.
-  void flush_file(const char* what) {
-    haddr_t eoa = 0;
-    struct stat st {};
-    if (H5Fget_eoa(file, &eoa) >= 0 && ::fstat(lock, &st) == 0 && static_cast<haddr_t>(st.st_size) < eoa &&
-        ::ftruncate(lock, static_cast<off_t>(eoa)) != 0)
-      throw OutputError(std::string("cannot extend the output file while ") + what + ": " + std::strerror(errno));
-    check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
-  }
+  void flush_file(const char* what) { io::flush_extended(file, lock, what); }
   void write_complete(std::int64_t frames) {
     check(H5Dwrite(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames),
           "writing /frames_complete");

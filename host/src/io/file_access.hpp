@@ -29,4 +29,16 @@ inline H5Handle file_access(std::size_t chunk_cache_bytes) {
   return access;
 }
 
+// The file-creation properties of the files noether writes while a kill may come (run output,
+// ensembles): file space is taken only at the end of the file and never given back (no
+// aggregators, no free-space managers). HDF5 otherwise gives back its aggregators' unused tail
+// when it closes the file, cutting the file shorter before it writes the superblock that says
+// so; a kill in between left a file HDF5 refuses to open ("truncated file"). Nothing is freed
+// while a run writes, so nothing is lost.
+inline H5Handle file_creation() {
+  H5Handle creation(H5Pcreate(H5P_FILE_CREATE));
+  H5Pset_file_space_strategy(creation, H5F_FSPACE_STRATEGY_NONE, 0, 1);
+  return creation;
+}
+
 }  // namespace noether::io

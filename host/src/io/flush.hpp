@@ -1,0 +1,47 @@
+#pragma once
+// Flushing and closing a file that a kill may interrupt: the file is first made longer than
+// HDF5's end of allocation, so that a kill anywhere in a flush leaves a file HDF5 opens; after
+// the close the extension is cut off again (docs/reliability.md, "Kills").
+#include "../h5_helpers.hpp"
+#include "file_access.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace noether::io {
+
+// The flush writes the superblock, which records the end of allocation, and HDF5 refuses to
+// open a file shorter than that ("truncated file"): a kill between the superblock and the last
+// block of metadata would leave one. The margin covers what the flush itself allocates (~1 KiB
+// of metadata gets its file space only when written). The extension is a hole in the file.
+// `fd`: a descriptor of the file.
+inline void flush_extended(hid_t file, int fd, const char* what) {
+  constexpr haddr_t margin = 1 << 20;
+  haddr_t eoa = 0;
+  struct stat st {};
+  if (H5Fget_eoa(file, &eoa) >= 0 && ::fstat(fd, &st) == 0 && static_cast<haddr_t>(st.st_size) < eoa + margin &&
+      ::ftruncate(fd, static_cast<off_t>(eoa + margin)) != 0)
+    throw OutputError(std::string("cannot extend the file while ") + what + ": " + std::strerror(errno));
+  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
+}
+
+// After the file at `path` (descriptor `fd`) is closed: cuts off what flush_extended added past
+// the end of allocation its superblock records (HDF5 never learns of the extension).
+inline void trim_extension(const std::filesystem::path& path, int fd) noexcept {
+  haddr_t eoa = 0;
+  {
+    const H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, file_access(0)));
+    if (file < 0 || H5Fget_eoa(file, &eoa) < 0) return;
+  }
+  struct stat st {};
+  if (eoa > 0 && ::fstat(fd, &st) == 0 && static_cast<haddr_t>(st.st_size) > eoa) {
+    [[maybe_unused]] const int ignored = ::ftruncate(fd, static_cast<off_t>(eoa));
+  }
+}
+
+}  // namespace noether::io
