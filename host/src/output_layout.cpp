@@ -225,7 +225,7 @@ void H5Writer::create_series(const Scene& scene) {
           check(H5Lcreate_hard(m.file, (step_group + "/" + link).c_str(), group, link, H5P_DEFAULT, H5P_DEFAULT),
                 "linking step and time");
       }
-      if (q.extent == io::Extent::kRigidVector || q.extent == io::Extent::kRigidQuaternion)
+      if (io::rigid_only(q))
         numeric_attribute<int>(group, "body_index", H5T_NATIVE_INT, rigid_index);
       if (const auto pair = binary_pair(sys); pair && io::binary_only(q)) {  // the binary's series
         string_attribute(group, "primary", sys.body(pair->primary).name);

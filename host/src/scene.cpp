@@ -1,6 +1,7 @@
 // parse_scene: the scene's tree (scene_yaml.cpp) checked and built into bodies, shapes, initial
 // states, plugins and run settings (docs/user-guide.md, "Scenes").
 #include <noether/error.hpp>
+#include <noether/euler_angles.hpp>
 #include <noether/orbital_elements.hpp>
 #include <noether/scene.hpp>
 #include <noether/units.hpp>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <optional>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <unordered_map>
 
@@ -47,8 +49,14 @@ Mat3 inertia(const Params& p) {
 Mat3 attitude(const Params& p, const std::string& body) {
   Mat3 R;
   if (p.is_map()) {
-    p.check_keys({"quaternion", "matrix"}, "attitude of body '" + body + "'");
+    p.check_keys({"quaternion", "matrix", "euler_angles"}, "attitude of body '" + body + "'");
     if (p.has("matrix")) return attitude(p.at("matrix"), body);
+    if (p.has("euler_angles")) {  // 3-2-1 (yaw, pitch, roll) in degrees, eq. 17.9
+      const Vec3 angles = vec3(p.at("euler_angles"));
+      if (!angles.allFinite())
+        throw SceneError(p.at("euler_angles").here() + "euler_angles of body '" + body + "' must be finite");
+      return rotation_from_euler_321(angles * (std::numbers::pi / 180.0));
+    }
     const auto q = p.at("quaternion").as_doubles();
     if (q.size() != 4)
       throw SceneError(p.here() + "quaternion of body '" + body + "' needs 4 numbers [w, x, y, z]");
@@ -103,17 +111,28 @@ std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string&
   if (frame != "principal" && frame != "mesh")
     throw SceneError(p.at("frame").here() + who + ": frame must be 'principal' (rotate the "
                      "mesh onto its principal axes) or 'mesh' (keep its axes), not '" + frame + "'");
+  // A relative path is relative to the scene file's folder (not to the working directory): a
+  // copied scene without its shapes is told where they were looked for.
   auto resolve = [&](const Params& f) {
     const std::filesystem::path path(f.as_string());
-    return path.is_absolute() ? path : folder / path;
+    const std::filesystem::path resolved = path.is_absolute() ? path : folder / path;
+    std::error_code ec;
+    if (!std::filesystem::exists(resolved, ec)) {
+      const std::filesystem::path shown = std::filesystem::absolute(resolved, ec).lexically_normal();
+      throw SceneError(f.here() + who + ": shape file '" + f.as_string() + "' not found" +
+                       (path.is_absolute() ? std::string()
+                                           : " (relative to the scene's folder: " + shown.string() + ")"));
+    }
+    return resolved;
   };
   Mesh mesh;
   if (p.has("file") == (p.has("vertices") || p.has("facets")))
     throw SceneError(p.here() + who + ": give either 'file' (Wavefront OBJ) or 'vertices' and "
                      "'facets' (CSV pair)");
+  const std::filesystem::path first = resolve(p.at(p.has("file") ? "file" : "vertices"));
+  const std::filesystem::path facets = p.has("file") ? std::filesystem::path() : resolve(p.at("facets"));
   try {
-    mesh = p.has("file") ? read_obj(resolve(p.at("file")), scale)
-                         : read_vertex_facet_csv(resolve(p.at("vertices")), resolve(p.at("facets")), scale);
+    mesh = p.has("file") ? read_obj(first, scale) : read_vertex_facet_csv(first, facets, scale);
     return make_polyhedron(std::move(mesh), 1.0, frame == "principal");
   } catch (const SceneError& e) {
     throw SceneError(p.here() + who + ": " + e.what());

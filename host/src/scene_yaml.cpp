@@ -134,67 +134,136 @@ Params parse_yaml(const std::string& text, const std::string& file) {
   }
 }
 
-// "--set a.b.c=value": edits the tree in place.
+namespace {
+
+// An index into a list: digits only, and short enough to be one.
+bool is_index(const std::string& part, std::size_t size) {
+  return !part.empty() && part.size() <= 9 && part.find_first_not_of("0123456789") == std::string::npos &&
+         std::stoul(part) < size;
+}
+
+// The item of a list named by parts[i..]: an index, or a body's name (a name with dots spans
+// several parts: the longest that names one is taken; `i` moves to its last part).
+Params* list_item(std::vector<Params>& items, const std::vector<std::string>& parts, std::size_t& i) {
+  if (is_index(parts[i], items.size())) return &items[std::stoul(parts[i])];
+  for (std::size_t j = parts.size(); j-- > i;) {
+    std::string name = parts[i];
+    for (std::size_t k = i + 1; k <= j; ++k) name += "." + parts[k];
+    for (auto& item : items)
+      if (item.is_map() && item.has("name") && item.at("name").is_scalar() && item.at("name").as_string() == name) {
+        i = j;
+        return &item;
+      }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+// "--set KEY=VALUE" sets (or replaces) a value, "--set KEY+=VALUE" appends VALUE to the list at
+// KEY (e.g. a body: bodies+={name: probe, ...}), "--set KEY=~" deletes KEY (a mapping's key, or
+// a list's item by index or body name). Edits the tree in place. A body's mass or density
+// replaces the other one the scene gives (a shaped body's mass derives its density).
 void apply_override(Params& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw SceneError("--set '" + assignment + "': expected key=value, e.g. integrator.step=1e-3");
-  const std::string key = assignment.substr(0, eq);
+    throw SceneError("--set '" + assignment + "': expected key=value, key+=value (append to a list) or key=~ "
+                     "(delete), e.g. integrator.step=1e-3");
+  const bool append = assignment[eq - 1] == '+';
+  std::string key = assignment.substr(0, append ? eq - 1 : eq);
+  if (append && !key.empty() && key.back() == '.') key.pop_back();  // bodies.+=… reads as bodies+=…
+  const std::string text = assignment.substr(eq + 1);
   const std::string where = "--set " + key;
-  Params value = parse_yaml(assignment.substr(eq + 1), where);
+  if (key.empty()) throw SceneError("--set '" + assignment + "': no key before '" + (append ? "+=" : "=") + "'");
+  Params value = parse_yaml(text, where);
+  std::string word = text;  // YAML's null, "~" or "null": delete
+  word.erase(0, word.find_first_not_of(" \t"));
+  word.erase(word.find_last_not_of(" \t") + 1);
+  const bool erase = !append && (word == "~" || word == "null" || word == "Null" || word == "NULL");
   if (value.is_null()) value = Params::scalar("", where);
 
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  // The node holding the last part.
   Params* node = &root;
-  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+  std::size_t last = parts.size() - 1;
+  for (std::size_t i = 0; i < last; ++i) {
     const std::string& part = parts[i];
     Params* next = nullptr;
     if (node->is_map()) {
       next = node->find(part);
-      if (!next) {  // an optional mapping the scene leaves out (run.trust): made here; a
-                    // misspelt key is refused by the scene's key checks
+      if (!next && !erase) {  // an optional mapping the scene leaves out (run.trust): made here; a
+                              // misspelt key is refused by the scene's key checks
         node->set(part, Params::map({}, where));
         next = node->find(part);
       }
     } else if (node->is_sequence()) {
-      auto& items = node->mutable_items();
-      // An index: digits only, and short enough to be one (longer ones are no element either).
-      const bool numeric = !part.empty() && part.size() <= 9 && part.find_first_not_of("0123456789") == std::string::npos;
-      if (numeric && std::stoul(part) < items.size()) next = &items[std::stoul(part)];
-      // Bodies by name; a name with dots ("a.b") spans several parts: the longest that names
-      // a body is taken.
-      for (std::size_t j = parts.size() - 1; !next && j-- > i;) {
-        std::string name = parts[i];
-        for (std::size_t k = i + 1; k <= j; ++k) name += "." + parts[k];
-        for (auto& item : items)
-          if (!next && item.is_map() && item.has("name") && item.at("name").is_scalar() &&
-              item.at("name").as_string() == name) {
-            next = &item;
-            i = j;
-          }
+      std::size_t j = i;
+      next = list_item(node->mutable_items(), parts, j);
+      if (next && j >= last) {  // a dotted name runs to the end: the whole item
+        auto& items = node->mutable_items();
+        if (append)
+          throw SceneError("--set " + key + "+=: '" + key + "' is not a list (+= appends to a list; = replaces)");
+        if (erase)
+          items.erase(items.begin() + (next - items.data()));
+        else
+          *next = std::move(value);
+        return;
       }
+      i = j;
     }
     if (!next)
       throw SceneError("--set " + key + ": the scene has no '" + part + "' at '" +
                        (node->path().empty() ? std::string("top level") : node->path()) + "'");
     node = next;
   }
-  if (node->is_sequence()) {  // one item of a list: velocity.1=0.17
+  const std::string& name = parts[last];
+  if (node->is_sequence()) {  // one item of a list: velocity.1=0.17, or bodies.probe=~
     auto& items = node->mutable_items();
-    const std::string& last = parts.back();
-    const bool numeric = !last.empty() && last.size() <= 9 && last.find_first_not_of("0123456789") == std::string::npos;
-    if (numeric && std::stoul(last) < items.size()) {
-      items[std::stoul(last)] = std::move(value);
+    std::size_t j = last;
+    Params* item = list_item(items, parts, j);
+    if (item && erase) {
+      items.erase(items.begin() + (item - items.data()));
       return;
     }
-    throw SceneError("--set " + key + ": '" + key.substr(0, key.size() - last.size() - 1) + "' has no item '" +
-                     last + "' (it has " + std::to_string(items.size()) + ", numbered from 0)");
+    if (item && !append) {
+      *item = std::move(value);
+      return;
+    }
+    if (item && append && item->is_sequence()) {
+      item->mutable_items().push_back(std::move(value));
+      return;
+    }
+    throw SceneError("--set " + key + ": '" + key.substr(0, key.size() - name.size() - 1) + "' has no item '" +
+                     name + "' (it has " + std::to_string(items.size()) + ", numbered from 0" +
+                     (items.size() > 0 && items[0].is_map() && items[0].has("name") ? ", or by name" : "") + ")");
   }
   if (!node->is_map() && !node->is_null())
     throw SceneError("--set " + key + ": '" + node->path() + "' is not a mapping");
-  node->set(parts.back(), std::move(value));
+  if (erase) {
+    if (!node->is_map() || !node->has(name))
+      throw SceneError("--set " + key + "=~: the scene has no '" + key + "' to delete");
+    node->erase(name);
+    return;
+  }
+  if (append) {
+    Params* list = node->is_map() ? node->find(name) : nullptr;
+    if (list && !list->is_sequence())
+      throw SceneError("--set " + key + "+=: '" + key + "' is not a list (+= appends to a list; = replaces)");
+    if (!list) {
+      node->set(name, Params::sequence({}, where));
+      list = node->find(name);
+    }
+    list->mutable_items().push_back(std::move(value));
+    return;
+  }
+  // A body's mass or density replaces the other (the scene's density, when a run varies the mass).
+  if (node->is_map() && parts.size() >= 3 && parts[0] == "bodies") {
+    if (name == "mass") node->erase("density");
+    if (name == "density") node->erase("mass");
+  }
+  node->set(name, std::move(value));
 }
 namespace {
 std::string read_file(const std::filesystem::path& file, const char* what) {

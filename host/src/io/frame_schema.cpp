@@ -5,6 +5,7 @@
 
 #include <noether/output_schema.hpp>
 
+#include <noether/euler_angles.hpp>
 #include <noether/lie.hpp>
 #include <noether/orbital_elements.hpp>
 
@@ -122,6 +123,28 @@ void libration(const FrameInput& in, void* out) {  // the primary's direction in
   copy(angle, out);
 }
 
+void copy_degrees(const Vec3& radians, void* out) { copy(Vec3(radians * (180.0 / std::numbers::pi)), out); }
+void euler_angles(const FrameInput& in, void* out) {  // eq. 17.9 of each rigid body's R
+  for (std::size_t k = 0; k < in.state.R.size(); ++k) copy_degrees(euler_angles_321(in.state.R[k]), doubles(out) + 3 * k);
+}
+// Eq. 17.9 of A = Oᵀ R_s (eq. 17.10): the secondary's attitude in the orbit frame, whose x axis
+// points at the primary and z along the orbit normal; yaw folded into (−90, 90] by turning the
+// body half a turn about its z axis (A Rz(π) has the angles (ψ ± π, −θ, −φ)).
+void secondary_euler_angles(const FrameInput& in, void* out) {
+  const Vec3 r = relative_position(in), h = r.cross(relative_velocity(in));
+  Mat3 O;
+  O.col(0) = -r.normalized();
+  O.col(2) = h.normalized();
+  O.col(1) = O.col(2).cross(O.col(0));
+  Vec3 a = euler_angles_321(O.transpose() * attitude_of(in, in.secondary));
+  if (a.x() > std::numbers::pi / 2 || a.x() <= -std::numbers::pi / 2) {
+    a.x() += a.x() > 0 ? -std::numbers::pi : std::numbers::pi;
+    a.y() = -a.y();
+    a.z() = -a.z();
+  }
+  copy_degrees(a, out);
+}
+
 // The restore functions of the checkpointed series (FrameQuantity::restore).
 void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
 void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
@@ -207,6 +230,15 @@ const FrameQuantity kFrameSchema[] = {
      "with u = R_sᵀ (x_p − x_s), folded into (−90, 90] (either end of the axis may face the primary): a synchronous "
      "secondary librates about 0",
      -1, libration, nullptr},
+    {"euler_angles", "/particles/bodies/euler_angles/value", E::kRigidVector, D::kDegrees, kH5md,
+     "3-2-1 Euler angles (yaw ψ, pitch θ, roll φ) of each rigid body's attitude in the scene frame, "
+     "R = Rz(ψ) Ry(θ) Rx(φ) (docs/equations.md eq. 17.9); ψ, φ in (−180, 180], θ in [−90, 90]",
+     -1, euler_angles, nullptr},
+    {"secondary_euler_angles", "/observables/secondary_euler_angles/value", E::kSecondaryVector, D::kDegrees, kH5md,
+     "3-2-1 Euler angles (yaw, pitch, roll) of the secondary's attitude in the orbit frame (x towards the primary, "
+     "z along the orbit normal r × v; eq. 17.10), yaw folded into (−90, 90] (either end of the axis may face the "
+     "primary): a synchronous secondary's libration in yaw, pitch and roll",
+     -1, secondary_euler_angles, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -250,7 +282,8 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
     case E::kPrimaryFrame: return l.binary && l.primary_rigid;
-    case E::kSecondaryAngle: return l.binary && l.secondary_rigid;
+    case E::kSecondaryAngle:
+    case E::kSecondaryVector: return l.binary && l.secondary_rigid;
     default: return true;
   }
 }
@@ -263,7 +296,8 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kSecondaryAngle: return {};
     case E::kVector:
     case E::kBinaryVector:
-    case E::kPrimaryFrame: return {3};
+    case E::kPrimaryFrame:
+    case E::kSecondaryVector: return {3};
     case E::kBinaryElements: return {6};
     case E::kBodyVector: return {l.bodies, 3};
     case E::kRigidVector: return {l.rigid, 3};
@@ -294,7 +328,7 @@ bool rigid_only(const FrameQuantity& q) {
 bool optional(const FrameQuantity& q) { return q.extent == E::kIntegrator; }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
-         q.extent == E::kPrimaryFrame || q.extent == E::kSecondaryAngle;
+         q.extent == E::kPrimaryFrame || q.extent == E::kSecondaryAngle || q.extent == E::kSecondaryVector;
 }
 std::string requirement(const FrameQuantity& q) {
   switch (q.extent) {
@@ -306,7 +340,8 @@ std::string requirement(const FrameQuantity& q) {
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
     case E::kPrimaryFrame: return "a binary with a rigid primary";
-    case E::kSecondaryAngle: return "a binary with a rigid secondary";
+    case E::kSecondaryAngle:
+    case E::kSecondaryVector: return "a binary with a rigid secondary";
     default: return "";
   }
 }
@@ -344,7 +379,8 @@ std::string describe_extent(Extent e) {
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:
-    case E::kPrimaryFrame: return "[frame][3]";
+    case E::kPrimaryFrame:
+    case E::kSecondaryVector: return "[frame][3]";
     case E::kBinaryElements: return "[frame][6]";
   }
   return "";

@@ -59,6 +59,7 @@ enum class Extent {
   kBinaryElements,   // [6]     idem: a, e, i, Ω, ω, ν
   kPrimaryFrame,     // [3]     idem, when the primary is rigid: a vector in its body frame
   kSecondaryAngle,   // []      idem, when the secondary is rigid
+  kSecondaryVector,  // [3]     idem
 };
 
 // What decides which series a file has, and their shapes.
