@@ -6,6 +6,7 @@
 #include <noether/version.hpp>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -42,6 +43,9 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // prints help, the version, or the usage error
     return code == 0 ? 0 : 2;      // usage errors exit 2, as documented
   }
+  // Warnings on stderr (stdout carries results: --summary json), as "noether: warning: …".
+  spdlog::set_default_logger(spdlog::stderr_logger_mt("noether"));
+  spdlog::set_pattern("noether: %l: %v");
   spdlog::set_level(spdlog::level::from_str(level));
   try {
     if (chosen) return chosen();

@@ -11,6 +11,7 @@
 #include "io/read_probe.hpp"
 #include "io/run_record.hpp"
 #include "io/safe_publish.hpp"
+#include "event_watch.hpp"
 #include "simulation_impl.hpp"
 
 #include <spdlog/spdlog.h>
@@ -86,7 +87,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   if (outcome.rfind("failed", 0) == 0)
     throw Error(file.string() + ": the run " + outcome +
                 "; continuing it would fail again — change the scene and run it afresh");
-  if (outcome.rfind("stopped: collision", 0) == 0 || outcome.rfind("stopped: close approach", 0) == 0)
+  if (outcome.rfind("stopped: ", 0) == 0 && is_event(outcome.substr(9)))
     throw Error(file.string() + ": the run ended at an event (" + outcome.substr(9) + "); there is nothing to continue");
   if (!run.checksummed)
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "

@@ -7,65 +7,115 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
+#include "event_watch.hpp"
 #include "simulation_impl.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <sstream>
 #include <numbers>
+#include <utility>
 
 namespace noether {
+
+namespace {
+
+Vec3 relative_position(const State& s, std::size_t body, std::size_t about) {
+  return s.x.col(static_cast<Eigen::Index>(body)) - s.x.col(static_cast<Eigen::Index>(about));
+}
+
+// The scene run from t0 at step `step` to t_end (events on); the state and stop where it ended.
+std::pair<State, StopInfo> rerun(const Simulation::Impl& m, double step, double t_end) {
+  Scene probe = m.scene;
+  probe.run.t_end = t_end;
+  probe.run.output_every = t_end - probe.initial.t;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", step);
+  probe.integrator.params.set("step", Params::scalar(text));
+  Simulation run(probe, *m.registry, RunOptions{}, m.custom_potential ? m.potential : nullptr);
+  const StopInfo stop = run.integrate(t_end);
+  return {run.state(), stop};
+}
+
+}  // namespace
 
 ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged) {
   ResolutionCheck check;
   const Scene& scene = m.scene;
   const double h = m.integrator->fixed_step();
-  if (judged.orbits.empty() || !(h > 0) || !m.registry || !judged.stop_reason.empty() ||
+  // (A run an event ended is checked up to its event; an interrupted one is not checked.)
+  const bool event = !judged.stop_reason.empty();
+  if (judged.orbits.empty() || !(h > 0) || !m.registry || (event && !is_event(judged.stop_reason)) ||
       !scene.integrator.params.has("step"))
     return check;
   // Only an orbit the energy cannot certify (as judge() found it).
   const OrbitScale& orbit = judged.orbits.front();
   if (!orbit.uncertified) return check;
-
-  // One period of the orbit at t0 (vis-viva; an unbound pair: the time to cross its separation),
-  // in whole steps, no longer than the run.
   const System& system = scene.system;
   const int body = system.index_of(orbit.body), about = system.index_of(orbit.about);
   if (body < 0 || about < 0) return check;
   const auto b = static_cast<std::size_t>(body), a = static_cast<std::size_t>(about);
   const State& initial = scene.initial;
+  const double run_length = m.state.t - initial.t;
+  check.body = orbit.body;
+  check.about = orbit.about;
+
+  // A run that took at most kWholeRunSeconds is repeated whole at h/2 (twice its cost): the
+  // difference at its end is measured, not extrapolated, which matters for chaotic motion
+  // (a spacecraft near a binary), where one orbit's difference says little about the run's.
+  if (judged.wall_seconds <= kWholeRunSeconds) {
+    // The end on the step grid: t_end, or the first step after the event.
+    const double end = initial.t + std::ceil(run_length / h - 1e-9) * h;
+    try {
+      const auto [half, stop] = rerun(m, h / 2, event ? end + h : end);
+      check.done = check.whole_run = true;
+      check.window = run_length;
+      const bool same_end = event ? is_event(stop.reason) && judged.stop_reason.rfind(stop.event + ":", 0) == 0 &&
+                                        std::abs(stop.t - m.state.t) <= 0.01 * std::max(run_length, 1e-300)
+                                  : stop.reason.empty();
+      if (!same_end) {
+        std::ostringstream why;
+        why.precision(10);
+        if (stop.reason.empty())
+          why << "at h/2 the run reaches t = " << half.t << " without the event";
+        else
+          why << "at h/2 the run stops otherwise: " << stop.reason;
+        check.ends_differently = why.str();
+        check.per_window = check.over_run = std::numeric_limits<double>::infinity();
+        return check;
+      }
+      const Vec3 r = relative_position(m.state, b, a);
+      check.per_window = check.over_run = (r - relative_position(half, b, a)).norm() / r.norm();
+    } catch (const Error&) {  // the halved step failed: the energy's verdict stands
+      check = ResolutionCheck{};
+    }
+    return check;
+  }
+
+  // Otherwise one period of the orbit at t0 (vis-viva; an unbound pair: the time to cross its
+  // separation), in whole steps, at h and h/2, extrapolated linearly to the run's length.
   const double M = system.G() * (system.body(a).mass + system.body(b).mass);
-  const Vec3 r = initial.x.col(static_cast<Eigen::Index>(b)) - initial.x.col(static_cast<Eigen::Index>(a));
+  const Vec3 r = relative_position(initial, b, a);
   const Vec3 v = initial.p.col(static_cast<Eigen::Index>(b)) / system.body(b).mass -
                  initial.p.col(static_cast<Eigen::Index>(a)) / system.body(a).mass;
   const double inverse_a = 2.0 / r.norm() - v.squaredNorm() / M;
   const double period = inverse_a > 0 ? 2 * std::numbers::pi * std::sqrt(1.0 / (inverse_a * inverse_a * inverse_a) / M)
                                       : r.norm() / std::max(v.norm(), 1e-300);
-  const double run_length = m.state.t - initial.t;
   const double steps = std::max(2.0, std::ceil(std::min(period, run_length) / h));
-  if (!std::isfinite(steps) || steps > 1e9) return check;
+  if (!std::isfinite(steps) || steps > 1e9) return ResolutionCheck{};
   const double window = steps * h;
-
-  Scene probe = scene;
-  probe.run.t_end = initial.t + window;
-  probe.run.output_every = window;
   Vec3 relative[2];
   try {
     for (int k = 0; k < 2; ++k) {
-      char step[32];
-      std::snprintf(step, sizeof step, "%.17g", h / (k + 1));
-      probe.integrator.params.set("step", Params::scalar(step));
-      Simulation run(probe, *m.registry, RunOptions{}, m.custom_potential ? m.potential : nullptr);
-      const StopInfo stop = run.integrate(probe.run.t_end);
-      if (!stop.reason.empty()) return check;  // an event inside the window: no comparison
-      const State& end = run.state();
-      relative[k] = end.x.col(static_cast<Eigen::Index>(b)) - end.x.col(static_cast<Eigen::Index>(a));
+      const auto [end, stop] = rerun(m, h / (k + 1), initial.t + window);
+      if (!stop.reason.empty()) return ResolutionCheck{};  // an event inside the window: no comparison
+      relative[k] = relative_position(end, b, a);
     }
   } catch (const Error&) {  // the halved step failed too: the energy's verdict stands
-    return check;
+    return ResolutionCheck{};
   }
   check.done = true;
-  check.body = orbit.body;
-  check.about = orbit.about;
   check.window = window;
   check.per_window = (relative[0] - relative[1]).norm() / relative[0].norm();
   check.over_run = check.per_window * std::max(1.0, run_length / window);

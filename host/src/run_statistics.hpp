@@ -8,6 +8,7 @@
 #include <noether/stepping.hpp>
 
 #include "binary_pair.hpp"
+#include "event_watch.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +23,9 @@ namespace noether::detail {
 class RunStatistics final : public Observer {
  public:
   RunStatistics(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
-      : system_(system), s_(summary), write_(std::move(write)) {}
+      : system_(system), s_(summary), write_(std::move(write)) {
+    if (system.size() <= 64) contacts_ = watches(system, Events{0.0, true, {}});  // O(n²): small scenes only
+  }
 
   void observe(const State& state, const Forces& forces, bool interpolated) override {
     const Diagnostics d = account(state, forces);
@@ -85,12 +88,15 @@ class RunStatistics final : public Observer {
             s_.t_of_min_distance = state.t;
             s_.min_distance_pair = a.name + "–" + b.name;
           }
-          if (a.radius + b.radius > 0 && r - (a.radius + b.radius) < s_.min_gap) {
-            s_.min_gap = r - (a.radius + b.radius);
-            s_.min_gap_reach = a.radius + b.radius;
-            s_.min_gap_pair = a.name + "–" + b.name;
-          }
         }
+    for (const Watch& w : contacts_) {  // the collision event's gap: the surfaces, or the spheres
+      const double g = w.gap(system_, state);
+      if (g < s_.min_gap) {
+        s_.min_gap = g;
+        s_.min_gap_reach = w.threshold;
+        s_.min_gap_pair = system_.body(w.a).name + "–" + system_.body(w.b).name;
+      }
+    }
     track_mutual_orbit(state);
     ++s_.frames;
     return d;
@@ -199,6 +205,7 @@ class RunStatistics final : public Observer {
 
   const System& system_;
   RunSummary& s_;
+  std::vector<Watch> contacts_;  // every pair with radii, for the smallest gap (RunSummary::min_gap)
   std::function<void(const State&, const Diagnostics&)> write_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
   struct MutualOrbit {

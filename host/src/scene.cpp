@@ -6,6 +6,7 @@
 #include <noether/scene.hpp>
 #include <noether/units.hpp>
 
+#include "event_watch.hpp"
 #include "scene_yaml.hpp"
 
 #include <algorithm>
@@ -317,6 +318,44 @@ PluginConfig plugin_config(const Params& p, const std::string& what) {
   return {p.at("plugin").as_string(), p};
 }
 
+// run.escape: {body, about, distance, unbound}; body defaults to the lightest body, about to
+// the heaviest other one.
+Escape parse_escape(const Params& e, const System& system) {
+  if (!e.is_map()) throw SceneError(e.here() + "'run.escape' must be a mapping: {body: NAME, about: NAME, distance: D, unbound: true}");
+  e.check_keys({"body", "about", "distance", "unbound"}, "'run.escape'");
+  if (system.size() < 2) throw SceneError(e.here() + "'run.escape' needs two bodies");
+  std::vector<std::string> names;
+  for (const auto& b : system.bodies()) names.push_back(b.name);
+  auto body = [&](const char* key, std::size_t fallback) -> std::size_t {
+    if (!e.has(key)) return fallback;
+    const std::string name = e.at(key).as_string();
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return i;
+    const std::string near = closest_match(name, names);
+    throw SceneError(e.at(key).here() + "'run.escape." + key + "': no body '" + name + "'" +
+                     (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
+  };
+  std::size_t lightest = 0;
+  for (std::size_t i = 1; i < system.size(); ++i)
+    if (system.body(i).mass < system.body(lightest).mass) lightest = i;
+  Escape out;
+  out.body = body("body", lightest);
+  std::size_t heaviest = out.body == 0 ? 1 : 0;
+  for (std::size_t i = 0; i < system.size(); ++i)
+    if (i != out.body && system.body(i).mass > system.body(heaviest).mass) heaviest = i;
+  out.about = body("about", heaviest);
+  if (out.about == out.body)
+    throw SceneError(e.here() + "'run.escape': body and about are both '" + names[out.body] + "'");
+  out.distance = e.get("distance", 0.0);
+  out.unbound = e.get("unbound", false);
+  if (!std::isfinite(out.distance) || out.distance < 0.0)
+    throw SceneError(e.at("distance").here() + "'run.escape.distance' must be a positive distance");
+  if (!(out.distance > 0) && !out.unbound)
+    throw SceneError(e.here() + "'run.escape' needs a distance (stop beyond it) or unbound: true (stop when the "
+                     "two-body energy turns positive), or both");
+  return out;
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& file,
@@ -433,6 +472,22 @@ Scene parse_scene(const std::string& text, const std::string& file,
                          sys.body(j).name + "' start at the same position");
     }
   }
+  // A body inside another's shape: impossible, unless the scene turned contacts off (then the
+  // verdict says so). O(N²) pairs: small scenes.
+  const bool collisions = !root.has("run") || !root.at("run").is_map() || root.at("run").get("collisions", true);
+  if (collisions && sys.size() <= 64)
+    for (const Watch& w : watches(sys, Events{0.0, true, {}})) {
+      const double gap = w.samples ? w.gap(sys, s) : 0.0;
+      if (gap < -1e-9 * w.threshold) {
+        std::ostringstream msg;
+        msg.precision(4);
+        msg << bodies.items()[w.b].here() << "bodies '" << sys.body(w.a).name << "' and '" << sys.body(w.b).name
+            << "' overlap at the start: " << -gap << " inside each other's surface (centres "
+            << (s.x.col(static_cast<Eigen::Index>(w.a)) - s.x.col(static_cast<Eigen::Index>(w.b))).norm()
+            << " apart); move them apart";
+        throw SceneError(msg.str());
+      }
+    }
   scene.initial = std::move(s);
 
   // Models, integrator, run.
@@ -447,7 +502,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "trust"}, "'run'");
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust"}, "'run'");
+  if (run.has("escape")) scene.run.escape = parse_escape(run.at("escape"), scene.system);
   if (run.has("trust")) {
     const Params& trust = run.at("trust");
     trust.check_keys({"energy", "momentum", "orthogonality", "position"}, "'run.trust'");

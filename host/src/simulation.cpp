@@ -121,7 +121,7 @@ StopInfo Simulation::integrate(double t_end) {
   // The loop stops on one flag: the caller's (a signal) or the wall-time budget's.
   volatile std::sig_atomic_t stop_flag = 0;
   bool budget_exhausted = false;
-  Schedule schedule{t_end, sc.run.output_every, Events{sc.run.close_approach, sc.run.collisions},
+  Schedule schedule{t_end, sc.run.output_every, Events{sc.run.close_approach, sc.run.collisions, sc.run.escape},
                     {}, (options.interrupt || options.max_wall_seconds > 0.0) ? &stop_flag : nullptr};
   schedule.t_origin = m.t_origin;
   schedule.steps_before = m.steps_before;

@@ -3,6 +3,8 @@
 #include <noether/error.hpp>
 #include <noether/stepping.hpp>
 
+#include "event_watch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -79,46 +81,27 @@ class OutputTimes {
 
 namespace {
 
-// One pair of bodies watched for an event: g = ‖x_a − x_b‖ − threshold, an event when g
-// crosses from positive to ≤ 0 over a step (16.1). A pair that starts at g ≤ 0 is armed only
-// once g > 0 again.
-struct Watch {
-  std::size_t a = 0, b = 0;
-  double threshold = 0.0;
-  const char* kind = "";
-  bool armed = false;
-};
-
-double gap(const State& s, const Watch& w) {
-  return (s.x.col(static_cast<Eigen::Index>(w.a)) - s.x.col(static_cast<Eigen::Index>(w.b))).norm() -
-         w.threshold;
-}
-
-// Positions at t ∈ [s0.t, s1.t] by cubic Hermite interpolation of x and v = γ/m (16.2), for
-// integrators without dense output; only positions are filled.
-void hermite_positions(const System& system, const State& s0, const State& s1, double t, State& out) {
+// The state at t ∈ [s0.t, s1.t] for integrators without dense output: positions and momenta
+// by cubic Hermite interpolation of x and v = γ/m (16.2), attitudes along the geodesic
+// R0 exp(s log(R0ᵀR1)) (what the event functions read; spins are not filled).
+void hermite_state(const System& system, const State& s0, const State& s1, double t, State& out) {
   const double dt = s1.t - s0.t, s = (t - s0.t) / dt;
   const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s,
                h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
+  // d/dt of the four: the velocity of the interpolant
+  const double d00 = (6 * s * s - 6 * s) / dt, d10 = 3 * s * s - 4 * s + 1, d01 = (-6 * s * s + 6 * s) / dt,
+               d11 = 3 * s * s - 2 * s;
   out.x.resize(3, s0.x.cols());
+  out.p.resize(3, s0.x.cols());
   for (Eigen::Index i = 0; i < s0.x.cols(); ++i) {
     const double m = system.body(static_cast<std::size_t>(i)).mass;
-    out.x.col(i) = h00 * s0.x.col(i) + h10 * dt / m * s0.p.col(i) + h01 * s1.x.col(i) +
-                   h11 * dt / m * s1.p.col(i);
+    const Vec3 v0 = s0.p.col(i) / m, v1 = s1.p.col(i) / m;
+    out.x.col(i) = h00 * s0.x.col(i) + h10 * dt * v0 + h01 * s1.x.col(i) + h11 * dt * v1;
+    out.p.col(i) = m * (d00 * s0.x.col(i) + d10 * v0 + d01 * s1.x.col(i) + d11 * v1);
   }
+  out.R.resize(s0.R.size());
+  for (std::size_t k = 0; k < s0.R.size(); ++k) out.R[k] = s0.R[k] * exp_so3(s * log_so3(s0.R[k].transpose() * s1.R[k]));
   out.t = t;
-}
-
-std::vector<Watch> watches(const System& system, const Events& events) {
-  std::vector<Watch> out;
-  if (!(events.close_approach > 0) && !events.collisions) return out;
-  for (std::size_t a = 0; a < system.size(); ++a)
-    for (std::size_t b = a + 1; b < system.size(); ++b) {
-      if (events.close_approach > 0) out.push_back({a, b, events.close_approach, "close approach"});
-      const double contact = system.body(a).radius + system.body(b).radius;
-      if (events.collisions && contact > 0) out.push_back({a, b, contact, "collision"});
-    }
-  return out;
 }
 
 }  // namespace
@@ -170,11 +153,11 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
   State previous, reached, probe;
   if (!watch.empty()) {
     previous = state;
-    for (auto& w : watch) w.armed = gap(state, w) > 0;
+    for (auto& w : watch) w.armed = w.gap(system, state) > 0;
   }
   // The state at τ inside the last step: the method's dense output, else Hermite positions.
   auto positions_at = [&](double tau) -> const State& {
-    if (!integrator.interpolate(tau, probe)) hermite_positions(system, previous, reached, tau, probe);
+    if (!integrator.interpolate(tau, probe)) hermite_state(system, previous, reached, tau, probe);
     return probe;
   };
 
@@ -218,17 +201,17 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
       double t_event = std::numeric_limits<double>::infinity();
       const Watch* hit = nullptr;
       for (auto& w : watch) {
-        const double g1 = gap(reached, w);
+        const double g1 = w.gap(system, reached);
         if (!w.armed) {
           w.armed = g1 > 0;
           continue;
         }
         if (g1 > 0) continue;
-        double a = t_prev, b = t, ga = gap(previous, w), gb = g1;
+        double a = t_prev, b = t, ga = w.gap(system, previous), gb = g1;
         int side = 0;
         for (int it = 0; it < 200 && b - a > 1e-14 * std::max(1.0, std::abs(b)); ++it) {
           const double c = (a * gb - b * ga) / (gb - ga);
-          const double gc = gap(positions_at(c), w);
+          const double gc = w.gap(system, positions_at(c));
           if (gc > 0) {
             a = c, ga = gc;
             if (side == -1) gb *= 0.5;
@@ -262,14 +245,8 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         }
         state.t = t_event;
         observe(interpolated);
-        std::ostringstream why;
-        why.precision(10);
-        why << hit->kind << ": bodies '" << system.body(hit->a).name << "' and '"
-            << system.body(hit->b).name << "' came within " << hit->threshold
-            << (hit->kind == std::string("collision") ? " (the sum of their radii)" : "")
-            << " at t = " << t_event;
-        stop.reason = why.str();
-        stop.event = hit->kind;
+        stop.reason = hit->describe(system, t_event);
+        stop.event = hit->name();
         stop.t = t_event;
         stop.body_a = hit->a;
         stop.body_b = hit->b;

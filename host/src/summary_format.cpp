@@ -75,13 +75,19 @@ std::string format_summary(const RunSummary& s) {
     std::snprintf(line, sizeof line, "smallest orbit                %s about %s: two-body energy %.4g, |E - E0| %.2e of it\n",
                   o.body.c_str(), o.about.c_str(), o.energy_scale, o.relative_energy_error);
     optional += line;
-    if (s.resolution.done) {
+    const ResolutionCheck& c = s.resolution;
+    if (c.done && !c.ends_differently.empty())
+      std::snprintf(line, sizeof line, "step-halving check            %s about %s: the whole run at h/2 ends otherwise: %s\n",
+                    c.body.c_str(), c.about.c_str(), c.ends_differently.c_str());
+    else if (c.done && c.whole_run)
+      std::snprintf(line, sizeof line,
+                    "step-halving check            %s about %s moves by %.2e of its radius over the whole run (repeated at h/2)\n",
+                    c.body.c_str(), c.about.c_str(), c.over_run);
+    else if (c.done)
       std::snprintf(line, sizeof line,
                     "step-halving check            %s about %s moves by %.2e of its radius in %.6g, %.2e over the run\n",
-                    s.resolution.body.c_str(), s.resolution.about.c_str(), s.resolution.per_window, s.resolution.window,
-                    s.resolution.over_run);
-      optional += line;
-    }
+                    c.body.c_str(), c.about.c_str(), c.per_window, c.window, c.over_run);
+    if (c.done) optional += line;
   }
   // Frames between the method's steps are interpolated states, not the method's own: say so.
   const std::string where_energy =
@@ -181,7 +187,11 @@ std::string format_summary_json(const RunSummary& s) {
         s.resolution.done ? "{\"body\": " + json_string(s.resolution.body) + ", \"about\": " +
                                 json_string(s.resolution.about) + ", \"window\": " + json_number(s.resolution.window) +
                                 ", \"per_window\": " + json_number(s.resolution.per_window) +
-                                ", \"over_run\": " + json_number(s.resolution.over_run) + "}"
+                                ", \"over_run\": " + json_number(s.resolution.over_run) +
+                                ", \"whole_run\": " + (s.resolution.whole_run ? "true" : "false") +
+                                ", \"ends_differently\": " +
+                                (s.resolution.ends_differently.empty() ? std::string("null")
+                                                                       : json_string(s.resolution.ends_differently)) + "}"
                           : "null");
   field("output_frames", std::to_string(s.frames));
   field("interpolated_frames", std::to_string(s.interpolated_frames));

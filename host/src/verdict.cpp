@@ -36,7 +36,17 @@ void judge(RunSummary& s, const Scene& scene) {
   }
   const ResolutionCheck& check = s.resolution;
   if (check.done) {
-    if (check.over_run > limit.position) {
+    if (!check.ends_differently.empty()) {
+      std::snprintf(why, sizeof why, "%s's orbit about %s is not resolved: halving the step changes how the run ends (%s)",
+                    check.body.c_str(), check.about.c_str(), check.ends_differently.c_str());
+      v.reasons.push_back(why);
+    } else if (check.whole_run && check.over_run > limit.position) {
+      std::snprintf(why, sizeof why,
+                    "%s's orbit about %s is not resolved: the run repeated at half the step ends %.2e of its radius "
+                    "away > %.0e (a smaller step?)",
+                    check.body.c_str(), check.about.c_str(), check.over_run, limit.position);
+      v.reasons.push_back(why);
+    } else if (check.over_run > limit.position) {
       std::snprintf(why, sizeof why,
                     "%s's orbit about %s is not resolved: halving the step moves it by %.2e of its radius in one "
                     "orbit (%.6g), %.2e over the run > %.0e (a smaller step?)",
@@ -77,11 +87,11 @@ void judge(RunSummary& s, const Scene& scene) {
                   limit.orthogonality);
     v.reasons.push_back(why);
   }
-  // Bounding spheres inside each other by more than the event's root tolerance (a run stopped
-  // by a collision ends at contact, to ~1e-10).
+  // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
+  // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
   if (s.min_gap < -1e-6 * s.min_gap_reach) {
-    std::snprintf(why, sizeof why, "bodies %s overlapped (bounding spheres %.3g inside each other)",
-                  s.min_gap_pair.c_str(), -s.min_gap);
+    std::snprintf(why, sizeof why, "bodies %s overlapped (%.3g inside each other)", s.min_gap_pair.c_str(),
+                  -s.min_gap);
     v.reasons.push_back(why);
   }
   v.trustworthy = v.reasons.empty();

@@ -165,7 +165,7 @@ VectorXd plugin_flow(const OrbitModel& model, const VectorXd& xi0, double T, con
                                                     parse_params(spec.str(), "orbit flow"));
   State s = model.state(xi0);
   NullObserver null;
-  Schedule schedule{T, T, Events{0.0, false}, {}};
+  Schedule schedule{T, T, Events{0.0, false, {}}, {}};
   advance(*integrator, *model.potential, model.system, s, schedule, null);
   steps = static_cast<std::size_t>(integrator->work().steps);
   return model.phase_point(s);

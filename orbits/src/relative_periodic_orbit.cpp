@@ -34,7 +34,7 @@ State integrator_map(const FullBodyModel& model, const PluginConfig& integrator,
   State out = s;
   out.t = 0;
   NullObserver null;
-  advance(*method, *model.potential, model.system, out, Schedule{T, T, Events{0.0, false}, {}}, null);
+  advance(*method, *model.potential, model.system, out, Schedule{T, T, Events{0.0, false, {}}, {}}, null);
   return out;
 }
 

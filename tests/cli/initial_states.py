@@ -88,7 +88,7 @@ with run("si.yaml", text=template.format(**si)) as a, run("kmh.yaml", text=templ
     assert np.abs(to_si(b["particles/bodies/position/time"]) - a["particles/bodies/position/time"][:]).max() < 1e-6
 
 solar = template.format(**dict(si, units="{length: au, mass: M_sun, time: day}", density=1.0, mass=3e-6, a=1.0,
-                               h=1.0, t_end=10.0, every=10.0))
+                               a1=8e-3, a2=6e-3, a3=5e-3, h=1.0, t_end=10.0, every=10.0))
 with run("solar.yaml", text=solar) as f:
     k = 0.01720209895  # Gauss's gravitational constant, au^{3/2} M_sun^{-1/2} day^{-1}
     assert abs(f["parameters"].attrs["G"] / k**2 - 1.0) < 1e-10, f["parameters"].attrs["G"]

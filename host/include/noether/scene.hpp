@@ -3,10 +3,12 @@
 // it, and builds the System and the initial State. Every error names file, line and field.
 #include <noether/params.hpp>
 #include <noether/state.hpp>
+#include <noether/stepping.hpp>
 #include <noether/system.hpp>
 #include <noether/units.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,8 @@ struct RunSettings {
   double t_end = 0.0;
   double output_every = 0.0;
   double close_approach = 0.0;  // stop when two centres come closer (0: off)
-  bool collisions = true;       // stop when two bodies' bounding spheres touch
+  bool collisions = true;       // stop when two bodies touch (their shapes, else their radii)
+  std::optional<Escape> escape;  // run.escape: stop when a body leaves another
   TrustThresholds trust;
 };
 

@@ -58,10 +58,18 @@ struct OrbitScale {
 struct ResolutionCheck {
   bool done = false;
   std::string body, about;
-  double window = 0.0;          // the time integrated twice (one period of the orbit, whole steps)
+  // A run that took at most kWholeRunSeconds is repeated whole at h/2 (whole_run); a longer one
+  // over one period of the orbit at h and h/2, extrapolated linearly.
+  bool whole_run = false;
+  double window = 0.0;          // the time integrated twice (the run, or one period in whole steps)
   double per_window = 0.0;      // |Δ(x_body − x_about)| / |x_body − x_about| at its end
-  double over_run = 0.0;        // extrapolated linearly to the run's length (at least per_window)
+  double over_run = 0.0;        // over the run: measured (whole_run) or extrapolated (≥ per_window)
+  // Set when the run at h/2 ends otherwise (an event the run did not have, or not the run's):
+  // the outcome itself is not resolved.
+  std::string ends_differently;
 };
+// The wall time of a run up to which its step-halving check repeats it whole.
+inline constexpr double kWholeRunSeconds = 30.0;
 
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
@@ -79,7 +87,8 @@ struct RunSummary {
   // What the scene conserves, read off the forces at t0: Σ f_i = 0 (no external force) and
   // Σ x_i × f_i + Σ R_k M_k = 0 (no external torque about the origin).
   bool conserves_linear_momentum = true, conserves_angular_momentum = true;
-  // The smallest gap ‖x_a − x_b‖ − (r_a + r_b) between bounding spheres seen (pairs with radii).
+  // The smallest gap between two bodies seen (pairs with radii): between their surfaces when one
+  // has a solid shape (docs/equations.md eq. 16.5), else ‖x_a − x_b‖ − (r_a + r_b).
   double min_gap = std::numeric_limits<double>::infinity();
   double min_gap_reach = 0.0;  // r_a + r_b of that pair
   std::string min_gap_pair;

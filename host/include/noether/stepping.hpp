@@ -12,6 +12,7 @@
 #include <csignal>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,12 +27,22 @@ class Observer {
   virtual void observe(const State& state, const Forces& forces, bool interpolated) = 0;
 };
 
+// A body leaving another (run.escape): stop when `body` goes farther than `distance` from
+// `about` (0: off), or, with `unbound`, when their two-body energy turns positive (osculating
+// e ≥ 1; docs/equations.md eq. 16.8).
+struct Escape {
+  std::size_t body = 0, about = 0;
+  double distance = 0.0;
+  bool unbound = false;
+};
+
 struct Events {
   // Stop when two body centres come closer than this (0: off).
   double close_approach = 0.0;
-  // Stop when the bounding spheres of two bodies touch (Body::radius; pairs where both radii
-  // are 0 are not checked).
+  // Stop when two bodies touch: their surfaces when one has a solid shape (eq. 16.5), else
+  // their spheres of Body::radius (pairs where both radii are 0 are not checked).
   bool collisions = true;
+  std::optional<Escape> escape;
 };
 
 struct Schedule {
@@ -58,7 +69,7 @@ struct Schedule {
 // What ended the run.
 struct StopInfo {
   std::string reason;  // empty when t_end was reached, else the event, in words
-  std::string event;   // "", "close approach", "collision" or "interrupted"
+  std::string event;   // "", "close approach", "collision", "escape", "unbound" or "interrupted"
   double t = 0.0;
   std::size_t body_a = 0, body_b = 0;  // the pair of an event
   // Output frames that were interpolated between the method's steps (dense output), not states

@@ -1,0 +1,38 @@
+#pragma once
+// What the stepping loop watches for events (docs/equations.md §16): one function g of the state
+// per watched pair, positive until the event and ≤ 0 at it, located inside a step by regula
+// falsi on interpolated states (16.3).
+#include <noether/stepping.hpp>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct Watch {
+  enum class Kind { kCloseApproach, kCollision, kEscape, kUnbound };
+  Kind kind = Kind::kCloseApproach;
+  std::size_t a = 0, b = 0;
+  double threshold = 0.0;  // close approach: the distance; collision: the bounding spheres' radii; escape: the distance
+  bool armed = false;      // a pair that starts at g ≤ 0 is armed only once g > 0 again
+  // A collision of shapes: each body's surface points in its body frame (surface_samples;
+  // empty for a body without a solid, a sphere of its radius).
+  std::shared_ptr<const std::array<Eigen::Matrix3Xd, 2>> samples;
+
+  // g at a state (positions; attitudes for shapes; momenta for kUnbound). Eqs. 16.1, 16.5, 16.8.
+  double gap(const System& system, const State& state) const;
+  const char* name() const;  // "close approach", "collision", "escape", "unbound"
+  // The stop reason: "collision: the shapes of bodies 'a' and 'b' touched at t = …".
+  std::string describe(const System& system, double t) const;
+};
+
+// The watches of a run's events.
+std::vector<Watch> watches(const System& system, const Events& events);
+
+// Whether a stop reason (StopInfo::reason) is an event's — "collision: …", "escape: …" — rather
+// than an interruption.
+bool is_event(const std::string& reason);
+
+}  // namespace noether
