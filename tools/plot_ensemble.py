@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """plot_ensemble.py ENS.h5 OUT.png [--nominal NOMINAL.h5] [--quantity orbit/period]
 
 A histogram of one quantity over the completed samples of a `noether ensemble` file

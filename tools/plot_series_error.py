@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Plot the error of the inertia-integral series against the exact reference, per order.
 
 Reads the tables that the mutual-potential tests print, e.g.

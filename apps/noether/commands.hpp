@@ -65,10 +65,9 @@ int ensemble(const std::string& scene_file, const std::vector<std::string>& over
 // The folder of the helper scripts (plot_compare.py, plot_orbit.py): <prefix>/share/noether
 // when installed, the source tree's tools/ in a build.
 std::string script_dir();
-// Runs a helper script with the python3 on the PATH (a user's virtual environment wins; Debian's
-// /usr/bin/python3 when that one has no matplotlib) and an argument vector (no shell); false
-// when it cannot be run or fails. `shown` is the command,
-// for messages.
+// Runs a helper script with Debian's /usr/bin/python3 (the PATH's python3 where there is none)
+// and an argument vector (no shell); false when it cannot be run or fails. `shown` is the
+// command, for messages.
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args, std::string& shown);
 // The data file drawn into a picture: PNG with the extension .csv (next to it).
 std::string csv_beside(const std::string& png);

@@ -19,7 +19,7 @@ namespace noether::app {
 int compare(const std::string& scene_file, const std::vector<std::string>& overrides,
             const std::vector<std::string>& runs, const std::vector<std::string>& models,
             const std::string& reference_model, const std::string& spec_file, int repeats,
-            std::string csv, std::string h5, std::string png, bool plot, double max_wall_time) {
+            std::string csv, std::string h5, std::string png, bool plot, double max_wall_time, bool force) {
   const noether::Scene scene = noether::load_scene(scene_file, overrides);
   noether::PluginRegistry registry;
   const noether::CompareSpec spec =
@@ -28,6 +28,13 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
   if (csv.empty()) csv = stem + ".csv";
   if (h5.empty()) h5 = stem + ".h5";
   if (png.empty()) png = stem + ".png";
+  // Like `noether run`: existing results are replaced only when asked, and refused before the
+  // (possibly long) comparison runs.
+  if (!force)
+    for (const std::string& file : plot ? std::vector<std::string>{csv, h5, png} : std::vector<std::string>{csv, h5})
+      if (std::filesystem::exists(file))
+        throw noether::OutputError(file + " exists; noether does not overwrite output unless asked: pass --force, "
+                                   "or choose other names (-o, --h5, --plot)");
   const auto result = noether::compare(scene, registry, spec, [](const std::string& m) {
     std::cerr << "compare: " << m << "\n";
   });
@@ -54,7 +61,7 @@ void add_compare_command(CLI::App& app, Command& chosen) {
     std::string scene, spec_file, csv, h5, png, reference_model;
     std::vector<std::string> overrides, runs, models;
     int repeats = 0;
-    bool no_plot = false;
+    bool no_plot = false, force = false;
     double max_wall_time = 0.0;
   };
   auto o = std::make_shared<Options>();
@@ -76,6 +83,7 @@ void add_compare_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--h5", o->h5, "HDF5 table (default SCENE-compare.h5)");
   cmd->add_option("--plot", o->png, "work–precision plot (default SCENE-compare.png)");
   cmd->add_flag("--no-plot", o->no_plot, "do not draw the plot");
+  cmd->add_flag("--force", o->force, "replace existing tables and plot");
   cmd->add_option("--max-wall-time", o->max_wall_time,
                   "wall-time budget of each compared run in seconds (not the reference); a run that exhausts it is "
                   "listed as stopped")
@@ -83,7 +91,7 @@ void add_compare_command(CLI::App& app, Command& chosen) {
   cmd->callback([o, &chosen] {
     chosen = [o] {
       return compare(o->scene, o->overrides, o->runs, o->models, o->reference_model, o->spec_file, o->repeats, o->csv,
-                     o->h5, o->png, !o->no_plot, o->max_wall_time);
+                     o->h5, o->png, !o->no_plot, o->max_wall_time, o->force);
     };
   });
 }

@@ -3,16 +3,43 @@
 #include "commands.hpp"
 
 #include <noether/error.hpp>
+#include <noether/params.hpp>
 #include <noether/version.hpp>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <iostream>
+
+namespace {
+
+// After a usage error: "did you mean --force?" for each option the command does not have.
+void suggest_options(CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> known;
+  auto collect = [&known](const CLI::App* a) {
+    for (const CLI::Option* o : a->get_options()) {
+      for (const auto& name : o->get_lnames()) known.push_back("--" + name);
+      for (const auto& name : o->get_snames()) known.push_back("-" + name);
+    }
+  };
+  collect(&app);
+  for (const CLI::App* sub : app.get_subcommands()) collect(sub);
+  for (int i = 1; i < argc; ++i) {
+    std::string word = argv[i];
+    if (word.size() < 2 || word[0] != '-' || (word[1] >= '0' && word[1] <= '9') || word[1] == '.') continue;
+    word = word.substr(0, word.find('='));
+    if (std::find(known.begin(), known.end(), word) != known.end()) continue;
+    if (const std::string near = noether::closest_match(word, known); !near.empty())
+      std::cerr << "noether: " << word << " is not an option of this command; did you mean " << near << "?\n";
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"noether: bodies under mutual gravity — the full body problem and point masses"};
@@ -41,6 +68,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);  // prints help, the version, or the usage error
+    if (code != 0) suggest_options(app, argc, argv);
     return code == 0 ? 0 : 2;      // usage errors exit 2, as documented
   }
   // Warnings on stderr (stdout carries results: --summary json), as "noether: warning: …".

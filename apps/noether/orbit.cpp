@@ -205,7 +205,7 @@ int orbit_find(OrbitOptions o) {
     std::printf("  -> %s.yaml (period %.12f, closure %.2e after refinement)\n", stem.c_str(), T, closure);
     std::string command;
     if (!run_plot_script("plot_orbit.py", {stem + ".csv", stem + ".png", "--title", desc}, command))
-      std::fprintf(stderr, "noether: could not draw %s.png (needs matplotlib for the python3 on the PATH; "
+      std::fprintf(stderr, "noether: could not draw %s.png (needs python3-matplotlib; "
                    "command: %s)\n", stem.c_str(), command.c_str());
   }
   std::printf("%d distinct orbits from %d starts (%d starts rejected)\n", k, o.starts, failures);

@@ -1,6 +1,6 @@
-// Plot scripts: found next to the installed driver or in the source tree, run by the python3
-// on the user's PATH (their virtual environment, if any) with an argument vector, never
-// through a shell; by Debian's /usr/bin/python3 when the PATH's has no matplotlib.
+// Plot scripts: found next to the installed driver or in the source tree, run with an argument
+// vector, never through a shell, by Debian's /usr/bin/python3 (which tools/install-deps.sh gives
+// matplotlib: README, "Python"), or by the PATH's python3 on a system without it.
 #include "commands.hpp"
 
 #include <noether/error.hpp>
@@ -43,13 +43,11 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
     if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
     return WEXITSTATUS(status);
   };
-  const int status = spawn("python3");
-  // Exit 3: the PATH's python3 has no matplotlib; Debian's (tools/install-deps.sh) has.
-  if (status == 3 && std::filesystem::exists("/usr/bin/python3")) {
+  if (std::filesystem::exists("/usr/bin/python3")) {
     shown.replace(0, 7, "/usr/bin/python3");
     return spawn("/usr/bin/python3") == 0;
   }
-  return status == 0;
+  return spawn("python3") == 0;
 }
 
 bool draw_plot(const std::string& script, const std::vector<std::string>& args, const std::string& png,

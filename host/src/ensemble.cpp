@@ -46,7 +46,14 @@ EnsemblePlan::EnsemblePlan(const std::filesystem::path& scene_file, std::vector<
                      std::to_string(grid) + " points");
   // The scene and every key checked before anything runs: sample 0's scene is built.
   base = load_scene(scene_file, overrides);
-  (void)parse_scene(base.text, base.file, sample_overrides(0));
+  try {
+    (void)parse_scene(base.text, base.file, sample_overrides(0));
+  } catch (const SceneError& e) {  // a varied key's error names --vary, not the --set it becomes
+    std::string what = e.what();
+    for (const auto& v : options.vary)
+      if (what.rfind("--set " + v.key, 0) == 0) throw SceneError("--vary" + what.substr(5));
+    throw;
+  }
   if (!options.pair.empty()) {
     const auto comma = options.pair.find(',');
     if (comma == std::string::npos) throw SceneError("--pair '" + options.pair + "': expected two body names, a,b");

@@ -117,24 +117,34 @@ class EnsembleFile {
     const io::H5Handle message_type(H5Tcopy(H5T_C_S1));
     H5Tset_size(message_type, kMessageBytes);
     create(file_, "message", message_type, {});
+    // Each series with its unit, in the scene's units (as `noether run`'s output).
+    const Units& u = scene.units;
+    auto with_unit = [](io::H5Handle d, const std::string& unit) {
+      string_attribute(d, "unit", unit);
+      return d;
+    };
     const io::H5Handle summary(make_group(file_, "summary"));
-    for (const char* name : kSummary) create(summary, name, H5T_NATIVE_DOUBLE, {});
+    const std::string summary_units[kSummaryCount] = {u.of_time(), u.of_energy(), "1", "1", u.of_length(), "1", "1"};
+    for (std::size_t k = 0; k < kSummaryCount; ++k)
+      with_unit(create(summary, kSummary[k], H5T_NATIVE_DOUBLE, {}), summary_units[k]);
     const io::H5Handle fin(make_group(file_, "final"));
-    create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3});
-    create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3});
+    with_unit(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_length());
+    with_unit(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_momentum());
     if (nr_ > 0) {
-      create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3});
-      create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3});
+      with_unit(create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3}), "1");
+      with_unit(create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3}), u.of_angular_momentum());
     }
     const io::H5Handle orbit(make_group(file_, "orbit"));
     string_attribute(orbit, "description",
                      "the pair's osculating mutual orbit at the end: semi-major axis, eccentricity, period "
                      "(NaN when unbound)");
-    for (const char* name : {"a", "e", "period"}) create(orbit, name, H5T_NATIVE_DOUBLE, {});
+    with_unit(create(orbit, "a", H5T_NATIVE_DOUBLE, {}), u.of_length());
+    with_unit(create(orbit, "e", H5T_NATIVE_DOUBLE, {}), "1");
+    with_unit(create(orbit, "period", H5T_NATIVE_DOUBLE, {}), u.of_time());
     const io::H5Handle timing(make_group(file_, "timing"));
     string_attribute(timing, "description", "wall times: not results, they differ from run to run");
-    create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {});
-    create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {});
+    with_unit(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}), "s");
+    with_unit(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}), "s");
     const io::H5Handle trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
     string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
                                            "-1 not run or failed");

@@ -121,13 +121,17 @@ inline void string_dataset(hid_t parent, const char* name, const std::string& va
   H5Tclose(type);
 }
 
-// A scalar double attribute.
-inline void scalar_attribute(hid_t obj, const char* name, double value) {
+// A scalar attribute of an HDF5 type (a double by default).
+template <class T>
+void scalar_attribute(hid_t obj, const char* name, hid_t type, T value) {
   hid_t space = H5Screate(H5S_SCALAR);
-  hid_t attr = check_id(H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT), name);
-  check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &value), name);
+  hid_t attr = check_id(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), name);
+  check(H5Awrite(attr, type, &value), name);
   H5Aclose(attr);
   H5Sclose(space);
+}
+inline void scalar_attribute(hid_t obj, const char* name, double value) {
+  scalar_attribute(obj, name, H5T_NATIVE_DOUBLE, value);
 }
 
 // The non-empty lines of a newline-joined attribute (/parameters overrides).

@@ -204,20 +204,17 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   // killed run's file, never a finished one whose series are longer than its frames.
   m.resize_series(frames_written_);
   hid_t g = make_group(m.file, "work");
-  numeric_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, {work.steps});
-  numeric_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64,
-                                  {work.potential_evaluations});
-  numeric_attribute<std::int64_t>(g, "newton_iterations", H5T_NATIVE_INT64,
-                                  {work.newton_iterations});
-  numeric_attribute<std::int64_t>(g, "rejected_steps", H5T_NATIVE_INT64, {work.rejected_steps});
-  numeric_attribute<double>(g, "wall_time", H5T_NATIVE_DOUBLE, {wall_seconds});
+  scalar_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, work.steps);
+  scalar_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64, work.potential_evaluations);
+  scalar_attribute<std::int64_t>(g, "newton_iterations", H5T_NATIVE_INT64, work.newton_iterations);
+  scalar_attribute<std::int64_t>(g, "rejected_steps", H5T_NATIVE_INT64, work.rejected_steps);
+  scalar_attribute(g, "wall_time", wall_seconds);
   string_attribute(g, "outcome", outcome);
-  numeric_attribute<std::uint64_t>(g, "outcome_checksum", H5T_NATIVE_UINT64,
-                                   {io::checksum64(outcome.data(), outcome.size())});
+  scalar_attribute<std::uint64_t>(g, "outcome_checksum", H5T_NATIVE_UINT64, io::checksum64(outcome.data(), outcome.size()));
   if (!m.verdict.empty()) {
     string_attribute(g, "verdict", m.verdict);
     string_attribute(g, "verdict_reasons", m.verdict_reasons);
-    numeric_attribute<double>(g, "relative_energy_error", H5T_NATIVE_DOUBLE, {m.relative_energy_error});
+    scalar_attribute(g, "relative_energy_error", m.relative_energy_error);
     string_attribute(g, "energy_scale", m.energy_scale);
   }
   H5Gclose(g);

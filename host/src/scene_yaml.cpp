@@ -158,6 +158,18 @@ Params* list_item(std::vector<Params>& items, const std::vector<std::string>& pa
   return nullptr;
 }
 
+// "; did you mean 'x'?" for a key of a mapping or a body name of a list, when one is close.
+std::string suggestion(const Params& node, const std::string& word) {
+  std::vector<std::string> candidates;
+  if (node.is_map())
+    for (const auto& [key, value] : node.entries()) candidates.push_back(key);
+  if (node.is_sequence())
+    for (const auto& item : node.items())
+      if (item.is_map() && item.has("name") && item.at("name").is_scalar()) candidates.push_back(item.at("name").as_string());
+  const std::string near = closest_match(word, candidates);
+  return near.empty() ? "" : "; did you mean '" + near + "'?";
+}
+
 }  // namespace
 
 // "--set KEY=VALUE" sets (or replaces) a value, "--set KEY+=VALUE" appends VALUE to the list at
@@ -213,9 +225,12 @@ void apply_override(Params& root, const std::string& assignment) {
       }
       i = j;
     }
-    if (!next)
-      throw SceneError("--set " + key + ": the scene has no '" + part + "' at '" +
-                       (node->path().empty() ? std::string("top level") : node->path()) + "'");
+    if (!next) {
+      std::string at;  // the key up to here
+      for (std::size_t k = 0; k < i; ++k) at += (k ? "." : "") + parts[k];
+      throw SceneError("--set " + key + ": the scene has no '" + part + "' at '" + (at.empty() ? "top level" : at) +
+                       "'" + suggestion(*node, part));
+    }
     node = next;
   }
   const std::string& name = parts[last];
@@ -237,7 +252,8 @@ void apply_override(Params& root, const std::string& assignment) {
     }
     throw SceneError("--set " + key + ": '" + key.substr(0, key.size() - name.size() - 1) + "' has no item '" +
                      name + "' (it has " + std::to_string(items.size()) + ", numbered from 0" +
-                     (items.size() > 0 && items[0].is_map() && items[0].has("name") ? ", or by name" : "") + ")");
+                     (items.size() > 0 && items[0].is_map() && items[0].has("name") ? ", or by name" : "") + ")" +
+                     suggestion(*node, name));
   }
   if (!node->is_map() && !node->is_null())
     throw SceneError("--set " + key + ": '" + node->path() + "' is not a mapping");

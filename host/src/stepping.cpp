@@ -31,7 +31,7 @@ std::int64_t whole_steps(double interval, double h, const char* what) {
   if (n < 1 || std::abs(n * h - interval) > 1e-9 * interval) {
     std::ostringstream msg;
     msg << what << " = " << interval << " is not a whole number of steps of " << h << " ("
-        << interval / h << " steps); choose integrator.step = (" << what << ")/N";
+        << interval / h << " steps); choose integrator.step = " << interval << "/N for a whole N";
     throw SceneError(msg.str());
   }
   return static_cast<std::int64_t>(n);

@@ -15,8 +15,15 @@ messages the command prints.
 import json
 import os
 
-from ._noether import (Error, IntegrationError, OutputError, PluginError, SceneError, __version__,
-                       _Simulation)
+import sys
+
+try:
+    from ._noether import (Error, IntegrationError, OutputError, PluginError, SceneError, __version__,
+                           _Simulation)
+except ImportError as e:  # a compiled module for another interpreter (pyenv, a venv of another Python)
+    raise ImportError(f"noether's compiled module does not load in {sys.executable} (Python "
+                      f"{sys.version.split()[0]}): it is built for Debian's /usr/bin/python3, which "
+                      f"tools/install-deps.sh provisions; run with /usr/bin/python3 (README, \"Python\") [{e}]") from None
 from . import _noether
 from .output import Output, read
 from .compare import Table, compare

@@ -1,5 +1,6 @@
 """Reading noether's HDF5 output (docs/user-guide.md, "Output"): named arrays with their units."""
-import h5py
+import sys
+
 import numpy as np
 
 from . import _noether
@@ -21,6 +22,12 @@ class Output:
     def __init__(self, path):
         self.path = str(path)
         self._arrays, self._units, self._descriptions = {}, {}, {}
+        try:
+            import h5py
+        except ImportError:
+            raise _noether.OutputError(
+                f"reading {self.path} needs h5py, which {sys.executable} does not have: noether's Python pieces are "
+                "for Debian's /usr/bin/python3 (tools/install-deps.sh installs python3-h5py; README, \"Python\")") from None
         try:
             f = h5py.File(self.path, "r", locking=False)
         except FileNotFoundError:

@@ -52,6 +52,7 @@ with read("probe.h5") as f:
 
 run(didymos, "alone.h5", "run.t_end=600", "bodies.dimorphos=~")
 with read("alone.h5") as f:
+    assert all(np.ndim(f["work"].attrs[k]) == 0 for k in ("steps", "wall_time", "outcome_checksum"))  # scalars
     assert f["particles/bodies/position/value"].shape[1] == 1
     assert "separation" not in f["observables"]  # no binary left
 
@@ -74,15 +75,25 @@ p = subprocess.run([noether, "ensemble", didymos, "--vary", "bodies.dimorphos.ma
 assert p.returncode == 0, p.stderr[-800:]
 with read("ens.h5") as f:
     assert sorted(f["inputs/bodies.dimorphos.mass"][()]) == [4.0e9, 4.6e9]
+    units = {name: f[name].attrs["unit"] for name in ("summary/final_time", "summary/max_abs_energy_error",
+                                                        "final/positions", "final/momenta", "orbit/a", "orbit/period")}
+    assert units == {"summary/final_time": "s", "summary/max_abs_energy_error": "kg m^2/s^2",
+                     "final/positions": "m", "final/momenta": "kg m/s", "orbit/a": "m", "orbit/period": "s"}, units
     assert list(f["outcome"][()]) == [0, 0], f["outcome"][()]
     final = f["final/positions"][()]
     assert np.linalg.norm(final[0] - final[1]) > 1e-6  # the masses made different runs
+
+p = subprocess.run([noether, "ensemble", didymos, "--vary", "bodies.dimorphs.mass=normal(4e9, 1e8)", "--samples", "2",
+                    "--force", "-o", os.path.join(work, "ens2.h5")], capture_output=True, text=True)
+assert p.returncode == 2 and "--vary bodies.dimorphs.mass: the scene has no 'dimorphs' at 'bodies'; did you mean " \
+    "'dimorphos'?" in p.stderr, p.stderr
 
 for edit, message in [
     ("run.nope=~", "the scene has no 'run.nope' to delete"),
     ("bodies.zork=~", "'bodies' has no item 'zork' (it has 2, numbered from 0, or by name)"),
     ("integrator+=3", "'integrator' is not a list (+= appends to a list; = replaces)"),
     ("bodies.dimorphos.nope=~", "the scene has no 'bodies.dimorphos.nope' to delete"),
+    ("bodies.dimorphs.mass=1e9", "the scene has no 'dimorphs' at 'bodies'; did you mean 'dimorphos'?"),
 ]:
     text = run(didymos, "refused.h5", edit, status=2)
     assert message in text, (edit, text)

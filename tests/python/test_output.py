@@ -258,3 +258,24 @@ def test_runs_killed_in_python_and_resumed_are_bitwise_uninterrupted_runs(source
                     "particles/bodies/position/step"]:
             assert a[key][()].tobytes() == b[key][()].tobytes(), key
         assert b["work"].attrs["outcome"] == "completed"
+
+
+def test_another_interpreter_is_told_which_one(tmp_path):
+    # The package without its compiled module: what a Python it was not built for (pyenv, a venv
+    # of another version) meets on `import noether`.
+    import shutil
+    package = os.path.dirname(noether.__file__)
+    shutil.copytree(package, tmp_path / "noether", ignore=shutil.ignore_patterns("_noether*", "__pycache__"))
+    p = subprocess.run([sys.executable, "-c", "import noether"], cwd=tmp_path, capture_output=True, text=True,
+                       env=dict(os.environ, PYTHONPATH=str(tmp_path)))
+    assert p.returncode == 1
+    assert "ImportError: noether's compiled module does not load in" in p.stderr, p.stderr
+    assert "it is built for Debian's /usr/bin/python3" in p.stderr, p.stderr
+
+
+def test_reading_without_h5py_says_what_is_missing(tmp_path):
+    code = "import sys; sys.modules['h5py'] = None; import noether; noether.read(sys.argv[1])"
+    p = subprocess.run([sys.executable, "-c", code, str(tmp_path / "run.h5")], capture_output=True, text=True)
+    assert p.returncode == 1
+    assert "noether.OutputError" in p.stderr or "OutputError" in p.stderr, p.stderr
+    assert "needs h5py, which" in p.stderr and "python3-h5py" in p.stderr, p.stderr
