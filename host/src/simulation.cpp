@@ -40,6 +40,10 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   m.summary.integrator = sc.integrator.plugin;
   if (sc.units.declared) m.summary.units = sc.units.describe();
   m.summary.time_unit = sc.units.of_time();
+  if (sc.units.declared) {
+    m.summary.energy_unit = sc.units.of_energy();
+    m.summary.length_unit = sc.units.of_length();
+  }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
   m.t_origin = sc.initial.t;

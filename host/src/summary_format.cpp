@@ -33,6 +33,8 @@ std::string hours(double t, const std::string& unit) {
   std::snprintf(text, sizeof text, " = %.6g h", t / 3600.0);
   return text;
 }
+// " kg m^2/s^2" after a number in declared units (nothing when the scene declares none).
+std::string with_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
 }  // namespace
 
 std::string format_summary(const RunSummary& s) {
@@ -54,8 +56,9 @@ std::string format_summary(const RunSummary& s) {
     optional += line;
   }
   if (std::isfinite(s.min_distance)) {
-    std::snprintf(line, sizeof line, "closest approach              %.6g (%s) at t = %.6g\n", s.min_distance,
-                  s.min_distance_pair.c_str(), s.t_of_min_distance);
+    std::snprintf(line, sizeof line, "closest approach              %.6g%s (%s) at t = %.6g%s\n", s.min_distance,
+                  with_unit(s.length_unit).c_str(), s.min_distance_pair.c_str(), s.t_of_min_distance,
+                  with_unit(s.energy_unit.empty() ? "" : s.time_unit).c_str());
     optional += line;
   }
   if (!s.mutual_pair.empty()) {
@@ -98,8 +101,8 @@ std::string format_summary(const RunSummary& s) {
       buf, sizeof buf,
       "potential                     %s\n"
       "integrator                    %s\n"
-      "E0                            %.10g\n"
-      "max |E - E0|                  %.4e (relative to %s: %.2e; at the output frames%s)\n"
+      "E0                            %.10g%s\n"
+      "max |E - E0|                  %.4e%s (relative to %s: %.2e; at the output frames%s)\n"
       "%s"
       "output frames                 %zu\n"
       "steps                         %lld\n"
@@ -107,8 +110,8 @@ std::string format_summary(const RunSummary& s) {
       "Newton iterations per step    %.3f\n"
       "rejected steps                %s\n"
       "wall time                     %.3f s\n",
-      s.potential.c_str(), s.integrator.c_str(), s.initial.energy, s.max_abs_energy_error,
-      s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
+      s.potential.c_str(), s.integrator.c_str(), s.initial.energy, with_unit(s.energy_unit).c_str(),
+      s.max_abs_energy_error, with_unit(s.energy_unit).c_str(), s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
       static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
       static_cast<double>(s.work.newton_iterations) / steps,
       s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),

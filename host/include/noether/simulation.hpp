@@ -103,6 +103,9 @@ struct RunSummary {
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
   std::string time_unit;    // the scene's unit of time, for the summary
+  // The scene's units of energy and length when it declares units (empty otherwise): the
+  // summary prints its numbers with them.
+  std::string energy_unit, length_unit;
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::string min_distance_pair;                // "a–b"
