@@ -103,8 +103,12 @@ std::string Watch::describe(const System& system, double t) const {
 }
 
 bool is_event(const std::string& reason) {
-  for (const char* kind : {"close approach:", "collision:", "escape:", "unbound:"})
-    if (reason.rfind(kind, 0) == 0) return true;
+  Watch w;
+  for (const auto kind : {Watch::Kind::kCloseApproach, Watch::Kind::kCollision, Watch::Kind::kEscape,
+                          Watch::Kind::kUnbound}) {
+    w.kind = kind;
+    if (reason.rfind(std::string(w.name()) + ":", 0) == 0) return true;
+  }
   return false;
 }
 

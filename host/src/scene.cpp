@@ -472,22 +472,6 @@ Scene parse_scene(const std::string& text, const std::string& file,
                          sys.body(j).name + "' start at the same position");
     }
   }
-  // A body inside another's shape: impossible, unless the scene turned contacts off (then the
-  // verdict says so). O(N²) pairs: small scenes.
-  const bool collisions = !root.has("run") || !root.at("run").is_map() || root.at("run").get("collisions", true);
-  if (collisions && sys.size() <= 64)
-    for (const Watch& w : watches(sys, Events{0.0, true, {}})) {
-      const double gap = w.samples ? w.gap(sys, s) : 0.0;
-      if (gap < -1e-9 * w.threshold) {
-        std::ostringstream msg;
-        msg.precision(4);
-        msg << bodies.items()[w.b].here() << "bodies '" << sys.body(w.a).name << "' and '" << sys.body(w.b).name
-            << "' overlap at the start: " << -gap << " inside each other's surface (centres "
-            << (s.x.col(static_cast<Eigen::Index>(w.a)) - s.x.col(static_cast<Eigen::Index>(w.b))).norm()
-            << " apart); move them apart";
-        throw SceneError(msg.str());
-      }
-    }
   scene.initial = std::move(s);
 
   // Models, integrator, run.
@@ -526,6 +510,22 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (scene.run.output_every <= 0.0 || scene.run.output_every > scene.run.t_end)
     throw SceneError(run.at("output_every").here() +
                      "'run.output_every' must be positive and at most run.t_end");
+  // A body inside another's shape: impossible, unless the scene turned contacts off (then the
+  // verdict says so). O(N²) pairs: small scenes.
+  if (scene.run.collisions && sys.size() <= 64)
+    for (const Watch& w : watches(sys, Events{0.0, true, {}})) {
+      const double gap = w.samples ? w.gap(sys, scene.initial) : 0.0;
+      if (gap < -1e-9 * w.threshold) {
+        const auto separation = (scene.initial.x.col(static_cast<Eigen::Index>(w.a)) -
+                                 scene.initial.x.col(static_cast<Eigen::Index>(w.b))).norm();
+        std::ostringstream msg;
+        msg.precision(4);
+        msg << bodies.items()[w.b].here() << "bodies '" << sys.body(w.a).name << "' and '" << sys.body(w.b).name
+            << "' overlap at the start: " << -gap << " inside each other's surface (centres " << separation
+            << " apart); move them apart";
+        throw SceneError(msg.str());
+      }
+    }
   scene.root = std::move(root);
   return scene;
 }

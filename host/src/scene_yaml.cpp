@@ -199,7 +199,7 @@ void apply_override(Params& root, const std::string& assignment) {
   for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
   // The node holding the last part.
   Params* node = &root;
-  std::size_t last = parts.size() - 1;
+  const std::size_t last = parts.size() - 1;
   for (std::size_t i = 0; i < last; ++i) {
     const std::string& part = parts[i];
     Params* next = nullptr;

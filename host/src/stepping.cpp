@@ -155,7 +155,7 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
     previous = state;
     for (auto& w : watch) w.armed = w.gap(system, state) > 0;
   }
-  // The state at τ inside the last step: the method's dense output, else Hermite positions.
+  // The state at τ inside the last step: the method's dense output, else hermite_state.
   auto positions_at = [&](double tau) -> const State& {
     if (!integrator.interpolate(tau, probe)) hermite_state(system, previous, reached, tau, probe);
     return probe;
