@@ -18,7 +18,7 @@ PACKAGES=(
   libbenchmark-dev
   libnlopt-dev
   libopenmpi-dev openmpi-bin
-  python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest
+  python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest python3-hypothesis
   pybind11-dev
 )
 if [ "${1:-}" = "--sanitize" ]; then

@@ -32,22 +32,12 @@ Vec3 nearest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
-// The solid angle of triangle abc seen from p, signed (positive for a face counter-clockwise
-// seen from outside and p inside), by van Oosterom & Strackee (1983): eq. 16.7.
-double solid_angle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 r1 = a - p, r2 = b - p, r3 = c - p;
-  const double l1 = r1.norm(), l2 = r2.norm(), l3 = r3.norm();
-  const double numerator = r1.dot(r2.cross(r3));
-  const double denominator = l1 * l2 * l3 + r1.dot(r2) * l3 + r1.dot(r3) * l2 + r2.dot(r3) * l1;
-  return 2.0 * std::atan2(numerator, denominator);
-}
-
 double polyhedron_gap(const Mesh& mesh, const Vec3& p) {
   double nearest = std::numeric_limits<double>::infinity(), winding = 0.0;
   for (const auto& f : mesh.faces) {
     const Vec3 a = mesh.vertices.col(f[0]), b = mesh.vertices.col(f[1]), c = mesh.vertices.col(f[2]);
     nearest = std::min(nearest, (nearest_on_triangle(p, a, b, c) - p).squaredNorm());
-    winding += solid_angle(p, a, b, c);
+    winding += triangle_solid_angle(p, a, b, c);
   }
   const double distance = std::sqrt(nearest);
   return std::abs(winding) > 2.0 * std::numbers::pi ? -distance : distance;  // 4π inside, 0 outside

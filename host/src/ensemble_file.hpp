@@ -19,7 +19,10 @@
 #include <string>
 #include <vector>
 
+#include <csignal>
+
 #include <fcntl.h>
+#include <pthread.h>
 #include <unistd.h>
 
 namespace noether::detail {
@@ -76,6 +79,12 @@ class EnsembleFile {
     // Built under a hidden name and renamed into place once its layout is complete, so the path
     // holds either nothing (or the file --force replaces) or a whole layout, whenever a kill comes.
     // (io/safe_publish.hpp: a link, or another process writing the path, is refused.)
+    const double needed = check_disk_space(path, options.vary.size());
+    // SIGINT and SIGTERM wait while the layout is written (they end `noether ensemble` at once,
+    // and a kill here would leave the hidden file, up to the size just checked, behind); they
+    // are delivered once the file is published or removed, ending the process with a complete
+    // layout that --resume continues.
+    const SignalsHeld held;
     const int claimed = io::claim_output(path, true);
     const std::filesystem::path partial = io::partial_name(path);
     try {
@@ -84,75 +93,78 @@ class EnsembleFile {
       if (claimed >= 0) ::close(claimed);
       throw;
     }
-    file_ = io::H5Handle(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024)));
-    if (file_ < 0) {
-      if (claimed >= 0) ::close(claimed);
-      ::close(lock_);
-      lock_ = -1;
-      std::filesystem::remove(partial, ec);
-      throw OutputError("cannot create " + path.string() + system_reason());
-    }
-    string_attribute(file_, "identity", identity_);
-    string_attribute(file_, "description",
-                     "noether ensemble: one row per sample; outcome -1 not run, 0 completed, 1 stopped by an "
-                     "event, 2 failed (message)");
-    string_dataset(file_, "scene", scene_text, "the scene file's text");
-    std::string joined;
-    for (const auto& o : overrides) joined += (joined.empty() ? "" : "\n") + o;
-    string_attribute(file_, "overrides", joined);
-    numeric_attribute<std::uint64_t>(file_, "seed", H5T_NATIVE_UINT64, {options.seed});
-    string_attribute(file_, "units", scene.units.describe());
-    string_attribute(file_, "pair", scene.system.body(pair_a).name + "," + scene.system.body(pair_b).name);
-    const io::H5Handle inputs(make_group(file_, "inputs"));
-    for (const auto& v : options.vary) {
-      const io::H5Handle d = create(inputs, v.key.c_str(), H5T_NATIVE_DOUBLE, {});
-      string_attribute(d, "distribution", v.text);
-    }
-    outcome_ = create(file_, "outcome", H5T_NATIVE_INT8, {});
-    string_attribute(outcome_, "description", "-1 not run, 0 completed, 1 stopped by an event, 2 failed");
-    checksum_ = create(file_, "outcome_checksum", H5T_NATIVE_UINT64, {});
-    string_attribute(checksum_, "description",
-                     "checksum64 of each sample's outcome byte, seeded with its index (0: not written); "
-                     "`noether ensemble --resume` verifies every outcome it reads");
-    const io::H5Handle message_type(H5Tcopy(H5T_C_S1));
-    H5Tset_size(message_type, kMessageBytes);
-    create(file_, "message", message_type, {});
-    // Each series with its unit, in the scene's units (as `noether run`'s output).
-    const Units& u = scene.units;
-    auto with_unit = [](io::H5Handle d, const std::string& unit) {
-      string_attribute(d, "unit", unit);
-      return d;
-    };
-    const io::H5Handle summary(make_group(file_, "summary"));
-    const std::string summary_units[kSummaryCount] = {u.of_time(), u.of_energy(), "1", "1", u.of_length(), "1", "1"};
-    for (std::size_t k = 0; k < kSummaryCount; ++k)
-      with_unit(create(summary, kSummary[k], H5T_NATIVE_DOUBLE, {}), summary_units[k]);
-    const io::H5Handle fin(make_group(file_, "final"));
-    with_unit(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_length());
-    with_unit(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_momentum());
-    if (nr_ > 0) {
-      with_unit(create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3}), "1");
-      with_unit(create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3}), u.of_angular_momentum());
-    }
-    const io::H5Handle orbit(make_group(file_, "orbit"));
-    string_attribute(orbit, "description",
-                     "the pair's osculating mutual orbit at the end: semi-major axis, eccentricity, period "
-                     "(NaN when unbound)");
-    with_unit(create(orbit, "a", H5T_NATIVE_DOUBLE, {}), u.of_length());
-    with_unit(create(orbit, "e", H5T_NATIVE_DOUBLE, {}), "1");
-    with_unit(create(orbit, "period", H5T_NATIVE_DOUBLE, {}), u.of_time());
-    const io::H5Handle timing(make_group(file_, "timing"));
-    string_attribute(timing, "description", "wall times: not results, they differ from run to run");
-    with_unit(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}), "s");
-    with_unit(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}), "s");
-    const io::H5Handle trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
-    string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
-                                           "-1 not run or failed");
-    io::flush_extended(file_, lock_, "flushing the ensemble file");
-    try {
+    try {  // the file and its layout, published: on any failure (a full disk), the hidden file goes
+      file_ = io::H5Handle(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024)));
+      if (file_ < 0) throw OutputError("cannot create " + path.string() + system_reason());
+      // The space reserved first: a disk or a file-size limit too small for the layout fails
+      // here, before HDF5 writes (HDF5 1.10 cannot close a file whose writes failed cleanly).
+      if (const int err = ::posix_fallocate(lock_, 0, static_cast<off_t>(needed)))
+        throw OutputError("cannot reserve " + std::to_string(static_cast<std::size_t>(needed)) +
+                          " bytes for " + path.string() + ": " + std::strerror(err));
+      string_attribute(file_, "identity", identity_);
+      string_attribute(file_, "description",
+                       "noether ensemble: one row per sample; outcome -1 not run, 0 completed, 1 stopped by an "
+                       "event, 2 failed (message)");
+      string_dataset(file_, "scene", scene_text, "the scene file's text");
+      std::string joined;
+      for (const auto& o : overrides) joined += (joined.empty() ? "" : "\n") + o;
+      string_attribute(file_, "overrides", joined);
+      numeric_attribute<std::uint64_t>(file_, "seed", H5T_NATIVE_UINT64, {options.seed});
+      string_attribute(file_, "units", scene.units.describe());
+      string_attribute(file_, "pair", scene.system.body(pair_a).name + "," + scene.system.body(pair_b).name);
+      const io::H5Handle inputs(make_group(file_, "inputs"));
+      for (const auto& v : options.vary) {
+        const io::H5Handle d = create(inputs, v.key.c_str(), H5T_NATIVE_DOUBLE, {});
+        string_attribute(d, "distribution", v.text);
+      }
+      outcome_ = create(file_, "outcome", H5T_NATIVE_INT8, {});
+      string_attribute(outcome_, "description", "-1 not run, 0 completed, 1 stopped by an event, 2 failed");
+      checksum_ = create(file_, "outcome_checksum", H5T_NATIVE_UINT64, {});
+      string_attribute(checksum_, "description",
+                       "checksum64 of each sample's outcome byte, seeded with its index (0: not written); "
+                       "`noether ensemble --resume` verifies every outcome it reads");
+      const io::H5Handle message_type(H5Tcopy(H5T_C_S1));
+      H5Tset_size(message_type, kMessageBytes);
+      create(file_, "message", message_type, {});
+      // Each series with its unit, in the scene's units (as `noether run`'s output).
+      const Units& u = scene.units;
+      auto with_unit = [](io::H5Handle d, const std::string& unit) {
+        string_attribute(d, "unit", unit);
+        return d;
+      };
+      const io::H5Handle summary(make_group(file_, "summary"));
+      const std::string summary_units[kSummaryCount] = {u.of_time(), u.of_energy(), "1", "1", u.of_length(), "1", "1"};
+      for (std::size_t k = 0; k < kSummaryCount; ++k)
+        with_unit(create(summary, kSummary[k], H5T_NATIVE_DOUBLE, {}), summary_units[k]);
+      const io::H5Handle fin(make_group(file_, "final"));
+      with_unit(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_length());
+      with_unit(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_momentum());
+      if (nr_ > 0) {
+        with_unit(create(fin, "attitudes", H5T_NATIVE_DOUBLE, {nr_, 3, 3}), "1");
+        with_unit(create(fin, "angular_momenta", H5T_NATIVE_DOUBLE, {nr_, 3}), u.of_angular_momentum());
+      }
+      const io::H5Handle orbit(make_group(file_, "orbit"));
+      string_attribute(orbit, "description",
+                       "the pair's osculating mutual orbit at the end: semi-major axis, eccentricity, period "
+                       "(NaN when unbound)");
+      with_unit(create(orbit, "a", H5T_NATIVE_DOUBLE, {}), u.of_length());
+      with_unit(create(orbit, "e", H5T_NATIVE_DOUBLE, {}), "1");
+      with_unit(create(orbit, "period", H5T_NATIVE_DOUBLE, {}), u.of_time());
+      const io::H5Handle timing(make_group(file_, "timing"));
+      string_attribute(timing, "description", "wall times: not results, they differ from run to run");
+      with_unit(create(timing, "wall_seconds", H5T_NATIVE_DOUBLE, {}), "s");
+      with_unit(create(timing, "setup_seconds", H5T_NATIVE_DOUBLE, {}), "s");
+      const io::H5Handle trust = create(file_, "trustworthy", H5T_NATIVE_INT8, {});
+      string_attribute(trust, "description", "the run's verdict against run.trust: 1 trustworthy, 0 not (why: message), "
+                                             "-1 not run or failed");
+      io::flush_extended(file_, lock_, "flushing the ensemble file");
       io::publish_file(partial, path, claimed >= 0);
     } catch (...) {
+      checksum_.reset();
+      outcome_.reset();
       file_.reset();
+      ::close(lock_);
+      lock_ = -1;
       std::filesystem::remove(partial, ec);
       if (claimed >= 0) ::close(claimed);
       throw;
@@ -220,6 +232,44 @@ class EnsembleFile {
   }
 
  private:
+  // Blocks SIGINT and SIGTERM in this thread for its lifetime (pending ones arrive at the end).
+  struct SignalsHeld {
+    sigset_t old{};
+    SignalsHeld() {
+      sigset_t stop;
+      sigemptyset(&stop);
+      sigaddset(&stop, SIGINT);
+      sigaddset(&stop, SIGTERM);
+      pthread_sigmask(SIG_BLOCK, &stop, &old);
+    }
+    ~SignalsHeld() { pthread_sigmask(SIG_SETMASK, &old, nullptr); }
+    SignalsHeld(const SignalsHeld&) = delete;
+    SignalsHeld& operator=(const SignalsHeld&) = delete;
+  };
+
+  // The datasets are allocated whole when the file is created (one row per sample): refuse an
+  // ensemble whose file would not fit on its disk, before writing anything.
+  // Returns the bytes the datasets take.
+  double check_disk_space(const std::filesystem::path& path, std::size_t varied) const {
+    const double row = 1.0 + 8.0 + kMessageBytes + 8.0 * (kSummaryCount + 6.0 * nb_ + 12.0 * nr_ + 3 + 2 + varied) + 1.0;
+    const double needed = row * static_cast<double>(samples_);
+    std::filesystem::path folder = path.parent_path();
+    if (folder.empty()) folder = ".";
+    std::error_code ec;
+    const auto space = std::filesystem::space(folder, ec);
+    if (ec) return needed;  // cannot tell: the reservation reports it
+    if (needed > 0.98 * static_cast<double>(space.available)) {
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "the ensemble file for " << samples_ << " samples needs " << needed / 1e9 << " GB ("
+          << static_cast<std::size_t>(row) << " bytes per sample, allocated when it is created); "
+          << folder.string() << " has " << static_cast<double>(space.available) / 1e9
+          << " GB free: use fewer samples (--samples, or coarser grids) or another disk";
+      throw OutputError(msg.str());
+    }
+    return needed;
+  }
+
   static std::uint64_t outcome_checksum(std::size_t i, std::int8_t outcome) {
     return io::checksum64(&outcome, 1, i) | 1;  // never 0, the fill of a row not written
   }

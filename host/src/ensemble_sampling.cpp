@@ -3,6 +3,7 @@
 #include <noether/ensemble.hpp>
 #include <noether/error.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -72,10 +73,14 @@ Variation parse_variation(const std::string& text) {
     v.kind = Variation::Kind::Normal;
     need(2, "(mean, sd)");
     if (!(v.args[1] >= 0)) throw SceneError(where + ": normal's standard deviation must be ≥ 0");
+    // Box–Muller draws lie within 8.6 sd of the mean (u ≥ 2^-53): they must stay finite.
+    if (!std::isfinite(std::abs(v.args[0]) + 9.0 * v.args[1]))
+      throw SceneError(where + ": normal(mean, sd) would draw values that overflow (|mean| + 9 sd is not finite)");
   } else if (name == "uniform") {
     v.kind = Variation::Kind::Uniform;
     need(2, "(a, b)");
     if (!(v.args[0] < v.args[1])) throw SceneError(where + ": uniform(a, b) needs a < b");
+    if (!std::isfinite(v.args[1] - v.args[0])) throw SceneError(where + ": uniform(a, b): b − a overflows");
   } else if (name == "log-uniform") {
     v.kind = Variation::Kind::LogUniform;
     need(2, "(a, b)");
@@ -87,8 +92,10 @@ Variation parse_variation(const std::string& text) {
     v.kind = Variation::Kind::Grid;
     need(3, "(a, b, n)");
     if (!(v.args[2] >= 1 && v.args[2] == std::floor(v.args[2]) && v.args[2] <= 1e9))
-      throw SceneError(where + ": grid(a, b, n) needs a whole n ≥ 1");
+      throw SceneError(where + ": grid(a, b, n) needs a whole n from 1 to 10^9");
     if (v.args[2] > 1 && !(v.args[0] < v.args[1])) throw SceneError(where + ": grid(a, b, n) needs a < b");
+    if (!std::isfinite((v.args[1] - v.args[0]) * (v.args[2] - 1)))
+      throw SceneError(where + ": grid(a, b, n): (b − a)(n − 1) overflows");
   } else {
     throw SceneError(where + ": unknown distribution '" + name +
                      "' (normal, uniform, log-uniform, list, grid)");
@@ -98,8 +105,14 @@ Variation parse_variation(const std::string& text) {
 
 std::size_t grid_size(const std::vector<Variation>& vary) {
   std::size_t n = 1;
+  constexpr std::size_t kMax = std::size_t{1} << 53;  // sample indices stay exact in a double
   for (const auto& v : vary)
-    if (v.kind == Variation::Kind::Grid) n *= static_cast<std::size_t>(v.args[2]);
+    if (v.kind == Variation::Kind::Grid) {
+      const auto points = static_cast<std::size_t>(v.args[2]);
+      if (n > kMax / points)
+        throw SceneError("--vary " + v.key + ": the grids' product has more than 2^53 points");
+      n *= points;
+    }
   return n;
 }
 
@@ -118,7 +131,8 @@ std::vector<double> sample_values(const std::vector<Variation>& vary, std::uint6
         out.push_back(v.args[0] + (v.args[1] - v.args[0]) * u1);
         break;
       case Variation::Kind::LogUniform:
-        out.push_back(std::exp(std::log(v.args[0]) + (std::log(v.args[1]) - std::log(v.args[0])) * u1));
+        out.push_back(std::clamp(std::exp(std::log(v.args[0]) + (std::log(v.args[1]) - std::log(v.args[0])) * u1),
+                                 v.args[0], v.args[1]));  // exp(log b) may round past b
         break;
       case Variation::Kind::List:
         out.push_back(v.args[std::min(v.args.size() - 1, static_cast<std::size_t>(u1 * static_cast<double>(v.args.size())))]);

@@ -38,7 +38,21 @@ class RunStatistics final : public Observer {
     const Diagnostics d = diagnose(system_, state, forces.U);
     // A non-finite energy or state is a failure, never a number in the summary (std::max
     // would drop a NaN silently).
-    if (!std::isfinite(d.energy) || !state.x.allFinite() || !state.p.allFinite() || !state.Pi.allFinite()) {
+    const bool state_finite = state.x.allFinite() && state.p.allFinite() && state.Pi.allFinite();
+    if (s_.frames == 0 && (!state_finite || !std::isfinite(d.energy))) {  // refused before any step
+      std::ostringstream msg;
+      msg << "the initial state: ";
+      if (!state_finite)
+        msg << "its " << (!state.x.allFinite() ? "positions" : !state.p.allFinite() ? "momenta m v" : "angular momenta J Ω")
+            << " are not finite";
+      else
+        msg << "its energy is not finite (kinetic " << d.kinetic_translational + d.kinetic_rotational
+            << ", potential " << d.potential << ")";
+      msg << ": masses × velocities², or G × masses² / distances, overflow a double; give the scene "
+             "units that keep its numbers far from 1e±300 (docs/user-guide.md \"Units\")";
+      throw SceneError(msg.str());
+    }
+    if (!std::isfinite(d.energy) || !state_finite) {
       std::ostringstream msg;
       msg << "the " << (std::isfinite(d.energy) ? "state" : "energy") << " became non-finite at t = " << state.t
           << " (the integrator diverged: a smaller step or tolerance?)";
