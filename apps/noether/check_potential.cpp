@@ -1,4 +1,5 @@
-// noether check-potential: a potential's forces and moments against finite differences of U.
+// noether check-potential: a potential's forces and moments against finite differences of U, its
+// force Jacobian against differences of the forces.
 #include "commands.hpp"
 
 #include <noether/potential_check.hpp>
@@ -34,8 +35,9 @@ void add_check_potential_command(CLI::App& app, Command& chosen) {
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("check-potential",
-                                 "check a scene's potential: forces and moments against finite differences of U, and "
-                                 "Newton's third law, at the scene's state and at perturbed states");
+                                 "check a scene's potential: forces and moments against finite differences of U, the force "
+                                 "Jacobian against differences of the forces, and Newton's third law, at the scene's "
+                                 "state and at perturbed states");
   cmd->add_option("scene", o->scene, "scene file (YAML)")->required();
   cmd->add_option("--set", o->overrides, "override a scene key")->take_all();
   cmd->add_option("--tolerance", o->check.tolerance, "finite-difference agreement, relative to the largest force or moment")

@@ -14,7 +14,7 @@ void Potential::evaluate(const State& state, Forces& forces) const {
   evaluate(state, forces, *workspace);
 }
 std::vector<PairModel> Potential::pair_models(const Workspace&) const { return {}; }
-bool Potential::position_hessian(const State&, Eigen::MatrixXd&) const { return false; }
+bool Potential::force_jacobian(const State&, Eigen::MatrixXd&, Workspace&) const { return false; }
 
 PotentialEvaluator::PotentialEvaluator(std::shared_ptr<const Potential> potential)
     : potential_(std::move(potential)) {
@@ -56,11 +56,15 @@ void SumPotential::evaluate(const State& state, Forces& forces, Workspace& works
   }
 }
 
-bool SumPotential::position_hessian(const State& state, Eigen::MatrixXd& hessian) const {
+// Analytic when every term is (the terms' Jacobians add); else false, and the whole sum is
+// differenced.
+bool SumPotential::force_jacobian(const State& state, Eigen::MatrixXd& K, Workspace& workspace) const {
+  auto& w = workspace_as<SumWorkspace>(workspace, "a sum of potentials");
   Eigen::MatrixXd term;
   for (std::size_t m = 0; m < terms_.size(); ++m) {
-    if (!terms_[m]->position_hessian(state, m == 0 ? hessian : term)) return false;
-    if (m > 0) hessian += term;
+    if (m > 0) term.setZero(K.rows(), K.cols());
+    if (!terms_[m]->force_jacobian(state, m == 0 ? K : term, *w.terms[m])) return false;
+    if (m > 0) K += term;
   }
   return true;
 }

@@ -1,3 +1,4 @@
+#include <noether/force_jacobian.hpp>
 #include <noether/forces.hpp>
 #include <noether/potential_check.hpp>
 
@@ -21,6 +22,31 @@ double length_scale(const State& s) {
 
 bool finite(const Forces& f) { return std::isfinite(f.U) && f.f.allFinite() && f.M.allFinite(); }
 
+// The force Jacobian (docs/equations.md §20): the model's own against central differences of its
+// forces (20.4), and — analytic or differenced — the symmetry of K − ½ diag(S(M_k)) (20.3): the
+// forces and moments are the gradient of one U.
+// `differenced` is (20.4) from the evaluations that checked the forces (no more are made).
+void check_jacobian(const Potential& potential, const State& s, const Forces& f0, Workspace& workspace,
+                    const Eigen::MatrixXd& differenced, const std::string& label, const PotentialCheckOptions& o,
+                    std::vector<PotentialCheckRow>& rows) {
+  ForceJacobian J;
+  J.K.setZero(differenced.rows(), differenced.cols());
+  J.analytic = potential.force_jacobian(s, J.K, workspace);
+  if (!J.analytic) J.K = differenced;
+  const double scale = std::max(differenced.cwiseAbs().maxCoeff(), 1e-300);
+  if (J.analytic) {
+    const double err = (J.K - differenced).cwiseAbs().maxCoeff() / scale;
+    rows.push_back({label, "jacobian", "analytic vs FD", err, o.tolerance, err <= o.tolerance});
+  }
+  Eigen::MatrixXd sym = J.K;
+  const Eigen::Index N = 3 * s.x.cols();
+  for (Eigen::Index k = 0; k < f0.M.cols(); ++k) sym.block<3, 3>(N + 3 * k, N + 3 * k) -= 0.5 * hat(f0.M.col(k));
+  const double asym = (sym - sym.transpose()).cwiseAbs().maxCoeff() / scale;
+  // Analytic: to round-off; differenced: to the differences' accuracy.
+  const double tol = J.analytic ? 1e-10 : o.tolerance;
+  rows.push_back({label, "symmetry", J.analytic ? "K analytic" : "K differenced", asym, tol, asym <= tol});
+}
+
 void check_state(const System& sys, const Potential& potential, const State& s,
                  const std::string& label, const PotentialCheckOptions& o,
                  std::vector<PotentialCheckRow>& rows) {
@@ -35,8 +61,14 @@ void check_state(const System& sys, const Potential& potential, const State& s,
     rows.push_back({label, "finite", "all", NAN, 0.0, false});
     return;
   }
-  auto U = [&](const State& st) {
+  // U at a neighbouring state; its forces and moments go into column c of the differenced
+  // force Jacobian (20.4), with the sign of the step.
+  const Eigen::Index n = s.x.cols(), m = f0.M.cols();
+  Eigen::MatrixXd differenced = Eigen::MatrixXd::Zero(3 * (n + m), 3 * (n + m));
+  auto U = [&](const State& st, Eigen::Index c, double sign, double h) {
     potential.evaluate(st, tmp, *workspace);
+    differenced.col(c).head(3 * n) += sign / (2 * h) * Eigen::Map<const Eigen::VectorXd>(tmp.f.data(), 3 * n);
+    differenced.col(c).tail(3 * m) += sign / (2 * h) * Eigen::Map<const Eigen::VectorXd>(tmp.M.data(), 3 * m);
     return tmp.U;
   };
   const double hx = 1e-5 * length_scale(s), hR = 1e-5;
@@ -54,7 +86,7 @@ void check_state(const System& sys, const Potential& potential, const State& s,
       State sp = s, sm = s;
       sp.x(a, c) += hx;
       sm.x(a, c) -= hx;
-      fd[a] = -(U(sp) - U(sm)) / (2 * hx);
+      fd[a] = -(U(sp, 3 * c + a, 1, hx) - U(sm, 3 * c + a, -1, hx)) / (2 * hx);
     }
     const double scale = std::max(fscale, floor_x);
     const double err = scale > 0 ? (fd - Vec3(f0.f.col(c))).norm() / scale : 0.0;
@@ -67,7 +99,8 @@ void check_state(const System& sys, const Potential& potential, const State& s,
       State sp = s, sm = s;
       sp.R[k] = s.R[k] * exp_so3(hR * Vec3::Unit(a));
       sm.R[k] = s.R[k] * exp_so3(-hR * Vec3::Unit(a));
-      fd[a] = -(U(sp) - U(sm)) / (2 * hR);
+      fd[a] = -(U(sp, 3 * n + 3 * static_cast<Eigen::Index>(k) + a, 1, hR) -
+                U(sm, 3 * n + 3 * static_cast<Eigen::Index>(k) + a, -1, hR)) / (2 * hR);
     }
     const auto c = static_cast<Eigen::Index>(k);
     const double scale = std::max(mscale, floor_R);
@@ -75,6 +108,7 @@ void check_state(const System& sys, const Potential& potential, const State& s,
     const double tol = o.tolerance + floor_R / std::max(scale, 1e-300);
     rows.push_back({label, "moment", sys.body(sys.body_of_rigid(k)).name, err, tol, err <= tol});
   }
+  check_jacobian(potential, s, f0, *workspace, differenced, label, o, rows);
   if (!o.third_law) return;
   Vec3 F = Vec3::Zero(), T = Vec3::Zero();
   double Fmag = 0, Tmag = 0;

@@ -278,10 +278,15 @@ class FiniteChecked final : public Potential {
   std::vector<PairModel> pair_models(const Workspace& workspace) const override {
     return inner_->pair_models(workspace);
   }
-  bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override {
-    if (!inner_->position_hessian(state, hessian)) return false;
-    if (!hessian.allFinite())
-      throw IntegrationError("potential plugin '" + plugin_ + "' returned a non-finite Hessian at t = " +
+  bool force_jacobian(const State& state, Eigen::MatrixXd& K, Workspace& workspace) const override {
+    const auto rows = K.rows(), cols = K.cols();
+    if (!inner_->force_jacobian(state, K, workspace)) return false;
+    if (K.rows() != rows || K.cols() != cols)
+      throw IntegrationError("potential plugin '" + plugin_ + "' resized the force Jacobian to " +
+                             std::to_string(K.rows()) + " × " + std::to_string(K.cols()) + " (expected " +
+                             std::to_string(rows) + " × " + std::to_string(cols) + ")", state.t);
+    if (!K.allFinite())
+      throw IntegrationError("potential plugin '" + plugin_ + "' returned a non-finite force Jacobian at t = " +
                              std::to_string(state.t), state.t);
     return true;
   }

@@ -85,10 +85,12 @@ MatrixXd OrbitModel::jacobian(const VectorXd& xi, Workspace& workspace) const {
   const auto N = static_cast<Eigen::Index>(3 * n());
   MatrixXd A = MatrixXd::Zero(2 * N, 2 * N);
   A.topRightCorner(N, N).setIdentity();
-  // K = −M⁻¹ ∂²U/∂x∂x from the model's Hessian when it has one (9.2) ...
-  Eigen::MatrixXd H;
-  if (potential->position_hessian(state(xi), H)) {
-    for (Eigen::Index k = 0; k < N; ++k) A.block(N + k, 0, 1, N) = -H.row(k) / system.body(static_cast<std::size_t>(k / 3)).mass;
+  // M⁻¹ ∂f/∂x from the model's force Jacobian when it has one (9.2, 20.1) ...
+  const State st = state(xi);
+  const auto size = N + 3 * static_cast<Eigen::Index>(st.R.size());
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
+  if (potential->force_jacobian(st, K, workspace)) {
+    for (Eigen::Index k = 0; k < N; ++k) A.block(N + k, 0, 1, N) = K.row(k) / system.body(static_cast<std::size_t>(k / 3)).mass;
     return A;
   }
   // ... else by central differences of the accelerations, step ε^{1/3} × the scale of x.

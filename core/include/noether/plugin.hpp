@@ -18,9 +18,11 @@
 // Integrator::potential_evaluator; ContinuousEquations is an interface without data members.
 // Version 5: Integrator::take_step_series (per-step records handed over and forgotten, streamed
 // to the output) replaces step_series.
-// Version 6 (current): Integrator::checkpoint and Integrator::restore (an integrator whose
+// Version 6: Integrator::checkpoint and Integrator::restore (an integrator whose
 // variables are not the State — a relative frame, a two-step form — hands them to the output
 // and takes them back, so a continued run is bit for bit the uninterrupted one).
+// Version 7 (current): Potential::force_jacobian (∂(f, M)/∂(x, θ), positions and attitudes,
+// with a workspace) replaces Potential::position_hessian.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -37,7 +39,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 6u
+#define NOETHER_PLUGIN_API_VERSION 7u
 
 namespace noether {
 

@@ -47,10 +47,15 @@ class Potential {
   // The model chosen for each pair, for models that choose (none by default), with what the
   // evaluations made with `workspace` saw.
   virtual std::vector<PairModel> pair_models(const Workspace& workspace) const;
-  // Optional: the Hessian ∂²U/∂x∂x of U in the body positions (3n × 3n, body-major), for the
-  // variational equations of periodic orbits (docs/equations.md §9). Returns false (the
-  // default) when the model does not provide it; callers then difference the forces.
-  virtual bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const;
+  // Optional: the force Jacobian (docs/equations.md §20)
+  //   K = ∂(f_1, …, f_n, M_1, …, M_m) / ∂(x_1, …, x_n, θ_1, …, θ_m),
+  // a (3n + 3m)² matrix: rows and columns 3i…3i+2 for body i's position, 3n + 3k… for rigid
+  // body k's attitude, perturbed in its body frame, R_k exp(S(θ_k)). On positions K = −∂²U/∂x∂x;
+  // on a body's own attitude K has the antisymmetric part ½ S(M_k) (20.3). For the variational
+  // equations and tangent maps of every integrator, and Newton's Jacobians. Returns false (the
+  // default) when the model does not provide it: callers use force_jacobian() (force_jacobian.hpp),
+  // which then differences the forces and says so. `K` comes in sized and zeroed.
+  virtual bool force_jacobian(const State& state, Eigen::MatrixXd& K, Workspace& workspace) const;
 };
 
 // A shared model with a workspace of one's own: what one integrator (one thread) evaluates.
@@ -76,7 +81,7 @@ class SumPotential final : public Potential {
   using Potential::evaluate;
   void evaluate(const State& state, Forces& forces, Workspace& workspace) const override;
   std::vector<PairModel> pair_models(const Workspace& workspace) const override;
-  bool position_hessian(const State& state, Eigen::MatrixXd& hessian) const override;
+  bool force_jacobian(const State& state, Eigen::MatrixXd& K, Workspace& workspace) const override;
 
  private:
   std::vector<std::shared_ptr<const Potential>> terms_;

@@ -1,8 +1,10 @@
 #pragma once
 // Potential checker: compares a potential's forces and moments with central finite
 // differences of its energy (docs/equations.md §2: f_i = −∂U/∂x_i, and η · M_i = −dU/dε along
-// R_i exp(ε S(η))), at a scene's state and at randomly perturbed states, and verifies that
-// total force and total torque vanish (Newton's third law for mutual potentials).
+// R_i exp(ε S(η))), at a scene's state and at randomly perturbed states; the force Jacobian
+// (§20) against central differences of the forces (when the model has its own) and the symmetry
+// (20.3) of K − ½ diag(S(M)); and that total force and total torque vanish (Newton's third law
+// for mutual potentials).
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
 #include <noether/system.hpp>
@@ -24,7 +26,7 @@ struct PotentialCheckOptions {
 
 struct PotentialCheckRow {
   std::string state;     // "scene" or "perturbed k"
-  std::string quantity;  // "force", "moment", "net force", "net torque", "finite"
+  std::string quantity;  // "force", "moment", "jacobian", "symmetry" (of the force Jacobian, 20.3), "net force", "net torque", "finite"
   std::string body;      // body name, or "all"
   double error = 0.0;
   double tolerance = 0.0;

@@ -41,7 +41,7 @@ struct OrbitModel {
   Eigen::VectorXd rhs(const Eigen::VectorXd& xi, Workspace& workspace) const;
   Eigen::VectorXd rhs(const Eigen::VectorXd& xi) const;
   // A(ξ) = ∂F/∂ξ = [[0, I], [K, 0]], K = ∂(f/m)/∂x = −M⁻¹ ∂²U/∂x∂x (9.2): from the
-  // potential's position_hessian() when it has one, else by central differences of the forces
+  // potential's force_jacobian() when it has one (20.1), else by central differences of the forces
   // (6n evaluations; the variational flow is then much slower).
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi, Workspace& workspace) const;
   Eigen::MatrixXd jacobian(const Eigen::VectorXd& xi) const;

@@ -38,6 +38,21 @@ class CentralField final : public noether::Potential {
       out.f.col(i) = (-mum / (r * r * r)) * d;
     }
   }
+  // The force Jacobian (docs/equations.md §20): body i's own block only,
+  // ∂f_i/∂x_i = −μ m_i (I − 3 d̂ d̂ᵀ)/r³ with d = x_i − c (20.1).
+  bool force_jacobian(const noether::State& s, Eigen::MatrixXd& K, noether::Workspace& w) const override {
+    noether::Forces f;  // the same checks as evaluate (a body at the centre)
+    f.f.resize(3, s.x.cols());
+    f.M.resize(3, static_cast<Eigen::Index>(s.R.size()));
+    evaluate(s, f, w);
+    for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
+      const Eigen::Vector3d d = s.x.col(i) - c_;
+      const double r2 = d.squaredNorm(), r = std::sqrt(r2);
+      const double mum = mu_ * mass_[static_cast<std::size_t>(i)];
+      K.block<3, 3>(3 * i, 3 * i) -= mum / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
+    }
+    return true;
+  }
 
  private:
   double mu_ = 1;

@@ -39,12 +39,12 @@ class PointMass final : public noether::Potential {
     }
   }
 
-  // ∂²U/∂x∂x: for each pair, B = G m_i m_j (I − 3 d̂ d̂ᵀ)/r³ with d = x_i − x_j
-  // (= ∂²U_ij/∂x_i², since ∂U_ij/∂x_i = G m_i m_j d/r³) enters the diagonal blocks (i, i) and
-  // (j, j) as +B and the blocks (i, j) and (j, i) as −B (docs/equations.md §9).
-  bool position_hessian(const State& s, Eigen::MatrixXd& H) const override {
+  // The force Jacobian (docs/equations.md §20): for each pair, B = G m_i m_j (I − 3 d̂ d̂ᵀ)/r³
+  // with d = x_i − x_j is ∂²U_ij/∂x_i² (∂U_ij/∂x_i = G m_i m_j d/r³); K = −∂²U/∂x∂x takes −B in
+  // the blocks (i, i) and (j, j) and +B in (i, j) and (j, i) (20.1). Attitudes do not enter U:
+  // the rows and columns of rigid bodies' attitudes stay zero.
+  bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace&) const override {
     const Eigen::Index n = s.x.cols();
-    H.setZero(3 * n, 3 * n);
     for (Eigen::Index i = 0; i < n; ++i)
       for (Eigen::Index j = i + 1; j < n; ++j) {
         const Eigen::Vector3d d = s.x.col(i) - s.x.col(j);
@@ -53,10 +53,10 @@ class PointMass final : public noether::Potential {
         const double r = std::sqrt(r2);
         const double Gmm = G_ * mass_[static_cast<std::size_t>(i)] * mass_[static_cast<std::size_t>(j)];
         const Eigen::Matrix3d B = Gmm / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
-        H.block<3, 3>(3 * i, 3 * j) -= B;
-        H.block<3, 3>(3 * j, 3 * i) -= B;
-        H.block<3, 3>(3 * i, 3 * i) += B;
-        H.block<3, 3>(3 * j, 3 * j) += B;
+        K.block<3, 3>(3 * i, 3 * j) += B;
+        K.block<3, 3>(3 * j, 3 * i) += B;
+        K.block<3, 3>(3 * i, 3 * i) -= B;
+        K.block<3, 3>(3 * j, 3 * j) -= B;
       }
     return true;
   }

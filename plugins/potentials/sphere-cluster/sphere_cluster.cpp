@@ -152,6 +152,66 @@ class SphereCluster final : public noether::Potential {
     }
   }
 
+  // The force Jacobian (docs/equations.md §20, eq. 20.2). For points y_p = x_i + R_i ρ_p and
+  // y_q = x_j + R_j ρ_q, d = y_p − y_q, F = −G m_p m_q d/r³ on p and B = G m_p m_q (I − 3 d̂d̂ᵀ)/r³,
+  // so δF = −B δd. With A_p = R_i S(ρ_p), δy_p = δx_i − A_p δθ_i; f_i = Σ F, M_i = −Σ A_pᵀ F and
+  // δ(R_iᵀ) F = S(R_iᵀ F) δθ_i give every block; body j is the same with −F.
+  bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace&) const override {
+    const std::size_t n = clusters_.size();
+    const Eigen::Index N = 3 * static_cast<Eigen::Index>(n);
+    auto X = [](std::size_t i) { return 3 * static_cast<Eigen::Index>(i); };   // x_i's index
+    auto T = [&](int k) { return N + 3 * static_cast<Eigen::Index>(k); };      // θ_k's index
+    auto point = [&](std::size_t i, std::size_t p) {
+      return rigid_[i] >= 0 ? Vec3(s.x.col(static_cast<Eigen::Index>(i)) + s.R[static_cast<std::size_t>(rigid_[i])] * clusters_[i].rho[p])
+                            : Vec3(s.x.col(static_cast<Eigen::Index>(i)));
+    };
+    auto arm = [&](std::size_t i, std::size_t p) {  // A_p = R_i S(ρ_p)
+      return rigid_[i] >= 0 ? Eigen::Matrix3d(s.R[static_cast<std::size_t>(rigid_[i])] * noether::hat(clusters_[i].rho[p]))
+                            : Eigen::Matrix3d(Eigen::Matrix3d::Zero());
+    };
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const auto &ci = clusters_[i], &cj = clusters_[j];
+        const int ki = rigid_[i], kj = rigid_[j];
+        for (std::size_t p = 0; p < ci.rho.size(); ++p)
+          for (std::size_t q = 0; q < cj.rho.size(); ++q) {
+            const Vec3 d = point(i, p) - point(j, q);
+            const double r2 = d.squaredNorm();
+            if (!(r2 > 0.0)) collision(i, j, s.t);
+            const double r = std::sqrt(r2);
+            const double Gmm = G_ * ci.mass[p] * cj.mass[q];
+            const Vec3 F = (-Gmm / (r2 * r)) * d;
+            const Eigen::Matrix3d B = Gmm / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
+            const Eigen::Matrix3d Ap = arm(i, p), Aq = arm(j, q);
+            // δF = −B δx_i + B A_p δθ_i + B δx_j − B A_q δθ_j; f_i += F, f_j −= F.
+            K.block<3, 3>(X(i), X(i)) -= B;
+            K.block<3, 3>(X(i), X(j)) += B;
+            K.block<3, 3>(X(j), X(i)) += B;
+            K.block<3, 3>(X(j), X(j)) -= B;
+            if (ki >= 0) {
+              K.block<3, 3>(X(i), T(ki)) += B * Ap;
+              K.block<3, 3>(X(j), T(ki)) -= B * Ap;
+              // M_i = −Σ A_pᵀ F: −A_pᵀ δF, and ρ̂_p δ(R_iᵀ) F = S(ρ_p) S(R_iᵀ F) δθ_i.
+              const Vec3 F_body = s.R[static_cast<std::size_t>(ki)].transpose() * F;
+              K.block<3, 3>(T(ki), X(i)) += Ap.transpose() * B;
+              K.block<3, 3>(T(ki), X(j)) -= Ap.transpose() * B;
+              K.block<3, 3>(T(ki), T(ki)) += -Ap.transpose() * B * Ap + noether::hat(ci.rho[p]) * noether::hat(F_body);
+              if (kj >= 0) K.block<3, 3>(T(ki), T(kj)) += Ap.transpose() * B * Aq;
+            }
+            if (kj >= 0) {
+              K.block<3, 3>(X(i), T(kj)) -= B * Aq;
+              K.block<3, 3>(X(j), T(kj)) += B * Aq;
+              // M_j = Σ A_qᵀ F (the force on q is −F): A_qᵀ δF, and S(ρ_q) S(−R_jᵀ F) δθ_j.
+              const Vec3 F_body = s.R[static_cast<std::size_t>(kj)].transpose() * F;
+              K.block<3, 3>(T(kj), X(i)) -= Aq.transpose() * B;
+              K.block<3, 3>(T(kj), X(j)) += Aq.transpose() * B;
+              K.block<3, 3>(T(kj), T(kj)) += -Aq.transpose() * B * Aq - noether::hat(cj.rho[q]) * noether::hat(F_body);
+              if (ki >= 0) K.block<3, 3>(T(kj), T(ki)) += Aq.transpose() * B * Ap;
+            }
+          }
+      }
+    return true;
+  }
 
  private:
   [[noreturn]] void collision(std::size_t i, std::size_t j, double t) const {
