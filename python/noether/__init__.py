@@ -222,6 +222,13 @@ class Simulation:
         """Energy, its parts, the total momenta and max ‖I − RᵀR‖ at the current state."""
         return self._sim.diagnostics()
 
+    def force_jacobian(self):
+        """(K, analytic): the force Jacobian K = ∂(f, M)/∂(x, θ) at the current state, a
+        (3n + 3m)² array — positions of all bodies, then attitudes of the rigid ones perturbed in
+        their body frames (docs/equations.md §20) — and whether it is the model's own (True) or
+        central differences of its forces (False)."""
+        return self._sim.force_jacobian()
+
     def finish(self):
         """Writes the outcome to the output file and closes it; returns the summary dict."""
         return json.loads(self._sim.finish())

@@ -8,6 +8,7 @@
 
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
+#include <noether/force_jacobian.hpp>
 #include <noether/error.hpp>
 #include <noether/output_schema.hpp>
 #include <noether/registry.hpp>
@@ -219,6 +220,18 @@ class PySimulation {
         std::vector<double>{d.angular_momentum.x(), d.angular_momentum.y(), d.angular_momentum.z()};
     out["orthogonality_error"] = d.orthogonality_error;
     return out;
+  }
+
+  // The force Jacobian K = ∂(f, M)/∂(x, θ) at the current state (docs/equations.md §20) and
+  // whether it is the model's own (else central differences of the forces).
+  py::tuple force_jacobian() const {
+    const auto workspace = sim_->potential().make_workspace();
+    const noether::ForceJacobian J = noether::force_jacobian(sim_->potential(), sim_->state(), *workspace);
+    py::array_t<double> K({static_cast<py::ssize_t>(J.K.rows()), static_cast<py::ssize_t>(J.K.cols())});
+    auto k = K.mutable_unchecked<2>();
+    for (Eigen::Index i = 0; i < J.K.rows(); ++i)
+      for (Eigen::Index j = 0; j < J.K.cols(); ++j) k(i, j) = J.K(i, j);
+    return py::make_tuple(K, J.analytic);
   }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
@@ -437,6 +450,7 @@ PYBIND11_MODULE(_noether, m) {
       .def_property_readonly("angular_momenta", &PySimulation::angular_momenta)
       .def("set_state", &PySimulation::set_state)
       .def("diagnostics", &PySimulation::diagnostics)
+      .def("force_jacobian", &PySimulation::force_jacobian)
       .def("summary_json", &PySimulation::summary_json)
       .def("summary_text", &PySimulation::summary_text)
       .def("finish", &PySimulation::finish)

@@ -258,3 +258,28 @@ def test_ctrl_c_stops_integrate_between_steps(dumbbells):
     assert 0 < sim.t < 2e5
     assert np.isfinite(sim.positions).all()
     sim.integrate(round(sim.t) + 1.0)  # and it goes on afterwards
+
+
+def test_force_jacobian_is_minus_the_second_derivative_of_u(dumbbells, source):
+    # K = ∂(f, M)/∂(x, θ) (docs/equations.md §20): on positions, −∂²U/∂x∂x, here against second
+    # differences of the potential energy taken through set_state and diagnostics().
+    sim = noether.Simulation(dumbbells)
+    sim.integrate(1.0)
+    K, analytic = sim.force_jacobian()
+    assert analytic and K.shape == (12, 12)
+    x0 = sim.positions
+    h = 1e-4
+
+    def U(dx):
+        sim.positions = x0 + dx.reshape(2, 3)
+        return sim.diagnostics()["potential_energy"]
+    H = np.zeros((6, 6))
+    for a in range(6):
+        for b in range(6):
+            ea, eb = np.eye(6)[a] * h, np.eye(6)[b] * h
+            H[a, b] = (U(ea + eb) - U(ea - eb) - U(eb - ea) + U(-ea - eb)) / (4 * h * h)
+    sim.positions = x0
+    assert np.abs(K[:6, :6] + H).max() < 1e-5 * np.abs(H).max()
+    # A model without its own Jacobian is differenced, and says so.
+    K2, analytic2 = noether.Simulation(str(source / "examples/kw4-ellipsoids.yaml")).force_jacobian()
+    assert not analytic2 and K2.shape == (12, 12) and np.all(np.isfinite(K2))
