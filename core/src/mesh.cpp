@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <climits>
 #include <cstdio>
 #include <cstdint>
 #include <fstream>
@@ -76,7 +75,6 @@ Eigen::Matrix3Xd scaled(const std::vector<Vec3>& vertices, double scale, const s
   }
   return m;
 }
-
 
 // A 1-based (or negative, relative) OBJ index → 0-based.
 int obj_index(const std::string& token, int vertex_count, const std::filesystem::path& file,

@@ -16,6 +16,7 @@
 #include <noether/simulation.hpp>
 #include <noether/version.hpp>
 
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -227,11 +228,7 @@ class PySimulation {
   py::tuple force_jacobian() const {
     const auto workspace = sim_->potential().make_workspace();
     const noether::ForceJacobian J = noether::force_jacobian(sim_->potential(), sim_->state(), *workspace);
-    py::array_t<double> K({static_cast<py::ssize_t>(J.K.rows()), static_cast<py::ssize_t>(J.K.cols())});
-    auto k = K.mutable_unchecked<2>();
-    for (Eigen::Index i = 0; i < J.K.rows(); ++i)
-      for (Eigen::Index j = 0; j < J.K.cols(); ++j) k(i, j) = J.K(i, j);
-    return py::make_tuple(K, J.analytic);
+    return py::make_tuple(J.K, J.analytic);  // pybind11/eigen.h: a NumPy copy
   }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }

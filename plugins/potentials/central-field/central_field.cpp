@@ -26,13 +26,8 @@ class CentralField final : public noether::Potential {
   void evaluate(const noether::State& s, noether::Forces& out, noether::Workspace&) const override {
     out.set_zero();
     for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
-      const Eigen::Vector3d d = s.x.col(i) - c_;
+      const Eigen::Vector3d d = offset(s, i);
       const double r = d.norm();
-      if (!(r > 0)) {
-        std::ostringstream msg;
-        msg << "central-field: body '" << name_[static_cast<std::size_t>(i)] << "' is at the centre at t = " << s.t;
-        throw noether::IntegrationError(msg.str(), s.t);
-      }
       const double mum = mu_ * mass_[static_cast<std::size_t>(i)];
       out.U -= mum / r;
       out.f.col(i) = (-mum / (r * r * r)) * d;
@@ -40,13 +35,9 @@ class CentralField final : public noether::Potential {
   }
   // The force Jacobian (docs/equations.md §20): body i's own block only,
   // ∂f_i/∂x_i = −μ m_i (I − 3 d̂ d̂ᵀ)/r³ with d = x_i − c (20.1).
-  bool force_jacobian(const noether::State& s, Eigen::MatrixXd& K, noether::Workspace& w) const override {
-    noether::Forces f;  // the same checks as evaluate (a body at the centre)
-    f.f.resize(3, s.x.cols());
-    f.M.resize(3, static_cast<Eigen::Index>(s.R.size()));
-    evaluate(s, f, w);
+  bool force_jacobian(const noether::State& s, Eigen::MatrixXd& K, noether::Workspace&) const override {
     for (Eigen::Index i = 0; i < s.x.cols(); ++i) {
-      const Eigen::Vector3d d = s.x.col(i) - c_;
+      const Eigen::Vector3d d = offset(s, i);
       const double r2 = d.squaredNorm(), r = std::sqrt(r2);
       const double mum = mu_ * mass_[static_cast<std::size_t>(i)];
       K.block<3, 3>(3 * i, 3 * i) -= mum / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
@@ -55,6 +46,17 @@ class CentralField final : public noether::Potential {
   }
 
  private:
+  // d = x_i − c, refused when body i is at the centre (U is singular there).
+  Eigen::Vector3d offset(const noether::State& s, Eigen::Index i) const {
+    const Eigen::Vector3d d = s.x.col(i) - c_;
+    if (!(d.squaredNorm() > 0)) {
+      std::ostringstream msg;
+      msg << "central-field: body '" << name_[static_cast<std::size_t>(i)] << "' is at the centre at t = " << s.t;
+      throw noether::IntegrationError(msg.str(), s.t);
+    }
+    return d;
+  }
+
   double mu_ = 1;
   Eigen::Vector3d c_ = Eigen::Vector3d::Zero();
   std::vector<double> mass_;

@@ -161,28 +161,35 @@ class SphereCluster final : public noether::Potential {
     const Eigen::Index N = 3 * static_cast<Eigen::Index>(n);
     auto X = [](std::size_t i) { return 3 * static_cast<Eigen::Index>(i); };   // x_i's index
     auto T = [&](int k) { return N + 3 * static_cast<Eigen::Index>(k); };      // θ_k's index
-    auto point = [&](std::size_t i, std::size_t p) {
-      return rigid_[i] >= 0 ? Vec3(s.x.col(static_cast<Eigen::Index>(i)) + s.R[static_cast<std::size_t>(rigid_[i])] * clusters_[i].rho[p])
-                            : Vec3(s.x.col(static_cast<Eigen::Index>(i)));
-    };
-    auto arm = [&](std::size_t i, std::size_t p) {  // A_p = R_i S(ρ_p)
-      return rigid_[i] >= 0 ? Eigen::Matrix3d(s.R[static_cast<std::size_t>(rigid_[i])] * noether::hat(clusters_[i].rho[p]))
-                            : Eigen::Matrix3d(Eigen::Matrix3d::Zero());
-    };
+    // Every point y_p = x_i + R_i ρ_p and its arm A_p = R_i S(ρ_p) (zero for a point mass), once.
+    std::vector<std::vector<Vec3>> points(n);
+    std::vector<std::vector<Eigen::Matrix3d>> arms(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (const Vec3& rho : clusters_[i].rho) {
+        const Vec3 x = s.x.col(static_cast<Eigen::Index>(i));
+        if (rigid_[i] < 0) {
+          points[i].push_back(x);
+          arms[i].push_back(Eigen::Matrix3d::Zero());
+        } else {
+          const Eigen::Matrix3d& R = s.R[static_cast<std::size_t>(rigid_[i])];
+          points[i].push_back(x + R * rho);
+          arms[i].push_back(R * noether::hat(rho));
+        }
+      }
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j) {
         const auto &ci = clusters_[i], &cj = clusters_[j];
         const int ki = rigid_[i], kj = rigid_[j];
         for (std::size_t p = 0; p < ci.rho.size(); ++p)
           for (std::size_t q = 0; q < cj.rho.size(); ++q) {
-            const Vec3 d = point(i, p) - point(j, q);
+            const Vec3 d = points[i][p] - points[j][q];
             const double r2 = d.squaredNorm();
             if (!(r2 > 0.0)) collision(i, j, s.t);
             const double r = std::sqrt(r2);
             const double Gmm = G_ * ci.mass[p] * cj.mass[q];
             const Vec3 F = (-Gmm / (r2 * r)) * d;
             const Eigen::Matrix3d B = Gmm / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
-            const Eigen::Matrix3d Ap = arm(i, p), Aq = arm(j, q);
+            const Eigen::Matrix3d &Ap = arms[i][p], &Aq = arms[j][q];
             // δF = −B δx_i + B A_p δθ_i + B δx_j − B A_q δθ_j; f_i += F, f_j −= F.
             K.block<3, 3>(X(i), X(i)) -= B;
             K.block<3, 3>(X(i), X(j)) += B;
