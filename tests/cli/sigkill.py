@@ -29,12 +29,17 @@ args = [noether, "run", scene, "--no-progress", "--force", "-o", "run.h5",
         "--set", "run.t_end=10", "--set", f"run.output_every={h}"]
 env = dict(os.environ, HDF5_USE_FILE_LOCKING="FALSE")
 
-# How long a whole run takes here, to spread the kills over it.
+# How long a whole run takes here, to spread the kills over it: the median of three runs (the
+# first one on a fresh machine pays for loading the program and its plugins from disk, and
+# once inflated the duration so much that most kills landed after the end).
 for name in os.listdir("."):
     os.remove(name)
-t = time.monotonic()
-subprocess.run(args, check=True, stdout=subprocess.DEVNULL, env=env)
-duration = time.monotonic() - t
+durations = []
+for _ in range(3):
+    t = time.monotonic()
+    subprocess.run(args, check=True, stdout=subprocess.DEVNULL, env=env)
+    durations.append(time.monotonic() - t)
+duration = sorted(durations)[1]
 with h5py.File("run.h5", "r", locking=False) as f:
     E0 = float(f["observables/energy/value"][0])
     frames_full = f["particles/bodies/position/time"].shape[0]
@@ -75,7 +80,11 @@ def check(path):
 rng = random.Random(18)
 outcomes = {"previous file": 0, "killed mid-run": 0, "finished": 0}
 partial_left = 0
-for k in range(kills):
+# At least `kills` kills, and more (up to 3×) until a fifth of them landed mid-run: on a loaded
+# machine the runs' durations vary, and a test of kills mid-run needs kills mid-run.
+k = -1
+while k + 1 < kills or (outcomes["killed mid-run"] < kills // 5 and k + 1 < 3 * kills):
+    k += 1
     with open("run.h5", "wb") as f:  # the previous output, which --force may replace
         f.write(previous)
     run = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env)
@@ -97,6 +106,9 @@ for k in range(kills):
             partial_left += 1
             os.remove(name)
 
-print(f"sigkill: {kills} kills over runs of {duration:.2f} s: {outcomes}; "
+print(f"sigkill: {k + 1} kills over runs of {duration:.2f} s (three runs: "
+      f"{', '.join(f'{d:.2f}' for d in durations)} s): {outcomes}; "
       f"hidden partial files left by kills during creation: {partial_left}")
-sys.exit(0 if outcomes["killed mid-run"] >= kills // 5 else 1)
+if outcomes["killed mid-run"] < kills // 5:
+    print(f"sigkill: FAIL: only {outcomes['killed mid-run']} kills landed mid-run (wanted {kills // 5})")
+    sys.exit(1)
