@@ -177,7 +177,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
   struct Options {
     std::string scene, output, resume, summary = "text";
     std::vector<std::string> overrides;
-    bool no_progress = false, force = false;
+    bool no_progress = false, force = false, stm = false;
     double max_wall_time = 0.0, resume_t_end = std::numeric_limits<double>::quiet_NaN();
   };
   auto o = std::make_shared<Options>();
@@ -190,6 +190,9 @@ void add_run_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--t-end", o->resume_t_end, "with --resume: a later end time, to extend a run");
   cmd->add_option("--set", o->overrides, "override a scene key: --set integrator.step=1e-3")->take_all();
   cmd->add_flag("--no-progress", o->no_progress, "no progress line on stderr");
+  cmd->add_flag("--stm", o->stm,
+                "carry the state-transition matrix of the integrator's map and write it at every frame "
+                "(/derivatives/stm; the same as --set run.stm=true)");
   cmd->add_flag("--force", o->force, "overwrite an existing output file (never a link or the scene)");
   cmd->add_option("--summary", o->summary, "the summary on stdout: text, or json (one object)")
       ->check(CLI::IsMember({"text", "json"}))
@@ -203,15 +206,16 @@ void add_run_command(CLI::App& app, Command& chosen) {
         std::cerr << "noether run: give a scene, or --resume FILE.h5 (not both)\n";
         return 2;
       }
-      if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force)) {
+      if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force || o->stm)) {
         std::cerr << "noether run: --resume appends to the file it continues, with the scene recorded there: "
-                     "-o, --set and --force do not apply (extend a run with --t-end)\n";
+                     "-o, --set, --stm and --force do not apply (extend a run with --t-end)\n";
         return 2;
       }
       if (o->resume.empty() && !std::isnan(o->resume_t_end)) {
         std::cerr << "noether run: --t-end goes with --resume; for a new run use --set run.t_end=T\n";
         return 2;
       }
+      if (o->stm) o->overrides.push_back("run.stm=true");
       return run(o->scene, o->output, o->overrides, !o->no_progress, o->force, o->summary == "json", o->max_wall_time,
                  o->resume, o->resume_t_end);
     };

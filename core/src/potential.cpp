@@ -1,4 +1,5 @@
 #include <noether/error.hpp>
+#include <noether/force_jacobian.hpp>
 #include <noether/potential.hpp>
 
 #include <algorithm>
@@ -21,6 +22,12 @@ PotentialEvaluator::PotentialEvaluator(std::shared_ptr<const Potential> potentia
   if (!potential_) throw Error("a potential evaluator needs a potential");
   workspace_ = potential_->make_workspace();
   if (!workspace_) throw Error("a potential's make_workspace() returned no workspace");
+}
+
+Eigen::MatrixXd PotentialEvaluator::force_jacobian(const State& state, bool* analytic) {
+  ForceJacobian J = noether::force_jacobian(*potential_, state, *workspace_);
+  if (analytic) *analytic = J.analytic;
+  return std::move(J.K);
 }
 
 namespace {

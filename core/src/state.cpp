@@ -12,6 +12,22 @@ State State::zeros(const System& system) {
   return s;
 }
 
+Eigen::Index State::tangent_rows(const System& system) {
+  return static_cast<Eigen::Index>(6 * (system.size() + system.rigid_count()));
+}
+
+std::vector<std::string> State::tangent_coordinates(const System& system) {
+  std::vector<std::string> names;
+  auto add = [&](std::size_t body, const char* what) {
+    for (const char* axis : {"x", "y", "z"}) names.push_back(system.body(body).name + "." + what + "." + axis);
+  };
+  for (std::size_t i = 0; i < system.size(); ++i) add(i, "position");
+  for (std::size_t r = 0; r < system.rigid_count(); ++r) add(system.body_of_rigid(r), "attitude");
+  for (std::size_t i = 0; i < system.size(); ++i) add(i, "momentum");
+  for (std::size_t r = 0; r < system.rigid_count(); ++r) add(system.body_of_rigid(r), "angular_momentum");
+  return names;
+}
+
 void Forces::resize(const System& system) {
   f.resize(3, static_cast<Eigen::Index>(system.size()));
   M.resize(3, static_cast<Eigen::Index>(system.rigid_count()));

@@ -486,7 +486,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust"}, "'run'");
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm"}, "'run'");
   if (run.has("escape")) scene.run.escape = parse_escape(run.at("escape"), scene.system);
   if (run.has("trust")) {
     const Params& trust = run.at("trust");
@@ -501,6 +501,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.run.close_approach = run.get("close_approach", 0.0);
   scene.run.collisions = run.get("collisions", true);
+  scene.run.stm = run.get("stm", false);
   if (!std::isfinite(scene.run.close_approach) || scene.run.close_approach < 0.0)
     throw SceneError(run.at("close_approach").here() + "'run.close_approach' must be non-negative");
   scene.run.t_end = run.at("t_end").as_double();

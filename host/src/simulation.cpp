@@ -46,6 +46,14 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
+  if (sc.run.stm) {  // the tangent starts as the identity: V(t0) = ∂z(t0)/∂z(t0)
+    if (const std::string why = m.integrator->tangent_map_unavailable(); !why.empty())
+      throw SceneError((sc.root.at("run").has("stm") ? sc.root.at("run").at("stm").here() : std::string()) +
+                       "run.stm: integrator '" + sc.integrator.plugin +
+                       "' cannot carry the state-transition matrix: " + why);
+    const Eigen::Index N = State::tangent_rows(sc.system);
+    m.state.tangent = Eigen::MatrixXd::Identity(N, N);
+  }
   m.t_origin = sc.initial.t;
   m.make_observer();
   // Frame 0: the integrator started at the initial state (which also tells the size of its
@@ -207,7 +215,15 @@ void Simulation::set_state(const State& s) {
       throw Error(why.str());
     }
   }
+  const Eigen::Index N = State::tangent_rows(sys);
+  if (s.tangent.size() > 0 && !m.scene.run.stm)
+    throw Error("set_state: the state carries a tangent but the run does not carry one (run.stm is off)");
+  if (s.tangent.size() > 0 && (s.tangent.rows() != N || s.tangent.cols() != N || !s.tangent.allFinite()))
+    throw Error("set_state: the tangent must be " + std::to_string(N) + " × " + std::to_string(N) +
+                " (6 coordinates per body and 6 per rigid body, docs/equations.md eq. 21.1) and finite");
   m.state = s;
+  // A new segment: the state-transition matrix starts again at the identity unless one is given.
+  if (m.scene.run.stm && s.tangent.size() == 0) m.state.tangent = Eigen::MatrixXd::Identity(N, N);
   m.failure.clear();
   m.t_origin = s.t;
   m.steps_before = 0;

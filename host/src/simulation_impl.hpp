@@ -83,6 +83,7 @@ struct Simulation::Impl {
     } catch (const Error&) {  // an integrator that could not start has no checkpoint
       output.checkpoint_width = 0;
     }
+    output.tangent_columns = static_cast<std::size_t>(state.tangent.cols());
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;

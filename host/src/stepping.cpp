@@ -136,6 +136,9 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
     if (!own_workspace) own_workspace = potential.make_workspace();
     potential.evaluate(at, into, *own_workspace);
   };
+  if (state.tangent.size() > 0)
+    if (const std::string why = integrator.tangent_map_unavailable(); !why.empty())
+      throw Error("this integrator cannot carry the state's tangent: " + why);
   if (!schedule.integrator_at_state) integrator.start(state);
   integrator.current(state, forces);
   state.t = t_start;

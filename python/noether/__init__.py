@@ -151,7 +151,7 @@ def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
 class Simulation:
     """A run held open: integrate to a time, read or set the state, integrate on.
 
-    Simulation(scene, set=(), output=None, force=False, potential=None)
+    Simulation(scene, set=(), output=None, force=False, potential=None, stm=False)
       scene     a path to a YAML scene file, or a dict with the keys of one (docs/user-guide.md)
       set       overrides as for `noether run --set`: ["integrator.step=1e-3", ...]
       output    an HDF5 file to write as the command does (frames at run.output_every and at
@@ -159,14 +159,16 @@ class Simulation:
       force     replace an existing output file
       potential a Python callable f(positions, attitudes) -> (U, forces, moments) used instead
                 of the scene's potential plugins (prototyping only: it is slow; docs/python.md)
+      stm       carry the state-transition matrix of the integrator's map (run.stm, `noether run
+                --stm`): sim.stm, docs/derivatives.md
 
     The state properties return copies (NumPy arrays) of the state where the simulation stands;
     assigning one (sim.positions = x) or calling set_state(...) replaces that part, checked, and
     starts a new segment (the summary's references are taken there).
     """
 
-    def __init__(self, scene, set=(), output=None, force=False, potential=None):
-        overrides = [set] if isinstance(set, str) else list(set)
+    def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False):
+        overrides = ([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
         if isinstance(scene, _Simulation):  # from load()
             self._sim = scene
         elif isinstance(scene, dict):
@@ -179,10 +181,10 @@ class Simulation:
                             "for YAML text use Simulation.from_yaml(text)")
 
     @classmethod
-    def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>"):
+    def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False):
         """A simulation of a scene given as YAML text (relative shape paths: from the working
         folder)."""
-        overrides = [set] if isinstance(set, str) else list(set)
+        overrides = ([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
         return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
 
     @classmethod
@@ -228,6 +230,21 @@ class Simulation:
         their body frames (docs/equations.md §20) — and whether it is the model's own (True) or
         central differences of its forces (False)."""
         return self._sim.force_jacobian()
+
+    @property
+    def stm(self):
+        """The state-transition matrix ∂z(t)/∂z(t0) of the integrator's own map since the start
+        (or the last set_state), a (6n + 6m)² array in the order of z = (x, θ, γ, Π)
+        (docs/equations.md eq. 21.1; names in stm_coordinates); None unless the simulation
+        carries it (stm=True)."""
+        return self._sim.stm
+
+    @property
+    def stm_coordinates(self):
+        """The names of the rows (and columns) of stm: "alpha.position.x", "alpha.attitude.x"
+        (θ, the right perturbation R exp(S(θ))), "alpha.momentum.x", "alpha.angular_momentum.x"
+        (Π, body frame)."""
+        return self._sim.stm_coordinates
 
     def finish(self):
         """Writes the outcome to the output file and closes it; returns the summary dict."""

@@ -156,6 +156,7 @@ class PySimulation {
   // Sets any of the state's parts (the others keep their values), checked by the core.
   void set_state(py::kwargs parts) {
     State s = sim_->state();
+    s.tangent.resize(0, 0);  // a new segment: its state-transition matrix starts at the identity
     const noether::System& sys = system();
     for (auto item : parts) {
       const std::string key = item.first.cast<std::string>();
@@ -230,6 +231,14 @@ class PySimulation {
     const noether::ForceJacobian J = noether::force_jacobian(sim_->potential(), sim_->state(), *workspace);
     return py::make_tuple(J.K, J.analytic);  // pybind11/eigen.h: a NumPy copy
   }
+
+  // The state-transition matrix ∂z(t)/∂z(t0) the run carries (run.stm), None when it carries none.
+  py::object stm() const {
+    const Eigen::MatrixXd& V = sim_->state().tangent;
+    if (V.size() == 0) return py::none();
+    return py::cast(V);  // pybind11/eigen.h: a NumPy copy
+  }
+  std::vector<std::string> stm_coordinates() const { return State::tangent_coordinates(system()); }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
   std::string summary_text() const { return noether::format_summary(sim_->summary()); }
@@ -448,6 +457,8 @@ PYBIND11_MODULE(_noether, m) {
       .def("set_state", &PySimulation::set_state)
       .def("diagnostics", &PySimulation::diagnostics)
       .def("force_jacobian", &PySimulation::force_jacobian)
+      .def_property_readonly("stm", &PySimulation::stm)
+      .def_property_readonly("stm_coordinates", &PySimulation::stm_coordinates)
       .def("summary_json", &PySimulation::summary_json)
       .def("summary_text", &PySimulation::summary_text)
       .def("finish", &PySimulation::finish)

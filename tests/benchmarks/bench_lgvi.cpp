@@ -35,6 +35,51 @@ void BM_LgviDumbbellStep(benchmark::State& st) {
 }
 BENCHMARK(BM_LgviDumbbellStep)->Unit(benchmark::kMicrosecond);
 
+// The same steps carrying the 24 × 24 state-transition matrix (docs/equations.md §21): one
+// analytic force Jacobian and the tangent map's matrix products per step on top.
+void BM_LgviDumbbellStepWithStm(benchmark::State& st) {
+  const Scene scene = test::dumbbell_scene();
+  auto registry = test::bundled_plugins();
+  auto potential = registry.make_potential("sphere-cluster", scene.system, Params());
+  auto lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
+  Null null;
+  const double h = scene.integrator.params.at("step").as_double();
+  const auto N = State::tangent_rows(scene.system);
+  for (auto _ : st) {
+    State s = scene.initial;
+    s.tangent = Eigen::MatrixXd::Identity(N, N);
+    advance(*lgvi, *potential, scene.system, s, {1000 * h, 1000 * h}, null);
+    benchmark::DoNotOptimize(s.tangent.data());
+  }
+  st.SetItemsProcessed(st.iterations() * 1000);
+  st.counters["ns_per_step"] = benchmark::Counter(
+      static_cast<double>(st.iterations()) * 1000, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_LgviDumbbellStepWithStm)->Unit(benchmark::kMicrosecond);
+
+// KW4 as two ellipsoids, mutual-series order 4, with and without the STM: the series has no
+// analytic Jacobian yet, so each step with the STM differences it (2 × 12 more evaluations).
+void BM_LgviKw4Step(benchmark::State& st) {
+  const Scene scene = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"));
+  auto registry = test::bundled_plugins();
+  auto potential = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+  auto lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
+  Null null;
+  const double h = scene.integrator.params.at("step").as_double();
+  const auto N = State::tangent_rows(scene.system);
+  const bool stm = st.range(0) != 0;
+  for (auto _ : st) {
+    State s = scene.initial;
+    if (stm) s.tangent = Eigen::MatrixXd::Identity(N, N);
+    advance(*lgvi, *potential, scene.system, s, {100 * h, 100 * h}, null);
+    benchmark::DoNotOptimize(s.x.data());
+  }
+  st.SetLabel(stm ? "with stm" : "plain");
+  st.counters["ns_per_step"] = benchmark::Counter(
+      static_cast<double>(st.iterations()) * 100, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_LgviKw4Step)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 void BM_SphereClusterDumbbells(benchmark::State& st) {
   const Scene scene = test::dumbbell_scene();
   auto registry = test::bundled_plugins();

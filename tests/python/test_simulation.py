@@ -283,3 +283,48 @@ def test_force_jacobian_is_minus_the_second_derivative_of_u(dumbbells, source):
     # A model without its own Jacobian is differenced, and says so.
     K2, analytic2 = noether.Simulation(str(source / "examples/kw4-ellipsoids.yaml")).force_jacobian()
     assert not analytic2 and K2.shape == (12, 12) and np.all(np.isfinite(K2))
+
+
+def test_stm_is_the_derivative_of_the_run(dumbbells, tmp_path):
+    # sim.stm (docs/derivatives.md) against central differences of whole runs, taken through
+    # set_state on fresh simulations: the columns of alpha's position and of beta's angular
+    # momentum, and the STM the output file holds at its last frame.
+    dumbbells["run"].update(t_end=0.4, output_every=0.2)
+    sim = noether.Simulation(dumbbells, stm=True, output=str(tmp_path / "stm.h5"))
+    assert np.array_equal(sim.stm, np.eye(24))
+    sim.integrate(0.2)
+    sim.integrate(0.4)  # two calls: the STM goes on from where the first left it
+    M = sim.stm
+    names = sim.stm_coordinates
+    assert M.shape == (24, 24) and names[0] == "alpha.position.x" and names[21] == "beta.angular_momentum.x"
+    assert abs(np.linalg.det(M) - 1) < 1e-12
+
+    def final(**moved):
+        run = noether.Simulation(dumbbells)
+        run.set_state(**moved)
+        run.integrate(0.4)
+        return np.concatenate([run.positions.ravel(), run.momenta.ravel(), run.angular_momenta.ravel()])
+
+    start = noether.Simulation(dumbbells)
+    x0, Pi0 = start.positions, start.angular_momenta
+    rows = list(range(6)) + list(range(12, 24))  # positions, momenta and angular momenta
+    for column, h, moved in ((0, 1e-6, lambda s: dict(positions=x0 + s * np.eye(6)[0].reshape(2, 3))),
+                             (21, 1e-5, lambda s: dict(angular_momenta=Pi0 + s * np.eye(6)[3].reshape(2, 3)))):
+        difference = (final(**moved(h)) - final(**moved(-h))) / (2 * h)
+        assert np.abs(difference - M[rows, column]).max() < 1e-6 * np.abs(M[rows, column]).max(), column
+    sim.finish()
+    out = noether.read(tmp_path / "stm.h5")
+    assert out["stm"].shape == (3, 24, 24)
+    assert np.array_equal(out["stm"][0], np.eye(24)) and np.array_equal(out["stm"][-1], M)
+
+
+def test_stm_restarts_at_a_new_state_and_is_absent_unless_asked(dumbbells):
+    assert noether.Simulation(dumbbells).stm is None
+    sim = noether.Simulation(dumbbells, stm=True)
+    sim.integrate(0.1)
+    assert not np.allclose(sim.stm, np.eye(24))
+    sim.positions = sim.positions  # a new segment
+    assert np.array_equal(sim.stm, np.eye(24))
+    dumbbells["integrator"]["form"] = "lagrangian"
+    with pytest.raises(noether.SceneError, match="cannot carry the state-transition matrix"):
+        noether.Simulation(dumbbells, stm=True)

@@ -16,6 +16,11 @@
 //    threads may share one potential.
 //  * interpolate(t, s): the state at t inside the last step, [t_prev, time()], by the method's
 //    own dense output; false when it has none.
+//  * Derivatives (docs/derivatives.md): a method that carries the tangent map of its steps says
+//    so (tangent_map_unavailable() empty). Started from a state whose `tangent` is not empty, it
+//    carries those variations: current(), current_state() and interpolate() return
+//    V(t) = ∂z(t)/∂z(t_start) V(t_start), the derivative of the method's own map (not of the
+//    exact flow). Started without one, it carries none.
 #include <noether/forces.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
@@ -63,6 +68,9 @@ class Integrator {
   // The fixed step h of a fixed-step method (the loop then requires whole numbers of steps
   // between outputs and reports t0 + k h exactly); 0 for methods that choose their steps.
   virtual double fixed_step() const;
+  // Empty when start() accepts a state that carries a tangent; else why not, in words (the
+  // default: "this method has no tangent map").
+  virtual std::string tangent_map_unavailable() const;
   // Per-step records, if the integrator keeps any (none by default): the rows kept since the
   // last call, which the integrator then forgets (the host streams them to the output as the
   // run goes, so a long run's records never accumulate in memory).

@@ -67,6 +67,9 @@ class PotentialEvaluator {
   const std::shared_ptr<const Potential>& shared() const { return potential_; }
   const Workspace& workspace() const { return *workspace_; }
   std::vector<PairModel> pair_models() const { return potential_->pair_models(*workspace_); }
+  // K = ∂(f, M)/∂(x, θ) at `state` (noether::force_jacobian, force_jacobian.hpp): the model's
+  // own, else central differences; `analytic` says which.
+  Eigen::MatrixXd force_jacobian(const State& state, bool* analytic = nullptr);
 
  private:
   std::shared_ptr<const Potential> potential_;

@@ -5,6 +5,7 @@
 #include <noether/lie.hpp>
 #include <noether/system.hpp>
 
+#include <string>
 #include <vector>
 
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
@@ -18,9 +19,20 @@ struct State {
   Eigen::Matrix3Xd p;      // γ_i = m_i v_i, inertial linear momenta
   std::vector<Mat3> R;     // R_k ∈ SO(3), body → inertial, rigid bodies only
   Eigen::Matrix3Xd Pi;     // Π_k = J_k Ω_k, body frame, rigid bodies only
+  // The tangent of the state, when a run carries it (run.stm; docs/derivatives.md): the
+  // variations V = ∂z/∂(z0, …) of the coordinates (21.1)
+  //     z = (x_1 … x_n, θ_1 … θ_m, γ_1 … γ_n, Π_1 … Π_m),
+  // θ_k the right perturbation R_k exp(S(θ_k)) of an attitude, one row per coordinate (6n + 6m)
+  // and one column per variation carried. Empty: no tangent is carried.
+  Eigen::MatrixXd tangent;
 
   // A state of the right shape for `system`: zeros, identity attitudes.
   static State zeros(const System& system);
+  // The number of coordinates of z (21.1): 6n + 6m.
+  static Eigen::Index tangent_rows(const System& system);
+  // The names of z's coordinates (21.1), "alpha.position.x", "alpha.attitude.x" (θ),
+  // "alpha.momentum.x" (γ), "alpha.angular_momentum.x" (Π, body frame).
+  static std::vector<std::string> tangent_coordinates(const System& system);
 };
 
 }  // namespace noether

@@ -17,7 +17,7 @@ struct OutputSeries {
   std::string description;
   bool integer = false;       // int64 values, else double
   bool rigid_only = false;    // written when the scene has rigid bodies
-  bool optional = false;      // written when the integrator has variables of its own
+  bool optional = false;      // written only when `needs` holds (an integrator with variables of its own, run.stm)
   bool checkpointed = false;  // read back and verified by a continuation
   // What a scene needs for the series to be written: "" (always), "rigid bodies", "an integrator
   // with variables of its own", "a binary" (two bodies hold 99 % of the mass), "a binary with a

@@ -36,6 +36,9 @@ struct RunSettings {
   double close_approach = 0.0;  // stop when two centres come closer (0: off)
   bool collisions = true;       // stop when two bodies touch (their shapes, else their radii)
   std::optional<Escape> escape;  // run.escape: stop when a body leaves another
+  // Carry the state-transition matrix ∂z(t)/∂z(t0) of the integrator's own map through the run
+  // (`noether run --stm`; docs/derivatives.md): /derivatives/stm at every output frame.
+  bool stm = false;
   TrustThresholds trust;
 };
 

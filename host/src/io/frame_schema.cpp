@@ -38,6 +38,13 @@ Matrix matrix(const void* in, std::size_t width) {
 void step(const FrameInput& in, void* out) { *integers(out) = in.work.steps; }
 void time(const FrameInput& in, void* out) { copy(in.state.t, out); }
 void position(const FrameInput& in, void* out) { copy(in.state.x, out); }
+// [coordinate][variation], row-major (Eigen's storage is column-major).
+void tangent(const FrameInput& in, void* out) {
+  const Eigen::MatrixXd& V = in.state.tangent;
+  double* o = doubles(out);
+  for (Eigen::Index r = 0; r < V.rows(); ++r)
+    for (Eigen::Index c = 0; c < V.cols(); ++c) *o++ = V(r, c);
+}
 void velocity(const FrameInput& in, void* out) {  // v = γ/m
   double* v = doubles(out);
   for (std::size_t i = 0; i < in.system.size(); ++i)
@@ -239,6 +246,11 @@ const FrameQuantity kFrameSchema[] = {
      "z along the orbit normal r × v; eq. 17.10), yaw folded into (−90, 90] (either end of the axis may face the "
      "primary): a synchronous secondary's libration in yaw, pitch and roll",
      -1, secondary_euler_angles, nullptr},
+    {"stm", "/derivatives/stm/value", E::kTangent, D::kMixed, kH5md,
+     "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "
+     "columns in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1), named by /derivatives/coordinates; θ "
+     "is the right perturbation R exp(S(θ)) of an attitude, Π the body-frame angular momentum",
+     -1, tangent, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -278,6 +290,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kRigidQuaternion:
     case E::kRigidMatrix: return l.rigid > 0;
     case E::kIntegrator: return l.width > 0;
+    case E::kTangent: return l.tangent_columns > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -305,12 +318,14 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kRigidMatrix: return {l.rigid, 3, 3};
     case E::kWork: return {5};
     case E::kIntegrator: return {l.width};
+    case E::kTangent: return {6 * (l.bodies + l.rigid), l.tangent_columns};
   }
   return {};
 }
 
-FrameLayout layout_of(const System& system, std::size_t width) {
+FrameLayout layout_of(const System& system, std::size_t width, std::size_t tangent_columns) {
   FrameLayout l;
+  l.tangent_columns = tangent_columns;
   l.bodies = system.size();
   l.rigid = system.rigid_count();
   l.width = width;
@@ -325,7 +340,7 @@ FrameLayout layout_of(const System& system, std::size_t width) {
 bool rigid_only(const FrameQuantity& q) {
   return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix;
 }
-bool optional(const FrameQuantity& q) { return q.extent == E::kIntegrator; }
+bool optional(const FrameQuantity& q) { return q.extent == E::kIntegrator || q.extent == E::kTangent; }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
          q.extent == E::kPrimaryFrame || q.extent == E::kSecondaryAngle || q.extent == E::kSecondaryVector;
@@ -336,6 +351,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kRigidQuaternion:
     case E::kRigidMatrix: return "rigid bodies";
     case E::kIntegrator: return "an integrator with variables of its own";
+    case E::kTangent: return "run.stm";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -376,6 +392,7 @@ std::string describe_extent(Extent e) {
     case E::kRigidMatrix: return "[frame][rigid body][3][3]";
     case E::kWork: return "[frame][5]";
     case E::kIntegrator: return "[frame][width]";
+    case E::kTangent: return "[frame][coordinate][variation]";
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:

@@ -60,11 +60,13 @@ enum class Extent {
   kPrimaryFrame,     // [3]     idem, when the primary is rigid: a vector in its body frame
   kSecondaryAngle,   // []      idem, when the secondary is rigid
   kSecondaryVector,  // [3]     idem
+  kTangent,          // [coordinate][variation]: State::tangent (present when the run carries one, run.stm)
 };
 
 // What decides which series a file has, and their shapes.
 struct FrameLayout {
   std::size_t bodies = 0, rigid = 0, width = 0;  // width: Integrator::checkpoint()'s size
+  std::size_t tangent_columns = 0;                // State::tangent's columns (0: none carried)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -101,8 +103,9 @@ inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
 // Whether the series is written for a scene of this layout, and its frame shape.
 bool present(const FrameQuantity& q, const FrameLayout& layout);
 std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& layout);
-// The layout of a scene whose integrator's checkpoint has `width` numbers.
-FrameLayout layout_of(const System& system, std::size_t width);
+// The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
+// a tangent of `tangent_columns` columns.
+FrameLayout layout_of(const System& system, std::size_t width, std::size_t tangent_columns = 0);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

@@ -1,5 +1,6 @@
 // LGVI, inertial frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (93)–(97) (docs/equations.md §4).
 #include "discrete_flow.hpp"
+#include "tangent_map.hpp"
 
 #include <noether/error.hpp>
 
@@ -44,6 +45,7 @@ class InertialHamiltonian final : public DiscreteFlow {
   void start(const State& s) override {
     s_ = s;
     evaluate(s_, current_);
+    if (carries_tangent()) K_ = evaluate_.force_jacobian(s_);
   }
 
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
@@ -56,6 +58,11 @@ class InertialHamiltonian final : public DiscreteFlow {
       const Vec3 g = h * (Vec3(s_.Pi.col(k)) + 0.5 * h * Vec3(fk.M.col(k)));
       F_[r] = solve_attitude(g, body.inertia, body.inertia_inverse, settings_, body.name, s_.t, h,
                              Vec3(s_.Pi.col(k)), work).F;
+    }
+    if (carries_tangent()) {  // what the tangent map needs of this step (tangent_map.hpp)
+      step_.h = h;
+      step_.F = F_;
+      step_.w = s_.Pi + (0.5 * h) * fk.M;
     }
     x_prev_ = s_.x;
     R_prev_ = s_.R;
@@ -71,6 +78,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     s_.t += h;
     try {
       evaluate(s_, next_);  // the only potential evaluation of the step
+      if (carries_tangent()) K_next_ = evaluate_.force_jacobian(s_);
     } catch (...) {
       s_.x = x_prev_;
       s_.R = R_prev_;
@@ -86,6 +94,10 @@ class InertialHamiltonian final : public DiscreteFlow {
                      0.5 * h * next_.M.col(k);
     }
     std::swap(current_, next_);
+    if (carries_tangent()) {
+      s_.tangent = advance_tangent(system_, step_, K_, K_next_, s_.tangent);
+      std::swap(K_, K_next_);
+    }
     ++work.steps;
   }
 
@@ -96,6 +108,7 @@ class InertialHamiltonian final : public DiscreteFlow {
   double time() const override { return s_.t; }
 
  private:
+  bool carries_tangent() const { return s_.tangent.size() > 0; }
   void evaluate(const State& s, Forces& f) {
     evaluate_(s, f);
     ++work.potential_evaluations;
@@ -109,6 +122,9 @@ class InertialHamiltonian final : public DiscreteFlow {
   std::vector<Mat3> F_;
   Eigen::Matrix3Xd x_prev_;
   std::vector<Mat3> R_prev_;
+  // The tangent map's: the force Jacobians at z_k and z_{k+1}, and the step's F_k and w_k.
+  Eigen::MatrixXd K_, K_next_;
+  StepRecord step_;
 };
 
 }  // namespace

@@ -50,6 +50,9 @@ class Lgvi final : public noether::Integrator {
     } else if (params.has("composition")) {
       throw SceneError(params.at("composition").here() + "lgvi: 'composition' needs order 4 or 6");
     }
+    if (frame != "inertial" || form != "hamiltonian")
+      tangent_unavailable_ = "lgvi carries the tangent map in its inertial Hamiltonian form (orders 2, 4 and 6) "
+                             "so far, not frame: " + frame + ", form: " + form;
     if (frame == "inertial")
       flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, evaluator_, settings)
                                     : lgvi::make_inertial_lagrangian(system, evaluator_, settings);
@@ -94,6 +97,7 @@ class Lgvi final : public noether::Integrator {
     t_ = state.t;
   }
   double fixed_step() const override { return h_; }
+  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
 
   void current(noether::State& state, noether::Forces& forces) override {
     flow_->current(state, forces);
@@ -133,6 +137,7 @@ class Lgvi final : public noether::Integrator {
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;
+  std::string tangent_unavailable_;  // empty: the form carries the tangent map
 };
 
 const noether::ParamDoc params[] = {

@@ -1,0 +1,25 @@
+#pragma once
+// The tangent map of the inertial Hamiltonian LGVI step (93)–(97): the exact derivative of the
+// discrete map, differentiated through the implicit attitude equation (93) rather than around it
+// (docs/equations.md §21, eqs. 21.3–21.8). Compositions are products of these maps.
+#include <noether/lie.hpp>
+#include <noether/system.hpp>
+
+#include <vector>
+
+namespace lgvi {
+
+// What one step (z_k → z_{k+1}, step h) leaves for its derivative: F_k of every rigid body and
+// w_k = Π_k + (h/2) M_k, so that Π_{k+1} = F_kᵀ w_k + (h/2) M_{k+1} (97).
+struct StepRecord {
+  double h = 0.0;
+  std::vector<noether::Mat3> F;
+  Eigen::Matrix3Xd w;
+};
+
+// V_{k+1} = (∂z_{k+1}/∂z_k) V_k, with K_k and K_{k+1} the force Jacobians (§20) at both ends of
+// the step; V has 6n + 6m rows in the order (21.1).
+Eigen::MatrixXd advance_tangent(const noether::System& system, const StepRecord& step, const Eigen::MatrixXd& K_k,
+                                const Eigen::MatrixXd& K_next, const Eigen::MatrixXd& V);
+
+}  // namespace lgvi
