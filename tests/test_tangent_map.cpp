@@ -181,7 +181,86 @@ TEST(TangentMap, IsSymplecticAfterTenThousandSteps) {
   }
 }
 
+// rk: the variational equations (21.10) integrated beside the state by the same method. With a
+// fixed step (rk4) that is the derivative of the method's map in its own variables; adaptive
+// methods choose their steps on both, so whole runs differ from it at the tolerance.
+const char* kRk4Kepler = "integrator={plugin: rk, method: rk4, step: 0.001}";
+const char* kRk4Dumbbells = "integrator={plugin: rk, method: rk4, step: 0.0002}";
+const char* kDopri5 = "integrator={plugin: rk, method: dopri5, rtol: 1e-13, atol: 1e-15}";
+const char* kRkf78 = "integrator={plugin: rk, method: rkf78, rtol: 1e-13, atol: 1e-15}";
+// cvode: CVODES forward sensitivities of the same variational equations, error-controlled.
+const char* kAdams = "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-15}";
+const char* kBdf = "integrator={plugin: cvode, method: bdf, rtol: 1e-12, atol: 1e-14}";
+
+TEST(TangentMap, ContinuousStmsAgreeWithDifferencesOfWholeRuns) {
+  for (const char* integrator : {kRk4Kepler, kDopri5, kRkf78, kAdams, kBdf}) {
+    const Comparison c = compare_with_differences(parse_scene(kKepler, "kepler", {integrator}));
+    EXPECT_LT(c.worst, 1e-6) << integrator;
+    std::printf("kepler, %s: worst column %.3e\n", integrator, c.worst);
+  }
+  for (const char* integrator : {kRk4Dumbbells, kDopri5, kAdams}) {
+    const Comparison c =
+        compare_with_differences(test::dumbbell_scene({"run.t_end=1", "run.output_every=0.5", integrator}));
+    EXPECT_LT(c.worst, 1e-6) << integrator;
+    std::printf("dumbbells, %s: worst column %.3e\n", integrator, c.worst);
+  }
+  // KW4 in SI units: an atol in metres and kg m/s.
+  for (const char* integrator : {"integrator={plugin: rk, method: dopri5, rtol: 1e-13, atol: 1e-6}",
+                                 "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-6}"}) {
+    const Comparison c = compare_with_differences(load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
+                                                             {"run.t_end=3600", "run.output_every=3600", integrator}));
+    EXPECT_LT(c.worst, 1e-6) << integrator;
+    std::printf("kw4 ellipsoids, %s: worst column %.3e\n", integrator, c.worst);
+  }
+}
+
+// The flow's STM is symplectic; an rk or cvode run's is so to its tolerance.
+TEST(TangentMap, ContinuousStmIsSymplecticToTheTolerance) {
+  for (const std::string rtol : {"1e-8", "1e-11"})
+    for (const std::string method : {"{plugin: rk, method: dopri5", "{plugin: cvode, method: adams"}) {
+    Scene scene = test::dumbbell_scene({"run.t_end=2", "run.output_every=2", "run.stm=true",
+                                        "integrator=" + method + ", atol: 1e-14, rtol: " + rtol + "}"});
+    Simulation sim(scene, registry());
+    sim.integrate(scene.run.t_end);
+    const Eigen::MatrixXd& M = sim.state().tangent;
+    const double defect =
+        (M.transpose() * symplectic_form(sim.state()) * M - symplectic_form(scene.initial)).cwiseAbs().maxCoeff();
+    const double size = M.cwiseAbs().maxCoeff();
+    std::printf("%s rtol %s: max |M^T W M - W| / |M|^2 = %.3e, det - 1 = %.3e\n", method.c_str(), rtol.c_str(),
+                defect / (size * size), M.determinant() - 1);
+    EXPECT_LT(defect / (size * size), 100 * std::stod(rtol)) << method;
+    EXPECT_LT(std::abs(M.determinant() - 1), 100 * std::stod(rtol)) << method;
+  }
+}
+
+// stm_error_control: the tangent's error controlled too — more steps, the same derivative.
+TEST(TangentMap, ErrorControlOnTheStmTakesMoreStepsAndAgrees) {
+  for (const char* plugin : {"rk", "cvode"}) {
+    std::int64_t steps[2];
+    for (const bool control : {false, true}) {
+      Scene scene = parse_scene(kKepler, "kepler",
+                                {std::string("integrator={plugin: ") + plugin + ", rtol: 1e-12, atol: 1e-14, stm_error_control: " +
+                                 (control ? "true" : "false") + "}"});
+      const Comparison c = compare_with_differences(scene);
+      EXPECT_LT(c.worst, 1e-6) << plugin << control;
+      Scene with = scene;
+      with.run.stm = true;
+      Simulation sim(with, registry());
+      sim.integrate(with.run.t_end);
+      steps[control] = sim.summary().work.steps;
+    }
+    std::printf("%s: steps %ld without, %ld with error control on the STM\n", plugin, static_cast<long>(steps[0]),
+                static_cast<long>(steps[1]));
+    EXPECT_GT(steps[1], steps[0]) << plugin;
+  }
+}
+
 TEST(TangentMap, RefusedByAnIntegratorWithoutOne) {
+  for (const char* integrator : {"integrator={plugin: rk, atol: 0}", "integrator={plugin: cvode, atol: 0}",
+                                 "integrator={plugin: rk, frame: relative}", "integrator={plugin: jm-hybrid}"}) {
+    Scene s = test::dumbbell_scene({"run.stm=true", integrator});
+    EXPECT_THROW(Simulation(s, registry()), SceneError) << integrator;
+  }
   try {
     Scene s = test::dumbbell_scene({"run.stm=true", "integrator.form=lagrangian"});
     Simulation sim(s, registry());

@@ -80,6 +80,33 @@ void BM_LgviKw4Step(benchmark::State& st) {
 }
 BENCHMARK(BM_LgviKw4Step)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// rk (rk4, h = 2e-4) and cvode (adams, rtol 1e-10) on the dumbbells over 0.2 time units, plain
+// and carrying the STM (the variational equations at every stage; CVODES sensitivities): the
+// cost of a step with the STM against a plain one, per integrator (docs/derivatives.md).
+void BM_ContinuousDumbbellSteps(benchmark::State& st) {
+  const bool cvode = st.range(0) != 0, stm = st.range(1) != 0;
+  const Scene scene = test::dumbbell_scene(
+      {cvode ? "integrator={plugin: cvode, method: adams, rtol: 1e-10, atol: 1e-12}" : "integrator={plugin: rk, method: rk4, step: 0.0002}"});
+  auto registry = test::bundled_plugins();
+  auto potential = registry.make_potential("sphere-cluster", scene.system, Params());
+  auto integrator = registry.make_integrator(scene.integrator.plugin, scene.system, potential, scene.integrator.params);
+  Null null;
+  const auto N = State::tangent_rows(scene.system);
+  for (auto _ : st) {
+    State s = scene.initial;
+    if (stm) s.tangent = Eigen::MatrixXd::Identity(N, N);
+    advance(*integrator, *potential, scene.system, s, {0.2, 0.2}, null);
+    benchmark::DoNotOptimize(s.x.data());
+  }
+  // The integrator's counters add up over the runs (start() carries them on).
+  const double steps = static_cast<double>(integrator->work().steps) / static_cast<double>(st.iterations());
+  st.SetLabel(std::string(cvode ? "cvode adams" : "rk4") + (stm ? ", with stm" : ", plain"));
+  st.counters["steps"] = steps;
+  st.counters["ns_per_step"] = benchmark::Counter(static_cast<double>(st.iterations()) * steps,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_ContinuousDumbbellSteps)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
+
 void BM_SphereClusterDumbbells(benchmark::State& st) {
   const Scene scene = test::dumbbell_scene();
   auto registry = test::bundled_plugins();

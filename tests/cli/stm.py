@@ -4,7 +4,7 @@ The file's /derivatives/stm starts at the identity, is named by /derivatives/coo
 det 1 at every frame (the LGVI's map is symplectic), and its column of alpha's x position at the
 last frame is the central difference of two runs started from positions moved with --set. The
 runs that cannot carry it are refused before anything is written: --resume of such a file, and
-an integrator without a tangent map.
+a method without a tangent map (the LGVI's Lagrangian form).
 """
 import os
 import subprocess
@@ -49,9 +49,9 @@ assert error < 1e-6, (error, column, expected)
 resume = subprocess.run([noether, "run", "--resume", "stm.h5", "--t-end", "1", "--no-progress"],
                         capture_output=True, text=True)
 assert resume.returncode != 0 and "not supported yet" in resume.stderr, (resume.returncode, resume.stderr)
-refused = subprocess.run([noether, "run", scene, "--stm", "-o", "rk.h5", *base, "--set", "integrator.plugin=rk"],
+refused = subprocess.run([noether, "run", scene, "--stm", "-o", "refused.h5", *base, "--set", "integrator.form=lagrangian"],
                          capture_output=True, text=True)
 assert refused.returncode == 2 and "cannot carry the state-transition matrix" in refused.stderr, refused.stderr
-assert not os.path.exists("rk.h5")
+assert not os.path.exists("refused.h5")
 print(f"stm: 6 frames of 24×24, max |det − 1| {max(abs(d - 1) for d in dets):.1e}; "
       f"column alpha.position.x against differences of two runs: {error:.1e}")

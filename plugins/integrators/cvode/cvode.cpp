@@ -2,12 +2,17 @@
 // variable-step Adams–Moulton (with the fixed-point nonlinear solver) or BDF (Newton with a
 // dense linear solver and a difference-quotient Jacobian). Output at the requested times by
 // CVODE's own interpolation (dense output for the host's output times and events). Like every general-purpose solver here it integrates R as nine
-// numbers, so R drifts off SO(3).
+// numbers, so R drifts off SO(3). With a tangent (run.stm), CVODES integrates it as forward
+// sensitivities with error control: one sensitivity vector per column of the tangent, whose
+// right-hand side is the variational equations (docs/equations.md eq. 21.10) laid out in y's
+// slots (θ in the first three of each attitude's nine, the other six zero). The error control
+// is on the state only unless stm_error_control asks for the sensitivities too.
 #include <noether/continuous_equations.hpp>
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
+#include <noether/variational_equations.hpp>
 
-#include <cvode/cvode.h>
+#include <cvodes/cvodes.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -40,9 +45,13 @@ struct CvodeSession {
   void* memory = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear = nullptr;
-  SUNNonlinearSolver nonlinear = nullptr;
+  SUNNonlinearSolver nonlinear = nullptr, nonlinear_sensitivities = nullptr;
+  N_Vector* yS = nullptr;  // the sensitivities (the tangent's columns), when carried
+  int Ns = 0;
   ~CvodeSession() {
     if (memory) CVodeFree(&memory);
+    if (yS) N_VDestroyVectorArray(yS, Ns);
+    if (nonlinear_sensitivities) SUNNonlinSolFree(nonlinear_sensitivities);
     if (nonlinear) SUNNonlinSolFree(nonlinear);
     if (linear) SUNLinSolFree(linear);
     if (matrix) SUNMatDestroy(matrix);
@@ -66,11 +75,21 @@ class Cvode final : public noether::Integrator {
     rtol_ = p.at("rtol").as_double();
     atol_ = p.at("atol").as_double();
     max_steps_ = p.at("max_steps").as_int();  // 0: no cap
+    stm_error_control_ = p.at("stm_error_control").as_bool();
     if (rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
       throw SceneError(p.here() + "cvode: rtol must be positive, atol and max_steps non-negative");
+    if (p.at("frame").as_string() != "inertial" || p.at("form").as_string() != "hamiltonian")
+      tangent_unavailable_ = "cvode carries the state-transition matrix in its inertial Hamiltonian form only, not "
+                             "frame: " + p.at("frame").as_string() + ", form: " + p.at("form").as_string();
+    else if (atol_ == 0.0)
+      tangent_unavailable_ = "with atol: 0 the error of the state-transition matrix, whose entries start at 0, cannot be "
+                             "controlled; give cvode a positive atol";
   }
 
+  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+
   void start(const noether::State& state) override {
+    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
     session_ = std::make_unique<CvodeSession>();
     CvodeSession& s = *session_;
     check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create", state.t);
@@ -95,8 +114,11 @@ class Cvode final : public noether::Integrator {
       s.linear = SUNLinSol_Dense(s.y, s.matrix, s.context);
       check(CVodeSetLinearSolver(s.memory, s.linear, s.matrix), "CVodeSetLinearSolver", state.t);
     }
+    tangent_rows_ = state.tangent.rows();
+    if (state.tangent.size() > 0) start_sensitivities(state);
     t_ = state.t;
     base_ = work_;  // counters of earlier sessions (restarts) carry on
+    differenced_evaluations_ = 0;  // this session's
   }
 
   // One internal step of CVODE (CV_ONE_STEP), never past t_max (its stop time).
@@ -127,7 +149,7 @@ class Cvode final : public noether::Integrator {
   double time() const override { return t_; }
 
   void current(noether::State& state, noether::Forces& forces) override {
-    equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
+    current_state(state);
     equations_->forces(state, forces);  // for output; not counted as work
   }
 
@@ -135,16 +157,105 @@ class Cvode final : public noether::Integrator {
 
   void current_state(noether::State& state) override {
     equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
+    state.tangent.resize(0, 0);
+    if (session_->Ns > 0) {  // the sensitivities where the solver stands (its last step's end)
+      double t_sensitivities = t_;
+      check(CVodeGetSens(session_->memory, &t_sensitivities, session_->yS), "CVodeGetSens", t_);
+      tangent_from(session_->yS, state);
+    }
   }
 
-  // CVODE's own interpolating polynomial over the last step (CVodeGetDky, k = 0).
+  // CVODE's own interpolating polynomial over the last step (CVodeGetDky, k = 0), and CVODES's
+  // for the sensitivities (CVodeGetSensDky).
   bool interpolate(double t, noether::State& state) override {
     check(CVodeGetDky(session_->memory, t, 0, session_->dky), "CVodeGetDky", t);
     equations_->unpack(N_VGetArrayPointer(session_->dky), t, state);
+    state.tangent.resize(0, 0);
+    if (session_->Ns > 0) {
+      check(CVodeGetSensDky(session_->memory, t, 0, session_->yS), "CVodeGetSensDky", t);
+      tangent_from(session_->yS, state);
+    }
     return true;
   }
 
  private:
+  // The slot in y of each row of the tangent (21.1): x, θ (the first three of the attitude's
+  // nine numbers), γ, Π; y's layout is [x | γ | R (9 each) | Π] (continuous_equations.hpp).
+  std::vector<std::size_t> tangent_slots() const {
+    const noether::System& sys = equations_->system();
+    const std::size_t n = sys.size(), m = sys.rigid_count();
+    std::vector<std::size_t> slot;
+    for (std::size_t i = 0; i < 3 * n; ++i) slot.push_back(i);
+    for (std::size_t r = 0; r < m; ++r)
+      for (std::size_t a = 0; a < 3; ++a) slot.push_back(6 * n + 9 * r + a);
+    for (std::size_t i = 0; i < 3 * n; ++i) slot.push_back(3 * n + i);
+    for (std::size_t i = 0; i < 3 * m; ++i) slot.push_back(6 * n + 9 * m + i);
+    return slot;
+  }
+
+  // CVODES forward sensitivities, one per column of the tangent, with tolerances estimated from
+  // the state's (CVodeSensEEtolerances), under error control only with stm_error_control.
+  // Simultaneous corrector: the fixed-point iteration for adams, Newton on the same dense
+  // linear solver for bdf.
+  void start_sensitivities(const noether::State& state) {
+    CvodeSession& s = *session_;
+    s.Ns = static_cast<int>(state.tangent.cols());
+    s.yS = N_VCloneVectorArray(s.Ns, s.y);
+    if (!s.yS) throw IntegrationError("cvode: could not allocate the sensitivities", state.t);
+    slots_ = tangent_slots();
+    for (int c = 0; c < s.Ns; ++c) {
+      N_VConst(0.0, s.yS[c]);
+      double* v = N_VGetArrayPointer(s.yS[c]);
+      for (Eigen::Index r = 0; r < tangent_rows_; ++r) v[slots_[static_cast<std::size_t>(r)]] = state.tangent(r, c);
+    }
+    check(CVodeSensInit(s.memory, s.Ns, CV_SIMULTANEOUS, &Cvode::sensitivity_rhs, s.yS), "CVodeSensInit", state.t);
+    check(CVodeSensEEtolerances(s.memory), "CVodeSensEEtolerances", state.t);
+    check(CVodeSetSensErrCon(s.memory, stm_error_control_ ? SUNTRUE : SUNFALSE), "CVodeSetSensErrCon", state.t);
+    if (method_ == "adams") {
+      s.nonlinear_sensitivities = SUNNonlinSol_FixedPointSens(s.Ns + 1, s.y, 0, s.context);
+      check(CVodeSetNonlinearSolverSensSim(s.memory, s.nonlinear_sensitivities), "CVodeSetNonlinearSolverSensSim",
+            state.t);
+    }
+    V_.resize(tangent_rows_, s.Ns);
+    dV_.resize(tangent_rows_, s.Ns);
+  }
+
+  // The tangent's rows from the sensitivity vectors' slots.
+  void tangent_from(N_Vector* yS, noether::State& state) const {
+    state.tangent.resize(tangent_rows_, session_->Ns);
+    for (int c = 0; c < session_->Ns; ++c) {
+      const double* v = N_VGetArrayPointer(yS[c]);
+      for (Eigen::Index r = 0; r < tangent_rows_; ++r) state.tangent(r, c) = v[slots_[static_cast<std::size_t>(r)]];
+    }
+  }
+
+  // ẏS = A(y) yS: the variational equations (21.10) in y's slots, K at the state y (a
+  // differenced K's evaluations counted as work).
+  static int sensitivity_rhs(int Ns, sunrealtype t, N_Vector y, N_Vector, N_Vector* yS, N_Vector* ySdot,
+                             void* self, N_Vector, N_Vector) {
+    auto* me = static_cast<Cvode*>(self);
+    try {
+      me->equations_->unpack(N_VGetArrayPointer(y), t, me->stage_);
+      bool analytic = true;
+      const Eigen::MatrixXd K = me->equations_->evaluator().force_jacobian(me->stage_, &analytic);
+      if (!analytic) me->differenced_evaluations_ += 2 * K.rows();
+      for (int c = 0; c < Ns; ++c) {
+        const double* v = N_VGetArrayPointer(yS[c]);
+        for (Eigen::Index r = 0; r < me->tangent_rows_; ++r) me->V_(r, c) = v[me->slots_[static_cast<std::size_t>(r)]];
+      }
+      noether::variational_rhs(me->equations_->system(), me->stage_, K, me->V_, me->dV_);
+      for (int c = 0; c < Ns; ++c) {
+        N_VConst(0.0, ySdot[c]);
+        double* d = N_VGetArrayPointer(ySdot[c]);
+        for (Eigen::Index r = 0; r < me->tangent_rows_; ++r) d[me->slots_[static_cast<std::size_t>(r)]] = me->dV_(r, c);
+      }
+      return 0;
+    } catch (const std::exception& e) {
+      me->last_error_ = e.what();
+      return -1;  // unrecoverable: CVODES stops with CV_SRHSFUNC_FAIL
+    }
+  }
+
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* self) {
     auto* me = static_cast<Cvode*>(self);
     try {
@@ -181,7 +292,9 @@ class Cvode final : public noether::Integrator {
     CVodeGetNumNonlinSolvIters(memory, &nonlin);
     CVodeGetNumErrTestFails(memory, &fails);
     work_.steps = base_.steps + steps;
-    work_.potential_evaluations = base_.potential_evaluations + fevals + lin_fevals;  // one U per rhs call
+    // (fS evaluates K, not U: a differenced K's evaluations are counted, an analytic one's not)
+    work_.potential_evaluations =
+        base_.potential_evaluations + fevals + lin_fevals + differenced_evaluations_;  // one U per rhs call
     work_.newton_iterations = base_.newton_iterations + nonlin;
     work_.rejected_steps = base_.rejected_steps + fails;
   }
@@ -197,11 +310,20 @@ class Cvode final : public noether::Integrator {
   std::string method_;
   double rtol_ = 0, atol_ = 0;
   long max_steps_ = 0;
+  bool stm_error_control_ = false;
   std::string last_error_;
   std::unique_ptr<CvodeSession> session_;
   std::vector<double> y_prev_;
   double t_ = 0;
   noether::WorkCounters base_;
+  // The tangent (run.stm): its rows, their slots in y, scratch for the variational equations,
+  // and the evaluations made to difference a force Jacobian.
+  Eigen::Index tangent_rows_ = 0;
+  std::vector<std::size_t> slots_;
+  Eigen::MatrixXd V_, dV_;
+  noether::State stage_;
+  std::int64_t differenced_evaluations_ = 0;
+  std::string tangent_unavailable_;
 };
 
 const noether::ParamDoc params[] = {
@@ -210,6 +332,9 @@ const noether::ParamDoc params[] = {
     {"rtol", "number", "1e-8", "relative tolerance"},
     {"atol", "number", "1e-10", "absolute tolerance"},
     {"max_steps", "integer", "0", "internal steps allowed in the whole run; 0: no cap (bound long runs with --max-wall-time)"},
+    {"stm_error_control", "bool", "false",
+     "with run.stm: control the error of the sensitivities too, not only of the state (smaller steps; with a "
+     "differenced force Jacobian, rtol below ~1e-10 then cannot be met)"},
     {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };

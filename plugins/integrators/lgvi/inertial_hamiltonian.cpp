@@ -45,7 +45,7 @@ class InertialHamiltonian final : public DiscreteFlow {
   void start(const State& s) override {
     s_ = s;
     evaluate(s_, current_);
-    if (carries_tangent()) K_ = evaluate_.force_jacobian(s_);
+    if (carries_tangent()) K_ = jacobian(s_);
   }
 
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
@@ -78,7 +78,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     s_.t += h;
     try {
       evaluate(s_, next_);  // the only potential evaluation of the step
-      if (carries_tangent()) K_next_ = evaluate_.force_jacobian(s_);
+      if (carries_tangent()) K_next_ = jacobian(s_);
     } catch (...) {
       s_.x = x_prev_;
       s_.R = R_prev_;
@@ -109,6 +109,13 @@ class InertialHamiltonian final : public DiscreteFlow {
 
  private:
   bool carries_tangent() const { return s_.tangent.size() > 0; }
+  // The force Jacobian for the tangent map; a differenced one's evaluations count as work.
+  Eigen::MatrixXd jacobian(const State& s) {
+    bool analytic = true;
+    Eigen::MatrixXd K = evaluate_.force_jacobian(s, &analytic);
+    if (!analytic) work.potential_evaluations += 2 * K.rows();
+    return K;
+  }
   void evaluate(const State& s, Forces& f) {
     evaluate_(s, f);
     ++work.potential_evaluations;

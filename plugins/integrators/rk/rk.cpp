@@ -2,10 +2,15 @@
 // Boost.Odeint: RK4 with a fixed step, Dormand–Prince 5(4) and Fehlberg 7(8) with error
 // control. Like Lee et al.'s Runge–Kutta they integrate R as nine numbers and drift off SO(3);
 // `renormalize: true` projects every R back onto SO(3) after each accepted step (opt-in,
-// never silent: the output records it in /parameters).
+// never silent: the output records it in /parameters). With a tangent (run.stm), the
+// variational equations (docs/equations.md eq. 21.10) are integrated beside the state by the
+// same method; the adaptive methods control the error of the state only, unless
+// stm_error_control asks for both (a differenced force Jacobian's noise, ~1e-10, then caps
+// what rtol can be met: steps collapse below it).
 #include <noether/continuous_equations.hpp>
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
+#include <noether/variational_equations.hpp>
 
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
 #include <boost/numeric/odeint/stepper/dense_output_runge_kutta.hpp>
@@ -24,6 +29,29 @@ namespace {
 
 namespace odeint = boost::numeric::odeint;
 using Vector = std::vector<double>;
+
+// Odeint's default error checker (max over components of |err| / (atol + rtol (|x| + |dt| |ẋ|)))
+// restricted to the first *controlled components: the state's, not the tangent's carried after
+// it (all of them when no tangent is carried, or with stm_error_control). The same arithmetic
+// as odeint's, so that runs without a tangent take the same steps as before.
+struct StateErrorChecker {
+  using value_type = double;
+  using algebra_type = odeint::range_algebra;
+  using operations_type = odeint::default_operations;
+  double eps_abs = 1e-6, eps_rel = 1e-6;
+  const std::size_t* controlled = nullptr;
+  template <class State, class Deriv, class Err, class Time>
+  double error(algebra_type&, const State& x_old, const Deriv& dxdt_old, Err& x_err, Time dt) const {
+    double e = 0.0;
+    for (std::size_t i = 0; i < *controlled; ++i)
+      e = std::max(e, std::abs(x_err[i]) /
+                          (eps_abs + eps_rel * (1.0 * std::abs(x_old[i]) + (1.0 * std::abs(dt)) * std::abs(dxdt_old[i]))));
+    return e;
+  }
+};
+using Dopri5 = odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Vector>, StateErrorChecker>;
+using Rkf78 = odeint::controlled_runge_kutta<odeint::runge_kutta_fehlberg78<Vector>, StateErrorChecker>;
+using Dense = odeint::dense_output_runge_kutta<Dopri5>;
 using noether::IntegrationError;
 using noether::Params;
 using noether::SceneError;
@@ -46,15 +74,30 @@ class Rk final : public noether::Integrator {
     atol_ = p.at("atol").as_double();
     renormalize_ = p.at("renormalize").as_bool();
     max_steps_ = p.at("max_steps").as_int();  // 0: no cap (a run is bounded by t_end, events, signals, run budgets)
-    dopri5_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>());
-    rkf78_ = odeint::make_controlled(atol_, rtol_, odeint::runge_kutta_fehlberg78<Vector>());
+    stm_error_control_ = p.at("stm_error_control").as_bool();
+    dopri5_ = Dopri5(checker());
+    rkf78_ = Rkf78(checker());
     if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
       throw SceneError(p.here() + "rk: step and rtol must be positive, atol and max_steps non-negative");
+    if (p.at("frame").as_string() != "inertial" || p.at("form").as_string() != "hamiltonian")
+      tangent_unavailable_ = "rk carries the state-transition matrix in its inertial Hamiltonian form only, not frame: " +
+                             p.at("frame").as_string() + ", form: " + p.at("form").as_string();
+    else if (method_ != "rk4" && atol_ == 0.0)
+      tangent_unavailable_ = "with atol: 0 the error of the state-transition matrix, whose entries start at 0, cannot be "
+                             "controlled; give rk a positive atol";
   }
 
+  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+
   void start(const noether::State& state) override {
-    y_.resize(equations_->size());
+    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
+    tangent_rows_ = state.tangent.rows();
+    tangent_columns_ = state.tangent.cols();
+    y_.resize(equations_->size() + static_cast<std::size_t>(state.tangent.size()));
+    controlled_ = stm_error_control_ ? y_.size() : equations_->size();
     equations_->pack(state, y_.data());
+    // y = (the equations' variables, then V column by column)
+    std::copy(state.tangent.data(), state.tangent.data() + state.tangent.size(), y_.data() + equations_->size());
     y_prev_ = y_;
     t_ = t_prev_ = state.t;
     k_ = 0;
@@ -81,23 +124,23 @@ class Rk final : public noether::Integrator {
       t_ = t_prev_;
       dense_.reset();  // restart the steppers from y_ at the next step
       dopri5_.reset();
-      work_.potential_evaluations = equations_->evaluations();
+      work_.potential_evaluations = equations_->evaluations() + differenced_evaluations_;
       throw;
     }
-    work_.potential_evaluations = equations_->evaluations();
+    work_.potential_evaluations = equations_->evaluations() + differenced_evaluations_;
   }
 
   double time() const override { return t_; }
   double fixed_step() const override { return method_ == "rk4" ? step_ : 0.0; }
 
   void current(noether::State& state, noether::Forces& forces) override {
-    equations_->unpack(y_.data(), t_, state);
+    unpack(y_, t_, state);
     equations_->forces(state, forces);  // for output; not counted as work
   }
 
   noether::PotentialEvaluator* potential_evaluator() override { return &equations_->evaluator(); }
 
-  void current_state(noether::State& state) override { equations_->unpack(y_.data(), t_, state); }
+  void current_state(noether::State& state) override { unpack(y_, t_, state); }
 
   // Dopri5: its own (4th-order) dense output. Rkf78 and dopri5 with renormalize: one step of
   // the same method from the step's start, on a copy, so outputs carry the method's own
@@ -105,7 +148,7 @@ class Rk final : public noether::Integrator {
   bool interpolate(double t, noether::State& state) override {
     if (method_ == "rk4") return false;
     if (t == t_prev_) {
-      equations_->unpack(y_prev_.data(), t, state);
+      unpack(y_prev_, t, state);
       return true;
     }
     y_out_ = y_prev_;
@@ -118,14 +161,12 @@ class Rk final : public noether::Integrator {
       odeint::runge_kutta_fehlberg78<Vector> fresh;
       fresh.do_step(rhs_, y_out_, t_prev_, t - t_prev_);
     }
-    work_.potential_evaluations = equations_->evaluations();
-    equations_->unpack(y_out_.data(), t, state);
+    work_.potential_evaluations = equations_->evaluations() + differenced_evaluations_;
+    unpack(y_out_, t, state);
     return true;
   }
 
  private:
-  using Dense = decltype(odeint::make_dense_output(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>()));
-
   // rk4: a step of h, or a shorter one that ends at t_max.
   void fixed_step_to(double t_max) {
     const double remaining = t_max - t_;
@@ -149,7 +190,7 @@ class Rk final : public noether::Integrator {
   // not counted here (reported as −1, unknown).
   void dense_step(double t_max) {
     if (!dense_) {
-      dense_.emplace(odeint::make_dense_output(atol_, rtol_, odeint::runge_kutta_dopri5<Vector>()));
+      dense_.emplace(Dopri5(checker()));
       dense_->initialize(y_, t_, dt_ > 0 ? dt_ : first_trial(t_max));
     }
     work_.rejected_steps = -1;
@@ -221,6 +262,32 @@ class Rk final : public noether::Integrator {
     return true;
   }
 
+  StateErrorChecker checker() const { return StateErrorChecker{atol_, rtol_, &controlled_}; }
+
+  // The state of y (and its tangent, when carried).
+  void unpack(const Vector& y, double t, noether::State& state) const {
+    equations_->unpack(y.data(), t, state);
+    if (tangent_columns_ > 0)
+      state.tangent = Eigen::Map<const Eigen::MatrixXd>(y.data() + equations_->size(), tangent_rows_, tangent_columns_);
+    else
+      state.tangent.resize(0, 0);
+  }
+
+  // y' = F(t, y), and V' = A V beside it when a tangent is carried (21.10), with the force
+  // Jacobian at the stage's state (differenced evaluations counted as work).
+  void rhs(const Vector& y, Vector& dydt, double t) {
+    equations_->rhs(t, y.data(), dydt.data());
+    if (tangent_columns_ == 0) return;
+    equations_->unpack(y.data(), t, stage_);
+    bool analytic = true;
+    const Eigen::MatrixXd K = equations_->evaluator().force_jacobian(stage_, &analytic);
+    if (!analytic) differenced_evaluations_ += 2 * K.rows();
+    const auto s = static_cast<std::ptrdiff_t>(equations_->size());
+    noether::variational_rhs(equations_->system(), stage_, K,
+                             Eigen::Map<const Eigen::MatrixXd>(y.data() + s, tangent_rows_, tangent_columns_),
+                             Eigen::Map<Eigen::MatrixXd>(dydt.data() + s, tangent_rows_, tangent_columns_));
+  }
+
   [[noreturn]] void fail(const std::string& why, double t) const {
     std::ostringstream msg;
     msg << "rk (" << method_ << ", rtol " << rtol_ << ", atol " << atol_ << "): " << why
@@ -230,14 +297,10 @@ class Rk final : public noether::Integrator {
 
   std::unique_ptr<noether::ContinuousEquations> equations_;
   std::function<void(const Vector&, Vector&, double)> rhs_ = [this](const Vector& x, Vector& dxdt,
-                                                                       double t) {
-    equations_->rhs(t, x.data(), dxdt.data());
-  };
+                                                                       double t) { rhs(x, dxdt, t); };
   odeint::runge_kutta4<Vector> rk4_;
-  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>())) dopri5_ =
-      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_dopri5<Vector>());
-  decltype(odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_fehlberg78<Vector>())) rkf78_ =
-      odeint::make_controlled(1.0, 1.0, odeint::runge_kutta_fehlberg78<Vector>());
+  Dopri5 dopri5_;
+  Rkf78 rkf78_;
   std::optional<Dense> dense_;
   Vector y_, y_prev_, y_out_;
   double t_ = 0, t_prev_ = 0, t0_ = 0, dt_ = 0;
@@ -246,6 +309,14 @@ class Rk final : public noether::Integrator {
   double step_ = 0, rtol_ = 0, atol_ = 0;
   bool renormalize_ = false;
   long max_steps_ = 0;
+  // The tangent (run.stm): its shape (0 columns: none carried), the state at a stage, and the
+  // evaluations made to difference a force Jacobian.
+  Eigen::Index tangent_rows_ = 0, tangent_columns_ = 0;
+  bool stm_error_control_ = false;
+  std::size_t controlled_ = 0;  // the components of y under error control (StateErrorChecker)
+  noether::State stage_;
+  std::int64_t differenced_evaluations_ = 0;
+  std::string tangent_unavailable_;
 };
 
 const noether::ParamDoc params[] = {
@@ -259,6 +330,9 @@ const noether::ParamDoc params[] = {
     {"renormalize", "bool", "false",
      "project every R onto SO(3) after each step (opt-in; the drift is reported otherwise)"},
     {"max_steps", "integer", "0", "steps (accepted + rejected) before giving up; 0: no cap (bound long runs with --max-wall-time)"},
+    {"stm_error_control", "bool", "false",
+     "with run.stm: control the error of the state-transition matrix too, not only of the state (smaller steps; "
+     "with a differenced force Jacobian, rtol below ~1e-10 then cannot be met)"},
     {"frame", "string", "inertial", "inertial (29)–(32), or relative: two rigid bodies only"},
     {"form", "string", "hamiltonian", "hamiltonian (momenta) or lagrangian (velocities, (25)–(28), (55)–(62))"},
 };
