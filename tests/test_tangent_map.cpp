@@ -263,6 +263,17 @@ TEST(TangentMap, RefusedByAnIntegratorWithoutOne) {
     Scene s = test::dumbbell_scene({"run.stm=true", integrator});
     EXPECT_THROW(Simulation(s, registry()), SceneError) << integrator;
   }
+  // Started directly (not through the host, which asks first), each bundled method refuses a
+  // tangent it cannot carry rather than handing it back unchanged.
+  for (const char* integrator : {"integrator={plugin: lgvi, step: 0.0002, form: lagrangian}",
+                                 "integrator={plugin: rk, frame: relative}", "integrator={plugin: cvode, atol: 0}"}) {
+    Scene s = test::dumbbell_scene({integrator});
+    auto potential = make_scene_potential(s, registry());
+    auto method = registry().make_integrator(s.integrator.plugin, s.system, potential, s.integrator.params);
+    State z = s.initial;
+    z.tangent = Eigen::MatrixXd::Identity(24, 24);
+    EXPECT_THROW(method->start(z), Error) << integrator;
+  }
   try {
     Scene s = test::dumbbell_scene({"run.stm=true", "integrator.form=lagrangian"});
     Simulation sim(s, registry());

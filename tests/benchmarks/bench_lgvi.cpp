@@ -15,13 +15,19 @@ struct Null final : Observer {
 };
 
 // ns per LGVI step: integrate 1000 steps per iteration (one potential evaluation each).
+// The dumbbell scene with its LGVI on sphere-cluster, as the step benchmarks use it.
+struct DumbbellLgvi {
+  Scene scene = test::dumbbell_scene();
+  PluginRegistry registry = test::bundled_plugins();
+  std::shared_ptr<const Potential> potential = registry.make_potential("sphere-cluster", scene.system, Params());
+  std::shared_ptr<Integrator> lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
+  double h = scene.integrator.params.at("step").as_double();
+};
+
 void BM_LgviDumbbellStep(benchmark::State& st) {
-  const Scene scene = test::dumbbell_scene();
-  auto registry = test::bundled_plugins();
-  auto potential = registry.make_potential("sphere-cluster", scene.system, Params());
-  auto lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
+  DumbbellLgvi d;
+  auto& [scene, registry, potential, lgvi, h] = d;
   Null null;
-  const double h = scene.integrator.params.at("step").as_double();
   for (auto _ : st) {
     State s = scene.initial;
     advance(*lgvi, *potential, scene.system, s, {1000 * h, 1000 * h}, null);
@@ -38,12 +44,9 @@ BENCHMARK(BM_LgviDumbbellStep)->Unit(benchmark::kMicrosecond);
 // The same steps carrying the 24 × 24 state-transition matrix (docs/equations.md §21): one
 // analytic force Jacobian and the tangent map's matrix products per step on top.
 void BM_LgviDumbbellStepWithStm(benchmark::State& st) {
-  const Scene scene = test::dumbbell_scene();
-  auto registry = test::bundled_plugins();
-  auto potential = registry.make_potential("sphere-cluster", scene.system, Params());
-  auto lgvi = registry.make_integrator("lgvi", scene.system, potential, scene.integrator.params);
+  DumbbellLgvi d;
+  auto& [scene, registry, potential, lgvi, h] = d;
   Null null;
-  const double h = scene.integrator.params.at("step").as_double();
   const auto N = State::tangent_rows(scene.system);
   for (auto _ : st) {
     State s = scene.initial;

@@ -59,11 +59,7 @@ class InertialHamiltonian final : public DiscreteFlow {
       F_[r] = solve_attitude(g, body.inertia, body.inertia_inverse, settings_, body.name, s_.t, h,
                              Vec3(s_.Pi.col(k)), work).F;
     }
-    if (carries_tangent()) {  // what the tangent map needs of this step (tangent_map.hpp)
-      step_.h = h;
-      step_.F = F_;
-      step_.w = s_.Pi + (0.5 * h) * fk.M;
-    }
+    if (carries_tangent()) w_ = s_.Pi + (0.5 * h) * fk.M;  // w_k, for the tangent map (21.8)
     x_prev_ = s_.x;
     R_prev_ = s_.R;
     const double t_prev = s_.t;
@@ -95,7 +91,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     }
     std::swap(current_, next_);
     if (carries_tangent()) {
-      s_.tangent = advance_tangent(system_, step_, K_, K_next_, s_.tangent);
+      s_.tangent = advance_tangent(system_, h, F_, w_, K_, K_next_, s_.tangent);
       std::swap(K_, K_next_);
     }
     ++work.steps;
@@ -129,9 +125,9 @@ class InertialHamiltonian final : public DiscreteFlow {
   std::vector<Mat3> F_;
   Eigen::Matrix3Xd x_prev_;
   std::vector<Mat3> R_prev_;
-  // The tangent map's: the force Jacobians at z_k and z_{k+1}, and the step's F_k and w_k.
+  // The tangent map's: the force Jacobians at z_k and z_{k+1}, and the step's w_k (F_k is F_).
   Eigen::MatrixXd K_, K_next_;
-  StepRecord step_;
+  Eigen::Matrix3Xd w_;
 };
 
 }  // namespace

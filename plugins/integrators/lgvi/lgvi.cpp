@@ -64,6 +64,8 @@ class Lgvi final : public noether::Integrator {
   noether::PotentialEvaluator* potential_evaluator() override { return &evaluator_; }
 
   void start(const noether::State& state) override {
+    // The other forms would hand the tangent back unchanged: refuse it (the host asks first).
+    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
     flow_->start(state);
     t0_ = state.t;
     k_ = 0;
@@ -91,6 +93,7 @@ class Lgvi final : public noether::Integrator {
   std::vector<double> checkpoint() const override { return flow_->checkpoint(); }
   void restore(const noether::State& state, const std::vector<double>& data) override {
     if (data.empty()) return start(state);
+    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
     flow_->restore(state, data);
     t0_ = state.t;
     k_ = 0;

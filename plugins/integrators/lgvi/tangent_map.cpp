@@ -8,12 +8,12 @@ namespace lgvi {
 using noether::Mat3;
 using noether::Vec3;
 
-Eigen::MatrixXd advance_tangent(const noether::System& system, const StepRecord& step, const Eigen::MatrixXd& K_k,
-                                const Eigen::MatrixXd& K_next, const Eigen::MatrixXd& V) {
+Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const std::vector<Mat3>& F_k,
+                                const Eigen::Matrix3Xd& w, const Eigen::MatrixXd& K_k, const Eigen::MatrixXd& K_next,
+                                const Eigen::MatrixXd& V) {
   const auto n = static_cast<Eigen::Index>(system.size());
   const auto m = static_cast<Eigen::Index>(system.rigid_count());
   const Eigen::Index q = 3 * n + 3 * m;  // configuration rows (δx, δθ); momenta (δγ, δΠ) follow
-  const double h = step.h;
   // Row blocks of V (21.1): δx [0, 3n), δθ [3n, q), δγ [q, q + 3n), δΠ [q + 3n, 2q).
   const auto dx = V.middleRows(0, 3 * n);
   const auto dtheta = V.middleRows(3 * n, 3 * m);
@@ -40,7 +40,7 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, const StepRecord&
   std::vector<Eigen::Matrix3Xd> phi(static_cast<std::size_t>(m));
   for (Eigen::Index r = 0; r < m; ++r) {
     const auto& body = system.body(system.body_of_rigid(static_cast<std::size_t>(r)));
-    const Mat3& F = step.F[static_cast<std::size_t>(r)];
+    const Mat3& F = F_k[static_cast<std::size_t>(r)];
     const Mat3& Jd = body.inertia_nonstandard;
     Mat3 A;
     for (int c = 0; c < 3; ++c) {
@@ -58,8 +58,8 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, const StepRecord&
   dgamma1 = dgamma + (0.5 * h) * (dF_k.topRows(3 * n) + dF_next.topRows(3 * n));
   // δΠ_{k+1} = S(F_kᵀ w_k) φ + F_kᵀ (δΠ_k + (h/2) δM_k) + (h/2) δM_{k+1}                  (21.8)
   for (Eigen::Index r = 0; r < m; ++r) {
-    const Mat3& F = step.F[static_cast<std::size_t>(r)];
-    const Vec3 Fw = F.transpose() * Vec3(step.w.col(r));
+    const Mat3& F = F_k[static_cast<std::size_t>(r)];
+    const Vec3 Fw = F.transpose() * Vec3(w.col(r));
     dPi1.middleRows(3 * r, 3) = noether::hat(Fw) * phi[static_cast<std::size_t>(r)] +
                                 F.transpose() * (dPi.middleRows(3 * r, 3) + 0.5 * h * dF_k.middleRows(3 * n + 3 * r, 3)) +
                                 0.5 * h * dF_next.middleRows(3 * n + 3 * r, 3);

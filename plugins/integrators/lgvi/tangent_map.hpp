@@ -9,17 +9,12 @@
 
 namespace lgvi {
 
-// What one step (z_k → z_{k+1}, step h) leaves for its derivative: F_k of every rigid body and
-// w_k = Π_k + (h/2) M_k, so that Π_{k+1} = F_kᵀ w_k + (h/2) M_{k+1} (97).
-struct StepRecord {
-  double h = 0.0;
-  std::vector<noether::Mat3> F;
-  Eigen::Matrix3Xd w;
-};
-
-// V_{k+1} = (∂z_{k+1}/∂z_k) V_k, with K_k and K_{k+1} the force Jacobians (§20) at both ends of
-// the step; V has 6n + 6m rows in the order (21.1).
-Eigen::MatrixXd advance_tangent(const noether::System& system, const StepRecord& step, const Eigen::MatrixXd& K_k,
-                                const Eigen::MatrixXd& K_next, const Eigen::MatrixXd& V);
+// V_{k+1} = (∂z_{k+1}/∂z_k) V_k for the step z_k → z_{k+1} of size h, given what the step
+// computed: F_k of every rigid body, w_k = Π_k + (h/2) M_k (so that Π_{k+1} = F_kᵀ w_k +
+// (h/2) M_{k+1}, (97)), and K_k, K_{k+1} the force Jacobians (§20) at both ends; V has 6n + 6m
+// rows in the order (21.1).
+Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const std::vector<noether::Mat3>& F,
+                                const Eigen::Matrix3Xd& w, const Eigen::MatrixXd& K_k, const Eigen::MatrixXd& K_next,
+                                const Eigen::MatrixXd& V);
 
 }  // namespace lgvi
