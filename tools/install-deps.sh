@@ -20,6 +20,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest python3-hypothesis
   pybind11-dev
+  strace
 )
 if [ "${1:-}" = "--sanitize" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev)

@@ -203,7 +203,10 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   // The series at their final length first (flushed), then /work: a kill in between leaves a
   // killed run's file, never a finished one whose series are longer than its frames.
   m.resize_series(frames_written_);
-  hid_t g = make_group(m.file, "work");
+  // /work is built unlinked and flushed, then linked and flushed: HDF5 writes a flush's
+  // metadata in no fixed order, and a kill after the root group's new link but before /work's
+  // own header left a link to unwritten metadata (docs/reliability.md, "Kills").
+  hid_t g = check_id(H5Gcreate_anon(m.file, io::late_group_creation(), H5P_DEFAULT), "work");
   scalar_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, work.steps);
   scalar_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64, work.potential_evaluations);
   scalar_attribute<std::int64_t>(g, "newton_iterations", H5T_NATIVE_INT64, work.newton_iterations);
@@ -217,8 +220,10 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
     scalar_attribute(g, "relative_energy_error", m.relative_energy_error);
     string_attribute(g, "energy_scale", m.energy_scale);
   }
-  H5Gclose(g);
   m.close_datasets();
+  m.flush_file("closing the output file");
+  check(H5Olink(g, m.file, "work", H5P_DEFAULT, H5P_DEFAULT), "linking /work");
+  H5Gclose(g);
   m.flush_file("closing the output file");
   check(H5Fclose(m.file), "closing the output file");
   m.file = -1;

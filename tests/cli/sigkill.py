@@ -1,13 +1,13 @@
 """sigkill.py NOETHER SOURCE_DIR WORK_DIR [KILLS]: a run killed with SIGKILL at any moment leaves
 its output path holding either the file that was there before, untouched, or a file that opens
-with every series of one length whose first /frames_complete frames are complete
-(docs/user-guide.md, "Output files").
+whose first /frames_complete frames are complete (killed_file.py; docs/user-guide.md, "Output
+files"). kill_at_every_write.py kills the same run at each of its writes in turn.
 
 Each run writes a frame every step (the dumbbells, 50,000 frames in about 0.15 s) over an
 existing file with --force, and is killed at a random moment between its start and a little
 after its expected end, so kills land while the file is created, while blocks are flushed and
-while the run finishes. Fails on a writer that extends datasets one by one (unequal lengths
-after a kill) or truncates before the new file is ready.
+while the run finishes. Fails on a writer that commits frames before their data (a series shorter
+than /frames_complete) or truncates before the new file is ready.
 """
 import os
 import random
@@ -17,7 +17,8 @@ import sys
 import time
 
 import h5py
-import numpy as np
+
+import killed_file
 
 noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
 kills = int(sys.argv[4]) if len(sys.argv) > 4 else 100
@@ -46,37 +47,6 @@ with h5py.File("run.h5", "r", locking=False) as f:
 with open("run.h5", "rb") as f:
     previous = f.read()
 
-SERIES = ("step", "time", "value")
-
-
-def check(path):
-    """The series lengths and the number of complete frames of a killed run's file."""
-    with h5py.File(path, "r", locking=False) as f:
-        lengths = {}
-        f.visititems(lambda name, obj: lengths.__setitem__(name, obj.shape[0])
-                     if isinstance(obj, h5py.Dataset) and name.rsplit("/", 1)[-1] in SERIES
-                     and not name.startswith("integrator") else None)
-        assert len(lengths) >= 10, lengths  # step and time are hard links: visited once
-        assert len(set(lengths.values())) == 1, f"series of different lengths: {lengths}"
-        n = int(f["frames_complete"][()])
-        length = next(iter(lengths.values()))
-        assert 0 <= n <= length, (n, length)
-        step = f["particles/bodies/position/step"][:n]
-        tt = f["particles/bodies/position/time"][:n]
-        assert np.array_equal(step, np.arange(n)), "steps"
-        assert np.allclose(tt, h * np.arange(n), rtol=0, atol=1e-9), "times"
-        for name in lengths:
-            values = f[name][:n]
-            if name.startswith("observables/osculating_elements"):  # NaN by design for an unbound pair
-                values = values[np.isfinite(values[:, 0])] if values.ndim == 2 else values
-            assert np.all(np.isfinite(values)), f"{name}: a non-finite value in a complete frame"
-        energy = f["observables/energy/value"][:n]
-        assert np.all(np.abs(energy - E0) < 1e-6), "energies of complete frames"
-        if "work" in f:  # the run reached its end: every frame is there
-            assert n == length == frames_full, (n, length, frames_full)
-        return length, n
-
-
 rng = random.Random(18)
 outcomes = {"previous file": 0, "killed mid-run": 0, "finished": 0}
 partial_left = 0
@@ -96,7 +66,7 @@ while k + 1 < kills or (outcomes["killed mid-run"] < kills // 5 and k + 1 < 3 * 
             outcomes["previous file"] += 1
             continue
     try:
-        length, n = check("run.h5")
+        length, n = killed_file.check("run.h5", h, E0, frames_full)
     except Exception as e:  # noqa: BLE001 - any failure to read is the failure under test
         print(f"sigkill: FAIL after kill {k}: {type(e).__name__}: {e}")
         sys.exit(1)

@@ -38,6 +38,21 @@ inline H5Handle file_access(std::size_t chunk_cache_bytes) {
 inline H5Handle file_creation() {
   H5Handle creation(H5Pcreate(H5P_FILE_CREATE));
   H5Pset_file_space_strategy(creation, H5F_FSPACE_STRATEGY_NONE, 0, 1);
+  // The root group keeps its links in its own header, with room for all of them from the start:
+  // a link added after the file is published (/work, when the run ends) is then one write of
+  // that header in place, never a new header chunk or a link heap whose pieces a flush writes
+  // in no fixed order.
+  H5Pset_link_phase_change(creation, 64, 48);
+  H5Pset_est_link_info(creation, 24, 24);
+  return creation;
+}
+
+// The group-creation properties of a group made and linked after the file is published: room
+// in its header for the reference count linking it adds, so that the link changes its header
+// in place (see file_creation).
+inline H5Handle late_group_creation() {
+  H5Handle creation(H5Pcreate(H5P_GROUP_CREATE));
+  H5Pset_est_link_info(creation, 4, 32);
   return creation;
 }
 

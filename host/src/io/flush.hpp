@@ -4,6 +4,7 @@
 // the close the extension is cut off again (docs/reliability.md, "Kills").
 #include "../h5_helpers.hpp"
 #include "file_access.hpp"
+#include "superblock.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -15,19 +16,24 @@
 
 namespace noether::io {
 
-// The flush writes the superblock, which records the end of allocation, and HDF5 refuses to
-// open a file shorter than that ("truncated file"): a kill between the superblock and the last
-// block of metadata would leave one. The margin covers what the flush itself allocates (~1 KiB
-// of metadata gets its file space only when written). The extension is a hole in the file.
-// `fd`: a descriptor of the file.
+// The flush writes the superblock, which records the end of allocation, last. A kill before it
+// would leave metadata pointing past the end the file records ("addr overflow"), and a file
+// shorter than that end is refused ("truncated file"). So before the flush the file is made
+// `margin` longer than HDF5's end of allocation (a hole) and its superblock records that longer
+// end; the margin covers what the flush itself allocates (~1 KiB of metadata gets its file space
+// only when written). After the flush the superblock records HDF5's own end again (HDF5 rewrote
+// it if the end moved; if not, this rewrite does). `fd`: a descriptor of the file.
 inline void flush_extended(hid_t file, int fd, const char* what) {
   constexpr haddr_t margin = 1 << 20;
   haddr_t eoa = 0;
   struct stat st {};
-  if (H5Fget_eoa(file, &eoa) >= 0 && ::fstat(fd, &st) == 0 && static_cast<haddr_t>(st.st_size) < eoa + margin &&
+  const bool known = H5Fget_eoa(file, &eoa) >= 0 && ::fstat(fd, &st) == 0;
+  if (known && static_cast<haddr_t>(st.st_size) < eoa + margin &&
       ::ftruncate(fd, static_cast<off_t>(eoa + margin)) != 0)
     throw OutputError(std::string("cannot extend the file while ") + what + ": " + std::strerror(errno));
+  const bool recorded = known && record_end_of_allocation(fd, eoa + margin);
   h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
+  if (recorded && H5Fget_eoa(file, &eoa) >= 0) record_end_of_allocation(fd, eoa);
 }
 
 // After the file at `path` (descriptor `fd`) is closed: cuts off what flush_extended added past

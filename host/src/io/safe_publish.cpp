@@ -64,7 +64,7 @@ fs::path partial_name(const fs::path& path) {
 }
 
 int create_partial(const fs::path& partial, const fs::path& path) {
-  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const int fd = ::open(partial.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0)
     throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(errno) +
                       " (does its folder exist, and is it writable?)");
