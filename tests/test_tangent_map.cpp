@@ -47,22 +47,6 @@ State run_from(const Scene& scene, const Eigen::VectorXd& dz) {
   return sim.state();
 }
 
-// a ⊖ b in the coordinates (21.1): differences, and log(R_bᵀ R_a) for attitudes.
-Eigen::VectorXd minus(const State& a, const State& b) {
-  const auto n = a.x.cols(), m = a.Pi.cols();
-  Eigen::VectorXd d(6 * n + 6 * m);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    d.segment(3 * i, 3) = a.x.col(i) - b.x.col(i);
-    d.segment(3 * n + 3 * m + 3 * i, 3) = a.p.col(i) - b.p.col(i);
-  }
-  for (Eigen::Index r = 0; r < m; ++r) {
-    const auto k = static_cast<std::size_t>(r);
-    d.segment(3 * n + 3 * r, 3) = log_so3(b.R[k].transpose() * a.R[k]);
-    d.segment(6 * n + 3 * m + 3 * r, 3) = a.Pi.col(r) - b.Pi.col(r);
-  }
-  return d;
-}
-
 // The step of each coordinate for central differences: a small fraction of the scene's scale of
 // that kind (the largest separation L, each body's momentum at the largest speed V, and |Π| at
 // the largest spin), and of a radian for attitudes.
@@ -112,7 +96,7 @@ Comparison compare_with_differences(const Scene& scene) {
     for (const double fraction : fractions) {
       const double h = steps(scene, fraction)(j);
       const Eigen::VectorXd e = h * Eigen::VectorXd::Unit(N, j);
-      columns.push_back(minus(run_from(scene, e), run_from(scene, -e)) / (2.0 * h));
+      columns.push_back(test::state_minus(run_from(scene, e), run_from(scene, -e)) / (2.0 * h));
     }
     std::size_t best = 0;
     for (std::size_t k = 1; k + 1 < columns.size(); ++k)

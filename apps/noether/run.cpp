@@ -176,7 +176,7 @@ int list_plugins() {
 void add_run_command(CLI::App& app, Command& chosen) {
   struct Options {
     std::string scene, output, resume, summary = "text";
-    std::vector<std::string> overrides;
+    std::vector<std::string> overrides, sensitivities;
     bool no_progress = false, force = false, stm = false;
     double max_wall_time = 0.0, resume_t_end = std::numeric_limits<double>::quiet_NaN();
   };
@@ -193,6 +193,11 @@ void add_run_command(CLI::App& app, Command& chosen) {
   cmd->add_flag("--stm", o->stm,
                 "carry the state-transition matrix of the integrator's map and write it at every frame "
                 "(/derivatives/stm; the same as --set run.stm=true)");
+  cmd->add_option("--sensitivity", o->sensitivities,
+                  "write the derivative of the state at every frame with respect to this key of a body's initial "
+                  "state, e.g. bodies.moon.velocity or bodies.moon.orbit.e (/derivatives/sensitivity; repeatable; "
+                  "the same as --set run.sensitivities+=KEY)")
+      ->take_all();
   cmd->add_flag("--force", o->force, "overwrite an existing output file (never a link or the scene)");
   cmd->add_option("--summary", o->summary, "the summary on stdout: text, or json (one object)")
       ->check(CLI::IsMember({"text", "json"}))
@@ -206,9 +211,10 @@ void add_run_command(CLI::App& app, Command& chosen) {
         std::cerr << "noether run: give a scene, or --resume FILE.h5 (not both)\n";
         return 2;
       }
-      if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force || o->stm)) {
+      if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force || o->stm ||
+                                  !o->sensitivities.empty())) {
         std::cerr << "noether run: --resume appends to the file it continues, with the scene recorded there: "
-                     "-o, --set, --stm and --force do not apply (extend a run with --t-end)\n";
+                     "-o, --set, --stm, --sensitivity and --force do not apply (extend a run with --t-end)\n";
         return 2;
       }
       if (o->resume.empty() && !std::isnan(o->resume_t_end)) {
@@ -216,6 +222,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
         return 2;
       }
       if (o->stm) o->overrides.push_back("run.stm=true");
+      for (const std::string& key : o->sensitivities) o->overrides.push_back("run.sensitivities+=" + key);
       return run(o->scene, o->output, o->overrides, !o->no_progress, o->force, o->summary == "json", o->max_wall_time,
                  o->resume, o->resume_t_end);
     };

@@ -93,8 +93,8 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  if (scene.run.stm)
-    throw Error(file.string() + ": continuing a run that carries the state-transition matrix (run.stm) is not "
+  if (scene.run.stm || !scene.run.sensitivities.empty())
+    throw Error(file.string() + ": continuing a run that carries the state-transition matrix or sensitivities (run.stm, run.sensitivities) is not "
                 "supported yet; run it again whole");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
@@ -193,8 +193,9 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  if (m.scene.run.stm)
-    throw Error("save: saving a simulation that carries the state-transition matrix (run.stm) is not supported yet");
+  if (m.scene.run.stm || !m.scene.run.sensitivities.empty())
+    throw Error("save: saving a simulation that carries the state-transition matrix or sensitivities (run.stm, "
+                "run.sensitivities) is not supported yet");
   // The file is built under a hidden name and published once complete (io/safe_publish.hpp):
   // a kill while saving leaves the previous checkpoint; a link, or the simulation's own output
   // file, is refused.
@@ -247,8 +248,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
-  if (scene.run.stm)
-    throw Error(path.string() + ": loading a simulation that carries the state-transition matrix (run.stm) is not "
+  if (scene.run.stm || !scene.run.sensitivities.empty())
+    throw Error(path.string() + ": loading a simulation that carries the state-transition matrix or sensitivities (run.stm, run.sensitivities) is not "
                 "supported yet");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");

@@ -96,7 +96,7 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
   const io::FrameInput in{*m.system, m.primary, m.secondary, state, d, work, interpolated_frames, wall_seconds,
-                          integrator_checkpoint};
+                          integrator_checkpoint, m.layout.stm_columns};
   // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
   // seeded with the frame's index (the bytes a continued run reads back).
   const std::uint64_t seed = frames_written_ + m.buffered;

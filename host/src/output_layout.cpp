@@ -60,7 +60,7 @@ void H5Writer::create_layout(const Scene& scene) {
   // Every series is allocated for the frames the run will write, up to a budget; a run that
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
-  m.layout = io::layout_of(sys, options.checkpoint_width, options.tangent_columns);
+  m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size());
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
@@ -169,13 +169,20 @@ void H5Writer::create_layout(const Scene& scene) {
     string_attribute(d, "unit", scene.units.of_inertia());
   }
   create_series(scene);
-  if (m.layout.tangent_columns > 0) {  // what the rows and columns of /derivatives/stm are
+  if (m.layout.stm_columns > 0 || m.layout.sensitivity_columns > 0) {  // what the rows and columns are
     const io::H5Handle derivatives(check_id(H5Gopen2(m.file, "derivatives", H5P_DEFAULT), "derivatives"));
     string_list_dataset(derivatives, "coordinates", State::tangent_coordinates(sys));
     const io::H5Handle names(check_id(H5Dopen2(derivatives, "coordinates", H5P_DEFAULT), "coordinates"));
     string_attribute(names, "description",
                      "the coordinates of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1) in the order of the rows "
-                     "of /derivatives/stm and of its columns (the same coordinates at t0)");
+                     "of /derivatives/stm and /derivatives/sensitivity, and of the columns of /derivatives/stm "
+                     "(the same coordinates at t0)");
+    if (m.layout.sensitivity_columns > 0) {
+      string_list_dataset(derivatives, "parameters", options.sensitivity_names);
+      const io::H5Handle keys(check_id(H5Dopen2(derivatives, "parameters", H5P_DEFAULT), "parameters"));
+      string_attribute(keys, "description",
+                       "the keys (run.sensitivities, as --set takes them) of the columns of /derivatives/sensitivity");
+    }
   }
   // The commit counter: frames [0, frames_complete) are complete; a killed run's series keep
   // their allocated length, with fill (NaN, step −1) or an unfinished block after it.

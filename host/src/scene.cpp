@@ -486,7 +486,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm"}, "'run'");
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm", "sensitivities"},
+                 "'run'");
   if (run.has("escape")) scene.run.escape = parse_escape(run.at("escape"), scene.system);
   if (run.has("trust")) {
     const Params& trust = run.at("trust");
@@ -502,6 +503,20 @@ Scene parse_scene(const std::string& text, const std::string& file,
   scene.run.close_approach = run.get("close_approach", 0.0);
   scene.run.collisions = run.get("collisions", true);
   scene.run.stm = run.get("stm", false);
+  if (run.has("sensitivities")) {  // keys, checked against the bodies where the run starts
+    const Params& keys = run.at("sensitivities");
+    if (keys.is_scalar() && !keys.as_string().empty()) {
+      scene.run.sensitivities.push_back(keys.as_string());
+    } else if (keys.is_sequence()) {
+      for (const Params& key : keys.items()) {
+        if (!key.is_scalar() || key.as_string().empty())
+          throw SceneError(key.here() + "'run.sensitivities' must list keys such as bodies.moon.velocity");
+        scene.run.sensitivities.push_back(key.as_string());
+      }
+    } else if (!keys.is_scalar()) {
+      throw SceneError(keys.here() + "'run.sensitivities' must list keys such as bodies.moon.velocity");
+    }
+  }
   if (!std::isfinite(scene.run.close_approach) || scene.run.close_approach < 0.0)
     throw SceneError(run.at("close_approach").here() + "'run.close_approach' must be non-negative");
   scene.run.t_end = run.at("t_end").as_double();

@@ -46,13 +46,13 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
-  if (sc.run.stm) {  // the tangent starts as the identity: V(t0) = ∂z(t0)/∂z(t0)
+  if (sc.run.stm || !sc.run.sensitivities.empty()) {
+    const char* key = sc.run.stm ? "stm" : "sensitivities";
     if (const std::string why = m.integrator->tangent_map_unavailable(); !why.empty())
-      throw SceneError((sc.root.at("run").has("stm") ? sc.root.at("run").at("stm").here() : std::string()) +
-                       "run.stm: integrator '" + sc.integrator.plugin +
-                       "' cannot carry the state-transition matrix: " + why);
-    const Eigen::Index N = State::tangent_rows(sc.system);
-    m.state.tangent = Eigen::MatrixXd::Identity(N, N);
+      throw SceneError((sc.root.at("run").has(key) ? sc.root.at("run").at(key).here() : std::string()) + "run." +
+                       key + ": integrator '" + sc.integrator.plugin + "' cannot carry " +
+                       (sc.run.stm ? "the state-transition matrix" : "sensitivities") + ": " + why);
+    m.state.tangent = m.initial_tangent();
   }
   m.t_origin = sc.initial.t;
   m.make_observer();
@@ -193,6 +193,7 @@ StopInfo Simulation::integrate(double t_end) {
 double Simulation::time() const { return impl_->state.t; }
 const State& Simulation::state() const { return impl_->state; }
 const Scene& Simulation::scene() const { return impl_->scene; }
+const std::vector<std::string>& Simulation::sensitivity_names() const { return impl_->sensitivity_names; }
 const Potential& Simulation::potential() const { return *impl_->potential; }
 
 void Simulation::set_state(const State& s) {
@@ -216,6 +217,9 @@ void Simulation::set_state(const State& s) {
     }
   }
   const Eigen::Index N = State::tangent_rows(sys);
+  if (!m.scene.run.sensitivities.empty())
+    throw Error("set_state: this run carries sensitivities to its scene's initial state (run.sensitivities), which "
+                "a state set here would no longer start from; make a Simulation for the new state instead");
   if (s.tangent.size() > 0 && !m.scene.run.stm)
     throw Error("set_state: the state carries a tangent but the run does not carry one (run.stm is off)");
   if (s.tangent.size() > 0 && (s.tangent.rows() != N || s.tangent.cols() != N || !s.tangent.allFinite()))

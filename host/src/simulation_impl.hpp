@@ -4,6 +4,7 @@
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
 
+#include "initial_sensitivity.hpp"
 #include "io/frame_schema.hpp"
 #include "run_statistics.hpp"
 
@@ -35,6 +36,22 @@ struct Simulation::Impl {
   bool in_call = false, finished = false;
   bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
+  // The tangent's columns after the state-transition matrix's: ∂z/∂key for run.sensitivities.
+  std::vector<std::string> sensitivity_names;
+
+  // The tangent at t0: [I | ∂z(t0)/∂keys] (each part only when asked for: run.stm,
+  // run.sensitivities; docs/derivatives.md); fills sensitivity_names.
+  Eigen::MatrixXd initial_tangent() {
+    const Eigen::Index N = State::tangent_rows(scene.system);
+    InitialSensitivity s;
+    if (!scene.run.sensitivities.empty()) s = initial_sensitivity(scene, scene.run.sensitivities);
+    sensitivity_names = s.names;
+    const Eigen::Index stm = scene.run.stm ? N : 0;
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + s.columns.cols());
+    V.leftCols(stm).setIdentity();
+    V.rightCols(s.columns.cols()) = s.columns;
+    return V;
+  }
 
   WorkCounters work() const { return base_work + integrator->work(); }
   double wall_now() const {
@@ -83,7 +100,8 @@ struct Simulation::Impl {
     } catch (const Error&) {  // an integrator that could not start has no checkpoint
       output.checkpoint_width = 0;
     }
-    output.tangent_columns = static_cast<std::size_t>(state.tangent.cols());
+    output.stm_columns = scene.run.stm ? static_cast<std::size_t>(State::tangent_rows(scene.system)) : 0;
+    output.sensitivity_names = sensitivity_names;
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;

@@ -148,10 +148,18 @@ def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
     raise TypeError("lyapunov_orbit(scene): a path to a YAML scene, or a dict of its keys")
 
 
+def _derivative_overrides(set, stm, sensitivities):
+    """The overrides of set=, stm= and sensitivities= (as `noether run --set/--stm/--sensitivity`)."""
+    if isinstance(sensitivities, str):
+        sensitivities = [sensitivities]
+    return (([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
+            + [f"run.sensitivities+={key}" for key in sensitivities])
+
+
 class Simulation:
     """A run held open: integrate to a time, read or set the state, integrate on.
 
-    Simulation(scene, set=(), output=None, force=False, potential=None, stm=False)
+    Simulation(scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=())
       scene     a path to a YAML scene file, or a dict with the keys of one (docs/user-guide.md)
       set       overrides as for `noether run --set`: ["integrator.step=1e-3", ...]
       output    an HDF5 file to write as the command does (frames at run.output_every and at
@@ -161,14 +169,16 @@ class Simulation:
                 of the scene's potential plugins (prototyping only: it is slow; docs/python.md)
       stm       carry the state-transition matrix of the integrator's map (run.stm, `noether run
                 --stm`): sim.stm, docs/derivatives.md
+      sensitivities  keys of the bodies' initial states ("bodies.moon.velocity", …; run.sensitivities,
+                `noether run --sensitivity`): sim.sensitivities, docs/derivatives.md
 
     The state properties return copies (NumPy arrays) of the state where the simulation stands;
     assigning one (sim.positions = x) or calling set_state(...) replaces that part, checked, and
     starts a new segment (the summary's references are taken there).
     """
 
-    def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False):
-        overrides = ([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
+    def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=()):
+        overrides = _derivative_overrides(set, stm, sensitivities)
         if isinstance(scene, _Simulation):  # from load()
             self._sim = scene
         elif isinstance(scene, dict):
@@ -181,10 +191,11 @@ class Simulation:
                             "for YAML text use Simulation.from_yaml(text)")
 
     @classmethod
-    def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False):
+    def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False,
+                  sensitivities=()):
         """A simulation of a scene given as YAML text (relative shape paths: from the working
         folder)."""
-        overrides = ([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
+        overrides = _derivative_overrides(set, stm, sensitivities)
         return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
 
     @classmethod
@@ -238,6 +249,20 @@ class Simulation:
         (docs/equations.md eq. 21.1; names in stm_coordinates); None unless the simulation
         carries it (stm=True)."""
         return self._sim.stm
+
+    @property
+    def sensitivities(self):
+        """∂z(t)/∂p: how the state where the simulation stands moves with each key of the
+        bodies' initial states asked for (sensitivities=...), a (6n + 6m) × P array, rows in the
+        order of z (stm_coordinates), columns named by sensitivity_names, per unit of each key
+        as the scene gives it; None unless asked for."""
+        return self._sim.sensitivities
+
+    @property
+    def sensitivity_names(self):
+        """The keys of the columns of sensitivities, one per component ("bodies.moon.velocity.0",
+        "bodies.moon.orbit.e", "bodies.alpha.attitude.x")."""
+        return self._sim.sensitivity_names
 
     @property
     def stm_coordinates(self):

@@ -235,9 +235,18 @@ class PySimulation {
   // The state-transition matrix ∂z(t)/∂z(t0) the run carries (run.stm), None when it carries none.
   py::object stm() const {
     const Eigen::MatrixXd& V = sim_->state().tangent;
-    if (V.size() == 0) return py::none();
-    return py::cast(V);  // pybind11/eigen.h: a NumPy copy
+    if (V.size() == 0 || !sim_->scene().run.stm) return py::none();
+    return py::cast(Eigen::MatrixXd(V.leftCols(V.rows())));  // pybind11/eigen.h: a NumPy copy
   }
+  // ∂z(t)/∂p for the keys of run.sensitivities (the tangent's columns after the STM's), None
+  // when the run carries none; its columns are named by sensitivity_names.
+  py::object sensitivities() const {
+    const Eigen::MatrixXd& V = sim_->state().tangent;
+    const auto P = static_cast<Eigen::Index>(sim_->sensitivity_names().size());
+    if (V.size() == 0 || P == 0) return py::none();
+    return py::cast(Eigen::MatrixXd(V.rightCols(P)));
+  }
+  std::vector<std::string> sensitivity_names() const { return sim_->sensitivity_names(); }
   std::vector<std::string> stm_coordinates() const { return State::tangent_coordinates(system()); }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
@@ -459,6 +468,8 @@ PYBIND11_MODULE(_noether, m) {
       .def("force_jacobian", &PySimulation::force_jacobian)
       .def_property_readonly("stm", &PySimulation::stm)
       .def_property_readonly("stm_coordinates", &PySimulation::stm_coordinates)
+      .def_property_readonly("sensitivities", &PySimulation::sensitivities)
+      .def_property_readonly("sensitivity_names", &PySimulation::sensitivity_names)
       .def("summary_json", &PySimulation::summary_json)
       .def("summary_text", &PySimulation::summary_text)
       .def("finish", &PySimulation::finish)

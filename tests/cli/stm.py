@@ -4,7 +4,8 @@ The file's /derivatives/stm starts at the identity, is named by /derivatives/coo
 det 1 at every frame (the LGVI's map is symplectic), and its column of alpha's x position at the
 last frame is the central difference of two runs started from positions moved with --set. The
 runs that cannot carry it are refused before anything is written: --resume of such a file, and
-a method without a tangent map (the LGVI's Lagrangian form).
+a method without a tangent map (the LGVI's Lagrangian form). `--sensitivity KEY` writes
+/derivatives/sensitivity, checked the same way, and refuses a parameter of the dynamics.
 """
 import os
 import subprocess
@@ -32,8 +33,9 @@ dets = [np.linalg.det(m) for m in stm]
 assert max(abs(d - 1) for d in dets) < 1e-12, dets
 
 
-def final_positions(x):
-    subprocess.run([noether, "run", scene, "-o", "moved.h5", *base, "--set", f"bodies.alpha.position=[{x!r}, 0, 0.2]"],
+def final_state(override):
+    """Positions and momenta at the last frame of a run with one more --set."""
+    subprocess.run([noether, "run", scene, "-o", "moved.h5", *base, "--set", override],
                    check=True, stdout=subprocess.DEVNULL)
     with h5py.File("moved.h5", "r") as f:
         return np.concatenate([f["particles/bodies/position/value"][-1].ravel(),
@@ -41,10 +43,37 @@ def final_positions(x):
 
 
 h = 1e-6
+def final_positions(x):
+    return final_state(f"bodies.alpha.position=[{x!r}, 0, 0.2]")
+
+
 column = (final_positions(0.67 + h) - final_positions(0.67 - h)) / (2 * h)
 expected = np.concatenate([stm[-1][0:6, 0], stm[-1][12:18, 0]])
 error = np.abs(column - expected).max() / np.abs(expected).max()
 assert error < 1e-6, (error, column, expected)
+
+# --sensitivity: the column of alpha's initial y velocity, against two runs moved with --set.
+subprocess.run([noether, "run", scene, "--sensitivity", "bodies.alpha.velocity.1", "-o", "sens.h5", *base],
+               check=True, stdout=subprocess.DEVNULL)
+with h5py.File("sens.h5", "r") as f:
+    sens = f["derivatives/sensitivity/value"][:]
+    keys = [n.decode() if isinstance(n, bytes) else n for n in f["derivatives/parameters"][:]]
+    assert "derivatives/stm" not in f
+assert sens.shape == (6, 24, 1) and keys == ["bodies.alpha.velocity.1"], (sens.shape, keys)
+
+
+def final_state_moved(v):
+    return final_state(f"bodies.alpha.velocity=[0, {v!r}, 0]")
+
+
+column = (final_state_moved(0.67 + h) - final_state_moved(0.67 - h)) / (2 * h)
+expected = np.concatenate([sens[-1][0:6, 0], sens[-1][12:18, 0]])
+sens_error = np.abs(column - expected).max() / np.abs(expected).max()
+assert sens_error < 1e-6, (sens_error, column, expected)
+mass = subprocess.run([noether, "run", scene, "--sensitivity", "bodies.beta.mass", "-o", "mass.h5", *base],
+                      capture_output=True, text=True)
+assert mass.returncode == 2 and "a parameter of the dynamics" in mass.stderr, mass.stderr
+assert not os.path.exists("mass.h5")
 
 resume = subprocess.run([noether, "run", "--resume", "stm.h5", "--t-end", "1", "--no-progress"],
                         capture_output=True, text=True)
@@ -54,4 +83,5 @@ refused = subprocess.run([noether, "run", scene, "--stm", "-o", "refused.h5", *b
 assert refused.returncode == 2 and "cannot carry the state-transition matrix" in refused.stderr, refused.stderr
 assert not os.path.exists("refused.h5")
 print(f"stm: 6 frames of 24×24, max |det − 1| {max(abs(d - 1) for d in dets):.1e}; "
-      f"column alpha.position.x against differences of two runs: {error:.1e}")
+      f"column alpha.position.x against differences of two runs: {error:.1e}; sensitivity to "
+      f"bodies.alpha.velocity.1: {sens_error:.1e}")

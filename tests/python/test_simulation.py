@@ -328,3 +328,28 @@ def test_stm_restarts_at_a_new_state_and_is_absent_unless_asked(dumbbells):
     dumbbells["integrator"]["form"] = "lagrangian"
     with pytest.raises(noether.SceneError, match="cannot carry the state-transition matrix"):
         noether.Simulation(dumbbells, stm=True)
+
+
+def test_sensitivities_follow_the_stm_and_the_scene_keys(dumbbells, tmp_path):
+    # sim.sensitivities (docs/derivatives.md): with the STM carried too, the sensitivity to
+    # alpha's spin Ω_z is the STM times the initial column (∂Π/∂Ω_z = J e_z, the rest 0); the
+    # file holds the same; set_state is refused; a mass is not an initial-state key.
+    dumbbells["run"].update(t_end=0.2, output_every=0.1)
+    sim = noether.Simulation(dumbbells, stm=True, sensitivities=["bodies.alpha.angular_velocity.2"],
+                             output=str(tmp_path / "sens.h5"))
+    assert sim.sensitivity_names == ["bodies.alpha.angular_velocity.2"]
+    start = sim.sensitivities
+    assert start.shape == (24, 1)
+    J_zz = dumbbells["bodies"][0]["inertia"][2]
+    e = np.zeros(24)
+    e[20] = J_zz  # alpha.angular_momentum.z
+    assert np.abs(start[:, 0] - e).max() < 1e-9 * J_zz
+    sim.integrate(0.2)
+    assert np.abs(sim.sensitivities - sim.stm @ start).max() < 1e-12 * np.abs(sim.stm).max() * J_zz
+    with pytest.raises(noether.Error, match="carries sensitivities"):
+        sim.positions = sim.positions
+    sim.finish()
+    out = noether.read(tmp_path / "sens.h5")
+    assert out["sensitivity"].shape == (3, 24, 1)
+    with pytest.raises(noether.SceneError, match="a parameter of the dynamics"):
+        noether.Simulation(dumbbells, sensitivities="bodies.beta.mass")

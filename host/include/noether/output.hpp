@@ -30,7 +30,10 @@ struct OutputOptions {
   bool overwrite = false;          // replace an existing file (--force); never a link or an input
   std::vector<std::filesystem::path> inputs;  // files the run reads (the scene): never overwritten
   std::size_t checkpoint_width = 0;  // Integrator::checkpoint()'s size: /checkpoint/integrator [frame][width]
-  std::size_t tangent_columns = 0;   // State::tangent's columns: /derivatives/stm (0: none, run.stm off)
+  // State::tangent's columns: the state-transition matrix's first (/derivatives/stm; 0: run.stm
+  // off), then one per sensitivity (/derivatives/sensitivity, named by /derivatives/parameters).
+  std::size_t stm_columns = 0;
+  std::vector<std::string> sensitivity_names;
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
   // Build the file under its hidden name until publish() (a continued run: the old file stays
   // as it is until its frames have been read back, verified and copied).

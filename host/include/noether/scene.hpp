@@ -39,6 +39,9 @@ struct RunSettings {
   // Carry the state-transition matrix ∂z(t)/∂z(t0) of the integrator's own map through the run
   // (`noether run --stm`; docs/derivatives.md): /derivatives/stm at every output frame.
   bool stm = false;
+  // Keys of the bodies' initial states (run.sensitivities, `noether run --sensitivity KEY`;
+  // docs/derivatives.md): ∂z(t)/∂key at every output frame, /derivatives/sensitivity.
+  std::vector<std::string> sensitivities;
   TrustThresholds trust;
 };
 

@@ -153,6 +153,9 @@ class Simulation {
   // summary's references (E0, momenta) are taken from this state.
   void set_state(const State& state);
   const Scene& scene() const;
+  // The keys of the tangent's sensitivity columns (run.sensitivities, one per component), in
+  // order; they follow the state-transition matrix's columns when run.stm is on too.
+  const std::vector<std::string>& sensitivity_names() const;
   const Potential& potential() const;
   // The summary so far, judged against run.trust.
   RunSummary summary() const;

@@ -38,12 +38,18 @@ Matrix matrix(const void* in, std::size_t width) {
 void step(const FrameInput& in, void* out) { *integers(out) = in.work.steps; }
 void time(const FrameInput& in, void* out) { copy(in.state.t, out); }
 void position(const FrameInput& in, void* out) { copy(in.state.x, out); }
-// [coordinate][variation], row-major (Eigen's storage is column-major).
-void tangent(const FrameInput& in, void* out) {
-  const Eigen::MatrixXd& V = in.state.tangent;
+// Columns [first, last) of State::tangent as [coordinate][column], row-major (Eigen's storage is
+// column-major).
+void tangent_columns(const Eigen::MatrixXd& V, Eigen::Index first, Eigen::Index last, void* out) {
   double* o = doubles(out);
   for (Eigen::Index r = 0; r < V.rows(); ++r)
-    for (Eigen::Index c = 0; c < V.cols(); ++c) *o++ = V(r, c);
+    for (Eigen::Index c = first; c < last; ++c) *o++ = V(r, c);
+}
+void stm(const FrameInput& in, void* out) {
+  tangent_columns(in.state.tangent, 0, static_cast<Eigen::Index>(in.stm_columns), out);
+}
+void sensitivity(const FrameInput& in, void* out) {
+  tangent_columns(in.state.tangent, static_cast<Eigen::Index>(in.stm_columns), in.state.tangent.cols(), out);
 }
 void velocity(const FrameInput& in, void* out) {  // v = γ/m
   double* v = doubles(out);
@@ -250,7 +256,13 @@ const FrameQuantity kFrameSchema[] = {
      "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "
      "columns in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1), named by /derivatives/coordinates; θ "
      "is the right perturbation R exp(S(θ)) of an attitude, Π the body-frame angular momentum",
-     -1, tangent, nullptr},
+     -1, stm, nullptr},
+    {"sensitivity", "/derivatives/sensitivity/value", E::kSensitivity, D::kMixed, kH5md,
+     "the sensitivities ∂z(t)/∂p of the state to keys of the bodies' initial states (run.sensitivities, "
+     "docs/derivatives.md): rows in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1, "
+     "/derivatives/coordinates), columns named by /derivatives/parameters, per unit of each key as the scene "
+     "gives it",
+     -1, sensitivity, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -290,7 +302,8 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kRigidQuaternion:
     case E::kRigidMatrix: return l.rigid > 0;
     case E::kIntegrator: return l.width > 0;
-    case E::kTangent: return l.tangent_columns > 0;
+    case E::kTangent: return l.stm_columns > 0;
+    case E::kSensitivity: return l.sensitivity_columns > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -318,14 +331,17 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kRigidMatrix: return {l.rigid, 3, 3};
     case E::kWork: return {5};
     case E::kIntegrator: return {l.width};
-    case E::kTangent: return {6 * (l.bodies + l.rigid), l.tangent_columns};
+    case E::kTangent: return {6 * (l.bodies + l.rigid), l.stm_columns};
+    case E::kSensitivity: return {6 * (l.bodies + l.rigid), l.sensitivity_columns};
   }
   return {};
 }
 
-FrameLayout layout_of(const System& system, std::size_t width, std::size_t tangent_columns) {
+FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
+                      std::size_t sensitivity_columns) {
   FrameLayout l;
-  l.tangent_columns = tangent_columns;
+  l.stm_columns = stm_columns;
+  l.sensitivity_columns = sensitivity_columns;
   l.bodies = system.size();
   l.rigid = system.rigid_count();
   l.width = width;
@@ -340,7 +356,9 @@ FrameLayout layout_of(const System& system, std::size_t width, std::size_t tange
 bool rigid_only(const FrameQuantity& q) {
   return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix;
 }
-bool optional(const FrameQuantity& q) { return q.extent == E::kIntegrator || q.extent == E::kTangent; }
+bool optional(const FrameQuantity& q) {
+  return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity;
+}
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
          q.extent == E::kPrimaryFrame || q.extent == E::kSecondaryAngle || q.extent == E::kSecondaryVector;
@@ -352,6 +370,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kRigidMatrix: return "rigid bodies";
     case E::kIntegrator: return "an integrator with variables of its own";
     case E::kTangent: return "run.stm";
+    case E::kSensitivity: return "run.sensitivities";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -392,7 +411,8 @@ std::string describe_extent(Extent e) {
     case E::kRigidMatrix: return "[frame][rigid body][3][3]";
     case E::kWork: return "[frame][5]";
     case E::kIntegrator: return "[frame][width]";
-    case E::kTangent: return "[frame][coordinate][variation]";
+    case E::kTangent: return "[frame][coordinate][coordinate]";
+    case E::kSensitivity: return "[frame][coordinate][parameter]";
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:

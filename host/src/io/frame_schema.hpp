@@ -30,6 +30,7 @@ struct FrameInput {
   std::int64_t interpolated = 0;  // frames interpolated between the method's steps so far
   double wall_seconds = 0.0;
   const std::vector<double>& integrator;  // Integrator::checkpoint()
+  std::size_t stm_columns = 0;  // the state-transition matrix's columns of State::tangent (first), 0: none
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
@@ -60,13 +61,15 @@ enum class Extent {
   kPrimaryFrame,     // [3]     idem, when the primary is rigid: a vector in its body frame
   kSecondaryAngle,   // []      idem, when the secondary is rigid
   kSecondaryVector,  // [3]     idem
-  kTangent,          // [coordinate][variation]: State::tangent (present when the run carries one, run.stm)
+  kTangent,          // [coordinate][coordinate]: the STM, State::tangent's first columns (run.stm)
+  kSensitivity,      // [coordinate][parameter]: State::tangent's columns after the STM's (run.sensitivities)
 };
 
 // What decides which series a file has, and their shapes.
 struct FrameLayout {
   std::size_t bodies = 0, rigid = 0, width = 0;  // width: Integrator::checkpoint()'s size
-  std::size_t tangent_columns = 0;                // State::tangent's columns (0: none carried)
+  std::size_t stm_columns = 0;          // State::tangent's columns of the STM (0: run.stm off)
+  std::size_t sensitivity_columns = 0;  // its columns after those (run.sensitivities)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -104,8 +107,9 @@ inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
 bool present(const FrameQuantity& q, const FrameLayout& layout);
 std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& layout);
 // The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
-// a tangent of `tangent_columns` columns.
-FrameLayout layout_of(const System& system, std::size_t width, std::size_t tangent_columns = 0);
+// a tangent of `stm_columns` + `sensitivity_columns` columns.
+FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
+                      std::size_t sensitivity_columns = 0);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

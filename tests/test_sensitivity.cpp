@@ -1,0 +1,235 @@
+// Sensitivities to keys of the bodies' initial states (run.sensitivities, docs/derivatives.md):
+// each column against central differences of whole runs moved with the same key, for the LGVI
+// and rk4; the columns are the STM times their start; keys the run cannot take are refused.
+#include "test_support.hpp"
+
+#include <noether/error.hpp>
+#include <noether/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <functional>
+#include <map>
+
+using namespace noether;
+
+namespace {
+
+// A planet given by its osculating elements about a star, the scene moved onto its barycentre.
+const char* kElements = R"(G: 1
+barycentric: true
+bodies:
+  - {name: star, mass: 1, position: [0, 0, 0], velocity: [0, 0, 0]}
+  - name: planet
+    mass: 1.0e-3
+    orbit: {around: star, a: 1, e: 0.3, i: 20, Omega: 40, omega: 60, M: 30}
+potential: {plugin: point-mass}
+integrator: {plugin: lgvi, step: 0.001}
+run: {t_end: 3, output_every: 1}
+)";
+
+PluginRegistry& registry() {
+  static PluginRegistry r = test::bundled_plugins();
+  return r;
+}
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// The state at t_end of the scene `text` with `overrides`, or of its initial state changed by `edit`.
+State final_state(const std::string& text, const std::vector<std::string>& overrides,
+                  const std::function<void(State&)>& edit = {}) {
+  Scene scene = parse_scene(text, "test", overrides);
+  if (edit) edit(scene.initial);
+  Simulation sim(scene, registry());
+  sim.integrate(scene.run.t_end);
+  return sim.state();
+}
+
+// A column by central differences of whole runs, the key moved by ±h for h = fraction × scale,
+// fraction 1e-3 … 1e-6, taking the larger h of the two successive ones whose differences agree
+// best (as test_tangent_map.cpp's compare_with_differences: chosen by the differences alone).
+Eigen::VectorXd differenced(const std::function<State(double)>& moved, double scale) {
+  std::vector<Eigen::VectorXd> columns;
+  for (const double fraction : {1e-3, 1e-4, 1e-5, 1e-6}) {
+    const double h = fraction * scale;
+    columns.push_back(test::state_minus(moved(h), moved(-h)) / (2.0 * h));
+  }
+  std::size_t best = 0;
+  for (std::size_t k = 1; k + 1 < columns.size(); ++k)
+    if ((columns[k] - columns[k + 1]).norm() < (columns[best] - columns[best + 1]).norm()) best = k;
+  return columns[best];
+}
+
+double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
+
+// Every column of the run's sensitivities against differences of runs with the key (a scalar
+// key, or a component: "bodies.star.velocity.1") moved from `values` (its value in the scene).
+double worst_column(const std::string& text, const std::vector<std::string>& overrides,
+                    const std::map<std::string, double>& values) {
+  Scene scene = parse_scene(text, "test", overrides);
+  Simulation sim(scene, registry());
+  sim.integrate(scene.run.t_end);
+  const Eigen::MatrixXd S = sim.state().tangent;
+  const auto& names = sim.sensitivity_names();
+  EXPECT_EQ(static_cast<std::size_t>(S.cols()), names.size());
+  double worst = 0.0;
+  for (std::size_t c = 0; c < names.size(); ++c) {
+    const auto found = values.find(names[c]);
+    if (found == values.end()) {
+      ADD_FAILURE() << "no value given for " << names[c];
+      continue;
+    }
+    const double v = found->second;
+    const Eigen::VectorXd fd = differenced(
+        [&](double h) {
+          std::vector<std::string> moved = overrides;  // the same integrator; the key moved
+          moved.push_back("run.sensitivities=~");
+          moved.push_back(names[c] + "=" + number(v + h));
+          return final_state(text, moved);
+        },
+        std::max(1.0, std::abs(v)));
+    const double d = relative(S.col(static_cast<Eigen::Index>(c)), fd);
+    if (std::getenv("NOETHER_TEST_VERBOSE")) std::printf("%s: relative difference %.2e\n", names[c].c_str(), d);
+    worst = std::max(worst, d);
+  }
+  return worst;
+}
+
+const std::map<std::string, double> kElementValues = {
+    {"bodies.planet.orbit.a", 1},          {"bodies.planet.orbit.e", 0.3},        {"bodies.planet.orbit.i", 20},
+    {"bodies.planet.orbit.Omega", 40},     {"bodies.planet.orbit.omega", 60},     {"bodies.planet.orbit.M", 30}};
+
+const std::vector<std::string> kElementKeys = {
+    "run.sensitivities=[bodies.planet.orbit.a, bodies.planet.orbit.e, bodies.planet.orbit.i, "
+    "bodies.planet.orbit.Omega, bodies.planet.orbit.omega, bodies.planet.orbit.M]"};
+
+}  // namespace
+
+// The elements' map to z(t0) (Kepler's equation, the rotation by i, Ω, ω, the barycentric
+// shift) differenced when the run starts, carried by the LGVI's tangent map: a orbit of e = 0.3
+// over half its period.
+TEST(Sensitivity, OrbitalElementsAgreeWithDifferencesOfWholeRunsLgvi) {
+  EXPECT_LT(worst_column(kElements, kElementKeys, kElementValues), 1e-7);
+}
+
+TEST(Sensitivity, OrbitalElementsAgreeWithDifferencesOfWholeRunsRk4) {
+  std::vector<std::string> overrides = kElementKeys;
+  overrides.push_back("integrator={plugin: rk, method: rk4, step: 0.001}");
+  EXPECT_LT(worst_column(kElements, overrides, kElementValues), 1e-7);
+}
+
+// With the STM carried too, the sensitivities are the STM times their start, ∂z(t)/∂p =
+// M(t) ∂z(t0)/∂p (the tangent's columns split as the output writes them).
+TEST(Sensitivity, AreTheStmTimesTheirStart) {
+  std::vector<std::string> overrides = kElementKeys;
+  overrides.push_back("run.stm=true");
+  Scene scene = parse_scene(kElements, "test", overrides);
+  Simulation sim(scene, registry());
+  const Eigen::Index N = State::tangent_rows(scene.system);
+  const Eigen::MatrixXd start = sim.state().tangent;
+  ASSERT_EQ(start.cols(), N + 6);
+  EXPECT_TRUE(start.leftCols(N).isIdentity(0.0));
+  sim.integrate(scene.run.t_end);
+  const Eigen::MatrixXd& V = sim.state().tangent;
+  const Eigen::MatrixXd expected = V.leftCols(N) * start.rightCols(6);
+  EXPECT_LT((V.rightCols(6) - expected).norm(), 1e-12 * V.leftCols(N).norm() * start.rightCols(6).norm());
+}
+
+// At a bound of its key (e = 0: a circular orbit) the start is differenced one-sided; against
+// one-sided differences of whole runs (second order: (−3 z(0) + 4 z(h) − z(2h)) / 2h).
+TEST(Sensitivity, CircularOrbitTakesTheOneSidedDerivative) {
+  const std::vector<std::string> circular = {"bodies.planet.orbit.e=0", "run.sensitivities=[bodies.planet.orbit.e]"};
+  Scene scene = parse_scene(kElements, "test", circular);
+  Simulation sim(scene, registry());
+  sim.integrate(scene.run.t_end);
+  const Eigen::VectorXd column = sim.state().tangent.col(0);
+  const State z0 = final_state(kElements, {"bodies.planet.orbit.e=0"});
+  const double h = 1e-5;
+  const Eigen::VectorXd fd = (4.0 * test::state_minus(final_state(kElements, {"bodies.planet.orbit.e=" + number(h)}), z0) -
+                              test::state_minus(final_state(kElements, {"bodies.planet.orbit.e=" + number(2 * h)}), z0)) /
+                             (2.0 * h);
+  EXPECT_LT(relative(column, fd), 1e-6);
+}
+
+// A rigid body's spin, attitude and another body's position (the dumbbells, LGVI, 5000 steps):
+// the attitude's columns are the right rotations R exp(S(θ)) of the state itself.
+TEST(Sensitivity, RigidBodyKeysAgreeWithDifferencesOfWholeRuns) {
+  const std::string text = [] {
+    std::ifstream in(test::source_path("examples/dumbbells.yaml"));
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const std::vector<std::string> base = {"run.t_end=1", "run.output_every=0.5"};
+  std::vector<std::string> overrides = base;
+  overrides.push_back("run.sensitivities=[bodies.alpha.angular_velocity.2, bodies.beta.position.0, bodies.alpha.attitude]");
+  Scene scene = parse_scene(text, "test", overrides);
+  Simulation sim(scene, registry());
+  sim.integrate(scene.run.t_end);
+  const Eigen::MatrixXd S = sim.state().tangent;
+  const std::vector<std::string> expected = {"bodies.alpha.angular_velocity.2", "bodies.beta.position.0",
+                                             "bodies.alpha.attitude.x", "bodies.alpha.attitude.y",
+                                             "bodies.alpha.attitude.z"};
+  ASSERT_EQ(sim.sensitivity_names(), expected);
+  auto moved_key = [&](const std::string& key, double v) {
+    return [&, key, v](double h) {
+      std::vector<std::string> o = base;
+      o.push_back(key + "=" + number(v + h));
+      return final_state(text, o);
+    };
+  };
+  double worst = relative(S.col(0), differenced(moved_key("bodies.alpha.angular_velocity.2", 9.0), 9.0));
+  worst = std::max(worst, relative(S.col(1), differenced(moved_key("bodies.beta.position.0", -0.33), 1.0)));
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::VectorXd fd = differenced(
+        [&](double h) {
+          return final_state(text, base, [&](State& z) { z.R[0] = z.R[0] * exp_so3(h * Vec3::Unit(a)); });
+        },
+        1.0);
+    worst = std::max(worst, relative(S.col(2 + a), fd));
+  }
+  EXPECT_LT(worst, 1e-7);
+}
+
+// Keys that are not of an initial state, or that the scene cannot take, are refused by name
+// before anything runs; so are a method without a tangent map and set_state.
+TEST(Sensitivity, RefusesWhatItCannotDerive) {
+  auto refusal = [](const std::string& keys, const std::vector<std::string>& more = {}) -> std::string {
+    std::vector<std::string> overrides = {"run.sensitivities=" + keys};
+    overrides.insert(overrides.end(), more.begin(), more.end());
+    try {
+      Scene scene = parse_scene(kElements, "test", overrides);
+      Simulation sim(scene, registry());
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal("[bodies.planet.mass]").find("a parameter of the dynamics"), std::string::npos);
+  EXPECT_NE(refusal("[G]").find("is not a key of a body's initial state"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.comet.velocity]").find("names no body of the scene (star, planet)"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.position]").find("given by orbit"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.star.orbit.e]").find("given by position and velocity"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.orbit.nu]").find("gives its anomaly as M"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.star.angular_velocity]").find("is a point mass"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.star.velocity, bodies.star.velocity.1]").find("asked for twice"), std::string::npos);
+  const std::string lagrangian = refusal("[bodies.star.velocity]", {"integrator.form=lagrangian"});
+  EXPECT_NE(lagrangian.find("integrator 'lgvi' cannot carry sensitivities"), std::string::npos) << lagrangian;
+
+  Scene scene = parse_scene(kElements, "test", {"run.sensitivities=[bodies.star.velocity]"});
+  Simulation sim(scene, registry());
+  State z = sim.state();
+  z.tangent.resize(0, 0);
+  try {
+    sim.set_state(z);
+    ADD_FAILURE() << "set_state was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("carries sensitivities"), std::string::npos) << e.what();
+  }
+}
