@@ -49,7 +49,7 @@ struct Simulation::Impl {
     const Eigen::Index stm = scene.run.stm ? N : 0;
     Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + s.columns.cols());
     V.leftCols(stm).setIdentity();
-    V.rightCols(s.columns.cols()) = s.columns;
+    if (s.columns.cols() > 0) V.rightCols(s.columns.cols()) = s.columns;  // (a 0×0 U does not fit N × 0)
     return V;
   }
 
