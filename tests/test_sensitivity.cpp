@@ -71,9 +71,10 @@ Eigen::VectorXd differenced(const std::function<State(double)>& moved, double sc
 double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
 
 // Every column of the run's sensitivities against differences of runs with the key (a scalar
-// key, or a component: "bodies.star.velocity.1") moved from `values` (its value in the scene).
+// key, or a component: "bodies.star.velocity.1") moved from `values` (its value in the scene),
+// by fractions of max(1, |value|), or of |value| itself with `own_scale` (a mass of 1e11 kg).
 double worst_column(const std::string& text, const std::vector<std::string>& overrides,
-                    const std::map<std::string, double>& values) {
+                    const std::map<std::string, double>& values, bool own_scale = false) {
   Scene scene = parse_scene(text, "test", overrides);
   Simulation sim(scene, registry());
   sim.integrate(scene.run.t_end);
@@ -95,7 +96,7 @@ double worst_column(const std::string& text, const std::vector<std::string>& ove
           moved.push_back(names[c] + "=" + number(v + h));
           return final_state(text, moved);
         },
-        std::max(1.0, std::abs(v)));
+        own_scale ? std::abs(v) : std::max(1.0, std::abs(v)));
     const double d = relative(S.col(static_cast<Eigen::Index>(c)), fd);
     if (std::getenv("NOETHER_TEST_VERBOSE")) std::printf("%s: relative difference %.2e\n", names[c].c_str(), d);
     worst = std::max(worst, d);
@@ -159,6 +160,52 @@ TEST(Sensitivity, CircularOrbitTakesTheOneSidedDerivative) {
   EXPECT_LT(relative(column, fd), 1e-6);
 }
 
+// Parameters of the dynamics (docs/equations.md §22): the masses and G move the orbit's start
+// (its velocity from the elements, the momenta γ = m v) and every step (the forces, 1/m); against
+// whole runs with the key moved, for the LGVI's tangent map, rk4's and cvode's variational
+// equations. Keys of the initial state ride along, and the parameters' columns come last.
+const std::map<std::string, double> kParameterValues = {
+    {"bodies.planet.mass", 1e-3}, {"bodies.star.mass", 1}, {"G", 1}, {"bodies.planet.orbit.e", 0.3}};
+const char* kParameterKeys = "run.sensitivities=[bodies.planet.mass, G, bodies.planet.orbit.e, bodies.star.mass]";
+
+TEST(Sensitivity, MassesAndGAgreeWithDifferencesOfWholeRunsLgvi) {
+  Scene scene = parse_scene(kElements, "test", {kParameterKeys});
+  Simulation sim(scene, registry());
+  const std::vector<std::string> order = {"bodies.planet.orbit.e", "bodies.planet.mass", "G", "bodies.star.mass"};
+  EXPECT_EQ(sim.sensitivity_names(), order);
+  EXPECT_LT(worst_column(kElements, {kParameterKeys}, kParameterValues, true), 1e-7);
+}
+
+TEST(Sensitivity, MassesAndGAgreeWithDifferencesOfWholeRunsRk4AndCvode) {
+  for (const char* integrator : {"integrator={plugin: rk, method: rk4, step: 0.001}",
+                                 "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-15}"}) {
+    const double worst = worst_column(kElements, {kParameterKeys, integrator}, kParameterValues, true);
+    EXPECT_LT(worst, integrator[20] == 'r' ? 1e-7 : 1e-6) << integrator;
+  }
+}
+
+// Rigid bodies: KW4's ellipsoids at order 4 (the series' inertia integrals move with the
+// semi-axes and the density, the inertias with both), 120 LGVI steps, and rk4's variational
+// equations with the same step.
+TEST(Sensitivity, ShapesAndMassesOfKw4AgreeWithDifferencesOfWholeRuns) {
+  const std::string text = [] {
+    std::ifstream in(test::source_path("examples/kw4-ellipsoids.yaml"));
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const std::vector<std::string> overrides = {
+      "run.t_end=7200", "run.output_every=3600",
+      "run.sensitivities=[bodies.beta.shape.ellipsoid.semi_axes, bodies.beta.mass, bodies.alpha.mass]"};
+  const std::map<std::string, double> values = {{"bodies.beta.shape.ellipsoid.semi_axes.0", 285},
+                                                {"bodies.beta.shape.ellipsoid.semi_axes.1", 231.5},
+                                                {"bodies.beta.shape.ellipsoid.semi_axes.2", 174.5},
+                                                {"bodies.beta.mass", 1.35e11},
+                                                {"bodies.alpha.mass", 2.353e12}};
+  EXPECT_LT(worst_column(text, overrides, values, true), 1e-6);
+  std::vector<std::string> rk4 = overrides;
+  rk4.push_back("integrator={plugin: rk, method: rk4, step: 60}");
+  EXPECT_LT(worst_column(text, rk4, values, true), 1e-6);
+}
+
 // A rigid body's spin, attitude and another body's position (the dumbbells, LGVI, 5000 steps):
 // the attitude's columns are the right rotations R exp(S(θ)) of the state itself.
 TEST(Sensitivity, RigidBodyKeysAgreeWithDifferencesOfWholeRuns) {
@@ -211,8 +258,17 @@ TEST(Sensitivity, RefusesWhatItCannotDerive) {
     }
     return "";
   };
-  EXPECT_NE(refusal("[bodies.planet.mass]").find("a parameter of the dynamics"), std::string::npos);
-  EXPECT_NE(refusal("[G]").find("is not a key of a body's initial state"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.density]").find("gives its mass, not a density"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.shape.ellipsoid.semi_axes]").find("has no ellipsoid shape"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.inertia]").find("not a key sensitivities are available to"), std::string::npos);
+  EXPECT_NE(refusal("[integrator.step]").find("not a key sensitivities are available to"), std::string::npos);
+  try {
+    Scene kw4 = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"), {"run.sensitivities=[G]"});
+    Simulation sim(kw4, registry());
+    ADD_FAILURE() << "G was accepted in a scene with units";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("G follows from the scene's declared units"), std::string::npos) << e.what();
+  }
   EXPECT_NE(refusal("[bodies.comet.velocity]").find("names no body of the scene (star, planet)"), std::string::npos);
   EXPECT_NE(refusal("[bodies.planet.position]").find("given by orbit"), std::string::npos);
   EXPECT_NE(refusal("[bodies.star.orbit.e]").find("given by position and velocity"), std::string::npos);
@@ -221,6 +277,13 @@ TEST(Sensitivity, RefusesWhatItCannotDerive) {
   EXPECT_NE(refusal("[bodies.star.velocity, bodies.star.velocity.1]").find("asked for twice"), std::string::npos);
   const std::string lagrangian = refusal("[bodies.star.velocity]", {"integrator.form=lagrangian"});
   EXPECT_NE(lagrangian.find("integrator 'lgvi' cannot carry sensitivities"), std::string::npos) << lagrangian;
+  try {  // a model given in code cannot be made again at p ± δ
+    Scene scene = parse_scene(kElements, "test", {"run.sensitivities=[bodies.planet.mass]"});
+    Simulation sim(scene, registry(), RunOptions{}, make_scene_potential(scene, registry()));
+    ADD_FAILURE() << "a mass was accepted with a model given in code";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("the model is given in code"), std::string::npos) << e.what();
+  }
 
   Scene scene = parse_scene(kElements, "test", {"run.sensitivities=[bodies.star.velocity]"});
   Simulation sim(scene, registry());

@@ -12,6 +12,9 @@ void Integrator::current_state(State& state) {
 bool Integrator::interpolate(double, State&) { return false; }
 double Integrator::fixed_step() const { return 0.0; }
 std::string Integrator::tangent_map_unavailable() const { return "this method has no tangent map"; }
+std::string Integrator::carry_parameters(std::shared_ptr<const ParameterDerivatives>) {
+  return "this method cannot carry sensitivities to parameters of the dynamics";
+}
 std::vector<StepSeries> Integrator::take_step_series() { return {}; }
 PotentialEvaluator* Integrator::potential_evaluator() { return nullptr; }
 std::vector<double> Integrator::checkpoint() const { return {}; }

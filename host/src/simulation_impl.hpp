@@ -4,7 +4,7 @@
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
 
-#include "initial_sensitivity.hpp"
+#include "scene_sensitivity.hpp"
 #include "io/frame_schema.hpp"
 #include "run_statistics.hpp"
 
@@ -40,11 +40,24 @@ struct Simulation::Impl {
   std::vector<std::string> sensitivity_names;
 
   // The tangent at t0: [I | ∂z(t0)/∂keys] (each part only when asked for: run.stm,
-  // run.sensitivities; docs/derivatives.md); fills sensitivity_names.
+  // run.sensitivities; docs/derivatives.md); fills sensitivity_names and hands the integrator
+  // the parameters of the dynamics among the keys.
   Eigen::MatrixXd initial_tangent() {
     const Eigen::Index N = State::tangent_rows(scene.system);
-    InitialSensitivity s;
-    if (!scene.run.sensitivities.empty()) s = initial_sensitivity(scene, scene.run.sensitivities);
+    SceneSensitivity s;
+    if (!scene.run.sensitivities.empty())
+      s = scene_sensitivity(scene, scene.run.sensitivities,
+                            [this](const Scene& other) { return make_scene_potential(other, *registry); });
+    if (s.parameters) {
+      std::string names;
+      for (const auto& p : s.parameters->parameters) names += (names.empty() ? "" : ", ") + p.name;
+      const std::string why = custom_potential ? "the model is given in code, so noether cannot make it at other "
+                                                 "parameter values"
+                                               : integrator->carry_parameters(s.parameters);
+      if (!why.empty())
+        throw SceneError("run.sensitivities: the parameters of the dynamics " + names + " cannot be carried by integrator '" +
+                         scene.integrator.plugin + "': " + why);
+    }
     sensitivity_names = s.names;
     const Eigen::Index stm = scene.run.stm ? N : 0;
     Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + s.columns.cols());

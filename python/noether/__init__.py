@@ -252,8 +252,9 @@ class Simulation:
 
     @property
     def sensitivities(self):
-        """∂z(t)/∂p: how the state where the simulation stands moves with each key of the
-        bodies' initial states asked for (sensitivities=...), a (6n + 6m) × P array, rows in the
+        """∂z(t)/∂p: how the state where the simulation stands moves with each key asked for
+        (sensitivities=...: keys of the bodies' initial states, masses, G, semi-axes), a
+        (6n + 6m) × P array, rows in the
         order of z (stm_coordinates), columns named by sensitivity_names, per unit of each key
         as the scene gives it; None unless asked for."""
         return self._sim.sensitivities
@@ -261,8 +262,14 @@ class Simulation:
     @property
     def sensitivity_names(self):
         """The keys of the columns of sensitivities, one per component ("bodies.moon.velocity.0",
-        "bodies.moon.orbit.e", "bodies.alpha.attitude.x")."""
+        "bodies.moon.orbit.e", "bodies.alpha.attitude.x", "bodies.moon.mass", "G"): the
+        initial state's keys first, then the parameters of the dynamics."""
         return self._sim.sensitivity_names
+
+    def sensitivity(self, name):
+        """∂z(t)/∂p for one key of sensitivity_names (sim.sensitivity("bodies.beta.mass")), a
+        vector in the order of stm_coordinates; KeyError for a key the run does not carry."""
+        return self._sim.sensitivity(name)
 
     @property
     def stm_coordinates(self):

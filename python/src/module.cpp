@@ -247,6 +247,20 @@ class PySimulation {
     return py::cast(Eigen::MatrixXd(V.rightCols(P)));
   }
   std::vector<std::string> sensitivity_names() const { return sim_->sensitivity_names(); }
+  // One column of sensitivities: ∂z(t)/∂p for the key `name` (as sensitivity_names writes it).
+  Eigen::VectorXd sensitivity(const std::string& name) const {
+    const auto& names = sim_->sensitivity_names();
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found == names.end()) {
+      std::string known;
+      for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+      throw py::key_error("sensitivity: the run carries no sensitivity to '" + name + "'" +
+                          (known.empty() ? std::string(" (it carries none: give sensitivities=[...])")
+                                         : " (it carries " + known + ")"));
+    }
+    const Eigen::MatrixXd& V = sim_->state().tangent;
+    return V.col(V.cols() - static_cast<Eigen::Index>(names.size()) + (found - names.begin()));
+  }
   std::vector<std::string> stm_coordinates() const { return State::tangent_coordinates(system()); }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
@@ -470,6 +484,8 @@ PYBIND11_MODULE(_noether, m) {
       .def_property_readonly("stm_coordinates", &PySimulation::stm_coordinates)
       .def_property_readonly("sensitivities", &PySimulation::sensitivities)
       .def_property_readonly("sensitivity_names", &PySimulation::sensitivity_names)
+      .def("sensitivity", &PySimulation::sensitivity, py::arg("name"),
+           "∂z(t)/∂p for one key of sensitivities (e.g. 'bodies.beta.mass'), in the order of stm_coordinates")
       .def("summary_json", &PySimulation::summary_json)
       .def("summary_text", &PySimulation::summary_text)
       .def("finish", &PySimulation::finish)

@@ -22,6 +22,7 @@
 //    V(t) = ∂z(t)/∂z(t_start) V(t_start), the derivative of the method's own map (not of the
 //    exact flow). Started without one, it carries none.
 #include <noether/forces.hpp>
+#include <noether/parameter_derivatives.hpp>
 #include <noether/potential.hpp>
 #include <noether/state.hpp>
 
@@ -71,6 +72,11 @@ class Integrator {
   // Empty when start() accepts a state that carries a tangent; else why not, in words (the
   // default: "this method has no tangent map").
   virtual std::string tangent_map_unavailable() const;
+  // Sensitivities to parameters of the dynamics (masses, G, shapes; docs/derivatives.md): from
+  // the next start() on, the last `parameters->size()` columns of a carried tangent are ∂z/∂p_j,
+  // and each step adds the derivative of its map with respect to p_j (docs/equations.md §22).
+  // Returns "" when the method does so; else why not, in words (the default: it does not).
+  virtual std::string carry_parameters(std::shared_ptr<const ParameterDerivatives> parameters);
   // Per-step records, if the integrator keeps any (none by default): the rows kept since the
   // last call, which the integrator then forgets (the host streams them to the output as the
   // run goes, so a long run's records never accumulate in memory).

@@ -22,7 +22,8 @@
 // variables are not the State — a relative frame, a two-step form — hands them to the output
 // and takes them back, so a continued run is bit for bit the uninterrupted one).
 // Version 7 (current): Potential::force_jacobian (∂(f, M)/∂(x, θ), positions and attitudes,
-// with a workspace) replaces Potential::position_hessian.
+// with a workspace) replaces Potential::position_hessian; State::tangent,
+// Integrator::tangent_map_unavailable and Integrator::carry_parameters (derivatives).
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can

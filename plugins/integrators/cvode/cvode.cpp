@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 
 namespace {
@@ -87,6 +88,12 @@ class Cvode final : public noether::Integrator {
   }
 
   std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  // The parameters' terms (22.2) join the sensitivity right-hand side of the last columns.
+  std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
+    parameter_forces_.emplace(std::move(parameters));
+    return "";
+  }
 
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
@@ -244,6 +251,14 @@ class Cvode final : public noether::Integrator {
         for (Eigen::Index r = 0; r < me->tangent_rows_; ++r) me->V_(r, c) = v[me->slots_[static_cast<std::size_t>(r)]];
       }
       noether::variational_rhs(me->equations_->system(), me->stage_, K, me->V_, me->dV_);
+      if (me->parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
+        auto& forces = *me->parameter_forces_;
+        const std::int64_t before = forces.evaluations();
+        const Eigen::MatrixXd& G = forces(me->stage_);
+        me->differenced_evaluations_ += forces.evaluations() - before;
+        noether::add_parameter_rhs(me->equations_->system(), me->stage_, forces.derivatives(), G,
+                                   me->dV_.rightCols(static_cast<Eigen::Index>(forces.size())));
+      }
       for (int c = 0; c < Ns; ++c) {
         N_VConst(0.0, ySdot[c]);
         double* d = N_VGetArrayPointer(ySdot[c]);
@@ -324,6 +339,7 @@ class Cvode final : public noether::Integrator {
   noether::State stage_;
   std::int64_t differenced_evaluations_ = 0;
   std::string tangent_unavailable_;
+  std::optional<noether::ParameterForces> parameter_forces_;  // sensitivities to parameters of the dynamics
 };
 
 const noether::ParamDoc params[] = {

@@ -40,6 +40,9 @@ class DiscreteFlow {
   // inertial Hamiltonian form, whose variables are the State's.
   virtual std::vector<double> checkpoint() const { return {}; }
   virtual void restore(const State& s, const std::vector<double>&) { start(s); }
+  // Sensitivities to parameters of the dynamics (noether::Integrator::carry_parameters): false
+  // for a form without a tangent map.
+  virtual bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives>) { return false; }
 
   noether::WorkCounters work;
 };

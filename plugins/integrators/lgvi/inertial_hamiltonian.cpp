@@ -4,6 +4,7 @@
 
 #include <noether/error.hpp>
 
+#include <optional>
 #include <sstream>
 
 namespace lgvi {
@@ -43,9 +44,18 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
   void start(const State& s) override {
+    if (parameter_forces_ && s.tangent.size() > 0 &&
+        s.tangent.cols() < static_cast<Eigen::Index>(parameter_forces_->size()))
+      throw noether::Error("lgvi: the tangent has fewer columns than the parameters it carries");
     s_ = s;
     evaluate(s_, current_);
     if (carries_tangent()) K_ = jacobian(s_);
+    if (carries_parameters()) G_ = parameter_forces(s_);
+  }
+
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    parameter_forces_.emplace(std::move(parameters));
+    return true;
   }
 
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
@@ -75,6 +85,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     try {
       evaluate(s_, next_);  // the only potential evaluation of the step
       if (carries_tangent()) K_next_ = jacobian(s_);
+      if (carries_parameters()) G_next_ = parameter_forces(s_);
     } catch (...) {
       s_.x = x_prev_;
       s_.R = R_prev_;
@@ -91,8 +102,14 @@ class InertialHamiltonian final : public DiscreteFlow {
     }
     std::swap(current_, next_);
     if (carries_tangent()) {
-      s_.tangent = advance_tangent(system_, h, F_, w_, K_, K_next_, s_.tangent);
+      ParameterStep parameters;
+      if (carries_parameters()) {
+        displacement_ = s_.x - x_prev_;
+        parameters = {&parameter_forces_->derivatives(), &G_, &G_next_, &displacement_};
+      }
+      s_.tangent = advance_tangent(system_, h, F_, w_, K_, K_next_, s_.tangent, parameters);
       std::swap(K_, K_next_);
+      std::swap(G_, G_next_);
     }
     ++work.steps;
   }
@@ -105,6 +122,14 @@ class InertialHamiltonian final : public DiscreteFlow {
 
  private:
   bool carries_tangent() const { return s_.tangent.size() > 0; }
+  bool carries_parameters() const { return carries_tangent() && parameter_forces_; }
+  // ∂(f, M)/∂p (22.1), its evaluations counted as work.
+  Eigen::MatrixXd parameter_forces(const State& s) {
+    const std::int64_t before = parameter_forces_->evaluations();
+    Eigen::MatrixXd G = (*parameter_forces_)(s);
+    work.potential_evaluations += parameter_forces_->evaluations() - before;
+    return G;
+  }
   // The force Jacobian for the tangent map; a differenced one's evaluations count as work.
   Eigen::MatrixXd jacobian(const State& s) {
     bool analytic = true;
@@ -128,6 +153,10 @@ class InertialHamiltonian final : public DiscreteFlow {
   // The tangent map's: the force Jacobians at z_k and z_{k+1}, and the step's w_k (F_k is F_).
   Eigen::MatrixXd K_, K_next_;
   Eigen::Matrix3Xd w_;
+  // Sensitivities to parameters of the dynamics: ∂(f, M)/∂p at z_k and z_{k+1}, x_{k+1} − x_k.
+  std::optional<noether::ParameterForces> parameter_forces_;
+  Eigen::MatrixXd G_, G_next_;
+  Eigen::Matrix3Xd displacement_;
 };
 
 }  // namespace

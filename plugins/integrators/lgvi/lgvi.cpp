@@ -101,6 +101,11 @@ class Lgvi final : public noether::Integrator {
   }
   double fixed_step() const override { return h_; }
   std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
+    if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
+    return "";
+  }
 
   void current(noether::State& state, noether::Forces& forces) override {
     flow_->current(state, forces);

@@ -10,7 +10,7 @@ using noether::Vec3;
 
 Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const std::vector<Mat3>& F_k,
                                 const Eigen::Matrix3Xd& w, const Eigen::MatrixXd& K_k, const Eigen::MatrixXd& K_next,
-                                const Eigen::MatrixXd& V) {
+                                const Eigen::MatrixXd& V, const ParameterStep& ps) {
   const auto n = static_cast<Eigen::Index>(system.size());
   const auto m = static_cast<Eigen::Index>(system.rigid_count());
   const Eigen::Index q = 3 * n + 3 * m;  // configuration rows (δx, δθ); momenta (δγ, δΠ) follow
@@ -22,7 +22,11 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const s
 
   // (δf_k, δM_k) = K_k (δx, δθ)                                                        (21.2)
   // (lazyProduct: coefficient-based products, faster than blocked GEMM at these sizes)
-  const Eigen::MatrixXd dF_k = K_k.lazyProduct(V.topRows(q));
+  Eigen::MatrixXd dF_k = K_k.lazyProduct(V.topRows(q));
+  // Parameter columns (the last P): the forces' own derivative at z_k, ∂(f_k, M_k)/∂p      (22.3)
+  const Eigen::Index P = ps.parameters ? static_cast<Eigen::Index>(ps.parameters->size()) : 0;
+  const Eigen::Index first = V.cols() - P;  // the first parameter column
+  if (P > 0) dF_k.rightCols(P) += *ps.G_k;
   Eigen::MatrixXd out(V.rows(), V.cols());
   auto dx1 = out.middleRows(0, 3 * n);
   auto dtheta1 = out.middleRows(3 * n, 3 * m);
@@ -34,6 +38,10 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const s
     const double mass = system.body(static_cast<std::size_t>(i)).mass;
     dx1.middleRows(3 * i, 3) =
         dx.middleRows(3 * i, 3) + (h / mass) * dgamma.middleRows(3 * i, 3) + (0.5 * h * h / mass) * dF_k.middleRows(3 * i, 3);
+    // ∂/∂p of 1/m in (94): −(∂m/∂p / m)(x_{k+1} − x_k)                                     (22.4)
+    for (Eigen::Index j = 0; j < P; ++j)
+      dx1.col(first + j).segment<3>(3 * i) -=
+          (ps.parameters->parameters[static_cast<std::size_t>(j)].mass(i) / mass) * ps.displacement->col(i);
   }
   // Each rigid body: δg = h (δΠ_k + (h/2) δM_k) and the variation φ of F_k = exp(S(f)), δF_k = F_k S(φ),
   // from the variation of (93): S(δg) = F_k S(φ) Jd + Jd S(φ) F_kᵀ, i.e. A φ = δg        (21.3)–(21.4)
@@ -47,13 +55,20 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const s
       const Mat3 S = noether::hat(Vec3::Unit(c));
       A.col(c) = noether::vee(F * S * Jd + Jd * S * F.transpose());
     }
-    const Eigen::Matrix3Xd dg = h * (dPi.middleRows(3 * r, 3) + 0.5 * h * dF_k.middleRows(3 * n + 3 * r, 3));
+    Eigen::Matrix3Xd dg = h * (dPi.middleRows(3 * r, 3) + 0.5 * h * dF_k.middleRows(3 * n + 3 * r, 3));
+    // ∂/∂p of Jd in (93): A φ = δg − vee(F_k ∂Jd/∂p − ∂Jd/∂p F_kᵀ)                          (22.5)
+    for (Eigen::Index j = 0; j < P; ++j) {
+      const Mat3& dJ = ps.parameters->parameters[static_cast<std::size_t>(j)].inertia[static_cast<std::size_t>(r)];
+      const Mat3 dJd = 0.5 * dJ.trace() * Mat3::Identity() - dJ;
+      dg.col(first + j) -= noether::vee(F * dJd - dJd * F.transpose());
+    }
     phi[static_cast<std::size_t>(r)] = A.inverse() * dg;  // 3 × 3: the closed-form inverse
     // δθ_{k+1} = F_kᵀ δθ_k + φ   (R_{k+1} = R_k F_k, (95))                                 (21.6)
     dtheta1.middleRows(3 * r, 3) = F.transpose() * dtheta.middleRows(3 * r, 3) + phi[static_cast<std::size_t>(r)];
   }
   // (δf_{k+1}, δM_{k+1}) = K_{k+1} (δx_{k+1}, δθ_{k+1})
-  const Eigen::MatrixXd dF_next = K_next.lazyProduct(out.topRows(q));
+  Eigen::MatrixXd dF_next = K_next.lazyProduct(out.topRows(q));
+  if (P > 0) dF_next.rightCols(P) += *ps.G_next;  //                                        (22.3)
   // δγ_{k+1} = δγ_k + (h/2)(δf_k + δf_{k+1})                                            (21.7)
   dgamma1 = dgamma + (0.5 * h) * (dF_k.topRows(3 * n) + dF_next.topRows(3 * n));
   // δΠ_{k+1} = S(F_kᵀ w_k) φ + F_kᵀ (δΠ_k + (h/2) δM_k) + (h/2) δM_{k+1}                  (21.8)

@@ -88,9 +88,18 @@ class Rk final : public noether::Integrator {
   }
 
   std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  // The parameters' terms (22.2) join the variational equations of the last columns.
+  std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
+    parameter_forces_.emplace(std::move(parameters));
+    return "";
+  }
 
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
+    if (parameter_forces_ && state.tangent.size() > 0 &&
+        state.tangent.cols() < static_cast<Eigen::Index>(parameter_forces_->size()))
+      throw noether::Error("rk: the tangent has fewer columns than the parameters it carries");
     tangent_rows_ = state.tangent.rows();
     tangent_columns_ = state.tangent.cols();
     y_.resize(equations_->size() + static_cast<std::size_t>(state.tangent.size()));
@@ -283,9 +292,16 @@ class Rk final : public noether::Integrator {
     const Eigen::MatrixXd K = equations_->evaluator().force_jacobian(stage_, &analytic);
     if (!analytic) differenced_evaluations_ += 2 * K.rows();
     const auto s = static_cast<std::ptrdiff_t>(equations_->size());
+    Eigen::Map<Eigen::MatrixXd> dV(dydt.data() + s, tangent_rows_, tangent_columns_);
     noether::variational_rhs(equations_->system(), stage_, K,
-                             Eigen::Map<const Eigen::MatrixXd>(y.data() + s, tangent_rows_, tangent_columns_),
-                             Eigen::Map<Eigen::MatrixXd>(dydt.data() + s, tangent_rows_, tangent_columns_));
+                             Eigen::Map<const Eigen::MatrixXd>(y.data() + s, tangent_rows_, tangent_columns_), dV);
+    if (parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
+      const auto P = static_cast<Eigen::Index>(parameter_forces_->size());
+      const std::int64_t before = parameter_forces_->evaluations();
+      const Eigen::MatrixXd& G = (*parameter_forces_)(stage_);
+      differenced_evaluations_ += parameter_forces_->evaluations() - before;
+      noether::add_parameter_rhs(equations_->system(), stage_, parameter_forces_->derivatives(), G, dV.rightCols(P));
+    }
   }
 
   [[noreturn]] void fail(const std::string& why, double t) const {
@@ -317,6 +333,7 @@ class Rk final : public noether::Integrator {
   noether::State stage_;
   std::int64_t differenced_evaluations_ = 0;
   std::string tangent_unavailable_;
+  std::optional<noether::ParameterForces> parameter_forces_;  // sensitivities to parameters of the dynamics
 };
 
 const noether::ParamDoc params[] = {

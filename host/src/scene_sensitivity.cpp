@@ -1,0 +1,290 @@
+// ∂z(t0)/∂p, and the parameters of the dynamics, for the keys of run.sensitivities
+// (scene_sensitivity.hpp).
+#include "scene_sensitivity.hpp"
+
+#include <noether/error.hpp>
+#include <noether/lie.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+namespace noether {
+namespace {
+
+const std::vector<std::string> kVectorFields = {"position", "velocity", "angular_velocity", "angular_momentum"};
+const std::vector<std::string> kElements = {"a", "e", "i", "Omega", "omega", "nu", "M"};
+
+const std::string kSemiAxes = "shape.ellipsoid.semi_axes";
+
+std::string accepted() {
+  return "a body's position, velocity, angular_velocity, angular_momentum (each whole or one component: "
+         "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
+         "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
+         "density, and its shape.ellipsoid.semi_axes (whole or one of them)";
+}
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// z = (x, θ, γ, Π) of `b` relative to `a` (θ: R_b = R_a exp(S(θ)); docs/equations.md eq. 21.1).
+Eigen::VectorXd difference(const State& a, const State& b, const System& system) {
+  const Eigen::Index n = static_cast<Eigen::Index>(system.size()), m = static_cast<Eigen::Index>(system.rigid_count());
+  Eigen::VectorXd dz(6 * (n + m));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    dz.segment<3>(3 * i) = b.x.col(i) - a.x.col(i);
+    dz.segment<3>(3 * (n + m) + 3 * i) = b.p.col(i) - a.p.col(i);
+  }
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    dz.segment<3>(3 * n + 3 * k) = log_so3(a.R[ku].transpose() * b.R[ku]);
+    dz.segment<3>(3 * (2 * n + m) + 3 * k) = b.Pi.col(k) - a.Pi.col(k);
+  }
+  return dz;
+}
+
+struct Key {
+  std::string text;      // as given
+  std::string body_key;  // "bodies.<name or index>"; "" for G
+  std::size_t body = 0;
+  std::string field;     // "velocity", "attitude", "orbit.e", "mass", "shape.ellipsoid.semi_axes", "G"
+  int component = -1;    // 0, 1, 2 for one component of a vector field; -1: all of it
+  bool dynamics = false;  // a parameter of the dynamics (docs/equations.md §22), not of z(t0)
+  std::string path() const { return body_key.empty() ? field : body_key + "." + field; }
+};
+
+Key parse_key(const Scene& scene, const std::string& text) {
+  const std::string where = "run.sensitivities: '" + text + "': ";
+  Key key;
+  key.text = text;
+  if (text == "G") {
+    key.field = "G";
+    key.dynamics = true;
+    if (scene.units.declared)
+      throw SceneError(where + "G follows from the scene's declared units (" + scene.units.describe() +
+                       "), which fix it; a sensitivity to G needs a scene without units");
+    return key;
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < scene.system.size(); ++i)
+    for (const std::string& ref : {scene.system.body(i).name, std::to_string(i)}) {
+      const std::string prefix = "bodies." + ref + ".";
+      if (text.size() > prefix.size() && text.compare(0, prefix.size(), prefix) == 0 && prefix.size() > best) {
+        best = prefix.size();
+        key.body = i;
+        key.body_key = "bodies." + ref;
+      }
+    }
+  if (best == 0) {
+    std::string names;
+    for (std::size_t i = 0; i < scene.system.size(); ++i) names += (i ? ", " : "") + scene.system.body(i).name;
+    if (text.compare(0, 7, "bodies.") == 0)
+      throw SceneError(where + "names no body of the scene (" + names + ") followed by a field");
+    throw SceneError(where + "is not a key sensitivities are available to: " + accepted() + " (e.g. bodies." +
+                     scene.system.body(0).name + ".velocity, bodies." + scene.system.body(0).name + ".mass)");
+  }
+  std::string rest = text.substr(best);
+  if (rest.size() >= 2 && rest[rest.size() - 2] == '.' && std::string("012xyz").find(rest.back()) != std::string::npos) {
+    const char c = rest.back();
+    key.component = c >= '0' && c <= '2' ? c - '0' : c - 'x';
+    rest.resize(rest.size() - 2);
+  }
+  key.field = rest;
+  const bool vector = std::find(kVectorFields.begin(), kVectorFields.end(), rest) != kVectorFields.end();
+  const bool element = rest.compare(0, 6, "orbit.") == 0 &&
+                       std::find(kElements.begin(), kElements.end(), rest.substr(6)) != kElements.end();
+  key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes;
+  if (!(vector || rest == "attitude" || (element && key.component < 0) || key.dynamics))
+    throw SceneError(where + "'" + rest + "' is not a key sensitivities are available to" +
+                     (rest == "inertia" || rest == "shape" || rest.compare(0, 6, "shape.") == 0
+                          ? " (of a shape, only an ellipsoid's semi-axes so far)"
+                          : "") +
+                     "; they are: " + accepted());
+  const Params& item = scene.root.at("bodies").items()[key.body];
+  const bool rigid = scene.system.body(key.body).rigid;
+  const std::string body = scene.system.body(key.body).name;
+  if (rest == "mass" && !item.has("mass"))
+    throw SceneError(where + body + "'s mass follows from its density and shape: take " + key.body_key + ".density");
+  if (rest == "density" && !item.has("density"))
+    throw SceneError(where + body + " gives its mass, not a density: take " + key.body_key + ".mass");
+  if (rest == kSemiAxes && !(item.has("shape") && item.at("shape").has("ellipsoid")))
+    throw SceneError(where + body + " has no ellipsoid shape");
+  if ((rest == "attitude" || rest.compare(0, 8, "angular_") == 0) && !rigid)
+    throw SceneError(where + body + " is a point mass: it has no " + rest);
+  if (element && !item.has("orbit"))
+    throw SceneError(where + body + "'s initial state is given by position and velocity, not orbit");
+  if ((rest == "position" || rest == "velocity") && item.has("orbit"))
+    throw SceneError(where + body + "'s initial state is given by orbit: take the sensitivity to " + key.body_key +
+                     ".orbit.a, .e, .i, .Omega, .omega, .nu or .M");
+  if (element && (rest == "orbit.nu" || rest == "orbit.M")) {
+    const std::string other = rest == "orbit.nu" ? "M" : "nu";
+    if (item.at("orbit").has(other))
+      throw SceneError(where + body + "'s orbit gives its anomaly as " + other + ": take " + key.body_key +
+                       ".orbit." + other);
+  }
+  const std::string other = rest == "angular_velocity" ? "angular_momentum" : "angular_velocity";
+  if (rest.compare(0, 8, "angular_") == 0 && item.has(other))
+    throw SceneError(where + body + "'s spin is given as " + other + ": take " + key.body_key + "." + other);
+  return key;
+}
+
+// The key's value in the scene (a vector field's three numbers; 0 where the scene leaves it out).
+std::vector<double> value_of(const Scene& scene, const Key& key) {
+  if (key.field == "G") return {scene.system.G()};
+  const Params& item = scene.root.at("bodies").items()[key.body];
+  if (key.field == "mass" || key.field == "density") return {item.at(key.field).as_double()};
+  if (key.field == kSemiAxes) return item.at("shape").at("ellipsoid").at("semi_axes").as_doubles();
+  if (key.field.compare(0, 6, "orbit.") == 0) {
+    const Params& orbit = item.at("orbit");
+    const std::string name = key.field.substr(6);
+    return {orbit.has(name) ? orbit.at(name).as_double() : 0.0};
+  }
+  if (!item.has(key.field)) return {0.0, 0.0, 0.0};
+  std::vector<double> v = item.at(key.field).as_doubles();
+  if (v.size() != 3) throw SceneError(item.at(key.field).here() + key.field + " must be three numbers");
+  return v;
+}
+
+// The pair models (what a tolerance chose) of a model, for comparison with a perturbed one's.
+std::vector<std::string> choices(const Potential& potential) {
+  std::vector<std::string> out;
+  for (const PairModel& pair : potential.pair_models(*potential.make_workspace()))
+    out.push_back(pair.body_a + "–" + pair.body_b + ": " + pair.model);
+  return out;
+}
+
+}  // namespace
+
+SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
+                                   const PotentialMaker& make_potential) {
+  const System& system = scene.system;
+  const Eigen::Index rows = State::tangent_rows(system);
+  const Eigen::Index n = static_cast<Eigen::Index>(system.size());
+  SceneSensitivity out;
+  std::vector<Eigen::VectorXd> columns;                     // keys of the initial state
+  std::vector<std::string> parameter_names;                 // parameters of the dynamics, after them
+  std::vector<Eigen::VectorXd> parameter_columns;
+  auto parameters = std::make_shared<ParameterDerivatives>();
+  std::optional<std::vector<std::string>> base_choices;  // the run's model's choices, once needed
+  for (const std::string& text : keys) {
+    const Key key = parse_key(scene, text);
+    if (key.field == "attitude") {  // exact: the columns are the attitude's own coordinates θ
+      const Eigen::Index r = system.rigid_index(key.body);
+      for (int a = 0; a < 3; ++a) {
+        if (key.component >= 0 && a != key.component) continue;
+        Eigen::VectorXd col = Eigen::VectorXd::Zero(rows);
+        col(3 * n + 3 * r + a) = 1.0;
+        columns.push_back(col);
+        out.names.push_back(key.body_key + ".attitude." + "xyz"[a]);
+      }
+      continue;
+    }
+    const std::vector<double> base = value_of(scene, key);
+    double scale = key.dynamics ? 0.0 : 1.0;  // a parameter's own scale (a mass of 1e11 kg, G = 6.7e-11)
+    for (double v : base) scale = std::max(scale, std::abs(v));
+    if (base.size() == 3) scale = std::max(scale, std::hypot(base[0], base[1], base[2]));
+    if (!(scale > 0.0)) throw SceneError("run.sensitivities: '" + text + "' is 0 in the scene: no scale to difference it on");
+    const double delta = 1e-6 * scale;
+    for (std::size_t a = 0; a < base.size(); ++a) {
+      if (key.component >= 0 && static_cast<int>(a) != key.component) continue;
+      const std::string name = base.size() == 3 ? key.path() + "." + std::to_string(a) : key.path();
+      // The scene with the key moved by `offset`, or nothing if the scene refuses that value (a bound).
+      auto moved = [&](double offset) -> std::optional<Scene> {
+        std::vector<double> v = base;
+        v[a] += offset;
+        std::string assignment = key.path() + "=";
+        if (v.size() == 3)
+          assignment += "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
+        else
+          assignment += number(v[0]);
+        std::vector<std::string> overrides = scene.overrides;
+        overrides.push_back(assignment);
+        std::optional<Scene> other;
+        try {
+          other = parse_scene(scene.text, scene.file, overrides);
+        } catch (const SceneError&) {
+          return std::nullopt;
+        }
+        if (other->system.size() != system.size() || other->system.rigid_count() != system.rigid_count())
+          throw SceneError("run.sensitivities: '" + text + "' changes which bodies the scene has");
+        for (std::size_t i = 0; i < system.size() && !key.dynamics; ++i)
+          if (other->system.body(i).mass != system.body(i).mass || other->system.body(i).inertia != system.body(i).inertia)
+            throw SceneError("run.sensitivities: '" + text + "' changes the dynamics, not only the initial state");
+        return other;
+      };
+      if (!key.dynamics) {
+        Eigen::VectorXd col;
+        const auto plus = moved(delta), minus = moved(-delta);
+        if (plus && minus) {  // central: error O(δ²)
+          col = difference(minus->initial, plus->initial, system) / (2.0 * delta);
+        } else {  // one-sided, second order: (−3 z(0) + 4 z(±δ) − z(±2δ)) / (±2δ)
+          const double s = plus ? 1.0 : -1.0;
+          const auto one = plus ? plus : minus, two = moved(2.0 * s * delta);
+          if (!one || !two)
+            throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by ±" + number(delta) +
+                             " from " + number(base[a]) + " either way, so its derivative cannot be taken there");
+          col = (4.0 * difference(scene.initial, one->initial, system) - difference(scene.initial, two->initial, system)) /
+                (2.0 * s * delta);
+        }
+        if (!col.allFinite())
+          throw SceneError("run.sensitivities: '" + name + "': the initial state's derivative is not finite");
+        columns.push_back(col);
+        out.names.push_back(name);
+        continue;
+      }
+      // A parameter of the dynamics (§22): the start, masses, inertias and model, each by the
+      // fourth-order central stencil (f(p−2d) − 8f(p−d) + 8f(p+d) − f(p+2d)) / 12d, d = 1e-4 |p|:
+      // exact for polynomials of degree 4 (a series' inertia integrals in a semi-axis up to order
+      // 4), and the larger step keeps the round-off of a weak dependence (the orbit's speed on a
+      // light moon's mass, ∝ m/M) below 1e-9.                                               (22.1)
+      const double d = 1e-4 * scale;
+      DynamicsParameter p;
+      p.name = name;
+      p.mass = Eigen::VectorXd::Zero(n);
+      p.inertia.assign(system.rigid_count(), Mat3::Zero());
+      Eigen::VectorXd col = Eigen::VectorXd::Zero(rows);
+      for (const auto& [offset, weight] : {std::pair{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}) {
+        const auto other = moved(offset * d);
+        if (!other)
+          throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by " + number(offset * d) +
+                           " from " + number(base[a]) + ", so its derivative cannot be taken there");
+        const double w = weight / (12.0 * d);
+        col += w * difference(scene.initial, other->initial, system);
+        for (std::size_t i = 0; i < system.size(); ++i) p.mass(static_cast<Eigen::Index>(i)) += w * other->system.body(i).mass;
+        for (std::size_t r = 0; r < system.rigid_count(); ++r)
+          p.inertia[r] += w * other->system.body(system.body_of_rigid(r)).inertia;
+        p.models.push_back(make_potential(*other));
+        p.weights.push_back(w);
+        if (!base_choices) base_choices = choices(*make_potential(scene));
+        if (choices(*p.models.back()) != *base_choices) {
+          std::string was;
+          for (const std::string& c : *base_choices) was += (was.empty() ? "" : "; ") + c;
+          throw SceneError("run.sensitivities: '" + name + "': the model's choices (" + was +
+                           ") change when the key moves by " + number(offset * d) +
+                           ": fix the model's order instead of a tolerance for this run");
+        }
+      }
+      if (!col.allFinite())
+        throw SceneError("run.sensitivities: '" + name + "': the initial state's derivative is not finite");
+      parameters->parameters.push_back(std::move(p));
+      parameter_columns.push_back(col);
+      parameter_names.push_back(name);
+    }
+  }
+  out.names.insert(out.names.end(), parameter_names.begin(), parameter_names.end());
+  columns.insert(columns.end(), parameter_columns.begin(), parameter_columns.end());
+  for (std::size_t c = 0; c < out.names.size(); ++c)
+    if (std::find(out.names.begin(), out.names.begin() + static_cast<std::ptrdiff_t>(c), out.names[c]) !=
+        out.names.begin() + static_cast<std::ptrdiff_t>(c))
+      throw SceneError("run.sensitivities: " + out.names[c] + " is asked for twice");
+  out.columns.resize(rows, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c) out.columns.col(static_cast<Eigen::Index>(c)) = columns[c];
+  if (parameters->size() > 0) out.parameters = parameters;
+  return out;
+}
+
+}  // namespace noether

@@ -1,0 +1,45 @@
+#pragma once
+// The derivative of a scene with respect to its keys (run.sensitivities; docs/derivatives.md,
+// "Sensitivities"): the columns a tangent starts with, ∂z(t0)/∂p, which the integrator's tangent
+// map then carries to every frame — ∂z(t)/∂p = M(t) ∂z(t0)/∂p for keys of the initial state,
+// plus the step's own dependence on p for parameters of the dynamics (docs/equations.md §22).
+#include <noether/parameter_derivatives.hpp>
+#include <noether/scene.hpp>
+
+#include <Eigen/Dense>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct SceneSensitivity {
+  // One per column, each a key `--set` takes: "bodies.alpha.velocity.1", "bodies.moon.orbit.e",
+  // "bodies.alpha.attitude.x" (a right rotation about the body's x axis, in radians),
+  // "bodies.beta.mass", "G". Keys of the initial state first, parameters of the dynamics last
+  // (each group in the order asked).
+  std::vector<std::string> names;
+  // ∂z(t0)/∂p: rows in the order of State::tangent_coordinates (docs/equations.md eq. 21.1).
+  Eigen::MatrixXd columns;
+  // The parameters of the dynamics among the keys (the last parameters->size() columns); null
+  // when there are none.
+  std::shared_ptr<const ParameterDerivatives> parameters;
+};
+
+// The model a scene makes (its potentials, from the registry).
+using PotentialMaker = std::function<std::shared_ptr<const Potential>(const Scene&)>;
+
+// For each key (docs/derivatives.md lists those accepted): a vector key gives one column per
+// component, a component or a scalar one. The scene's map from its keys to z(t0) — barycentric
+// shift, relative_to, orbital elements, units, momenta γ = m v — is differenced (central, 1e-6
+// of the key's scale; one-sided at a bound such as e = 0), an attitude's columns are exact. For
+// a parameter of the dynamics (a mass or density, G, an ellipsoid's semi-axes) the scene is
+// made at p ± d, p ± 2d instead (d = 1e-4 |p|): its start, masses and inertias differenced on
+// that stencil, its models made by `make_potential` for ∂(f, M)/∂p (22.1). SceneError naming the key for a key the scene cannot take, that names
+// no body, or whose model choices (a tolerance's orders) change within the stencil.
+SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
+                                   const PotentialMaker& make_potential);
+
+}  // namespace noether
