@@ -4,6 +4,7 @@
 
 #include <noether/simulation.hpp>
 
+#include "../host/src/io/safe_publish.hpp"
 #include "../host/src/io/superblock.hpp"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include <sys/wait.h>
 #include <thread>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 using namespace noether;
@@ -169,4 +171,33 @@ TEST(Output, SuperblockRecordsARewrittenEndOfAllocation) {
     close(fd);
   }
   fs::remove(file);
+}
+
+// A run killed while it built its file leaves .<name>.partial-<pid>; a later run that gets the
+// same pid (pids are reused: CI found one after a few thousand processes) removes that stale
+// file and builds its own, but never one whose writer still holds its lock.
+TEST(Output, AStalePartialFileOfAReusedPidIsReplaced) {
+  const fs::path path = temp_file("noether-stale-partial");
+  const fs::path partial = io::partial_name(path);
+  fs::remove(path);
+  {
+    const int fd = open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(write(fd, "stale", 5), 5);
+    close(fd);
+  }
+  const int fd = io::create_partial(partial, path);
+  ASSERT_GE(fd, 0);
+  EXPECT_EQ(fs::file_size(partial), 0u) << "the stale file was not replaced";
+  // Now locked by this writer (create_partial holds its lock): a second writer is refused, and
+  // the file stays.
+  try {
+    io::create_partial(partial, path);
+    ADD_FAILURE() << "a partial file whose writer holds its lock was taken over";
+  } catch (const OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("File exists"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::exists(partial));
+  close(fd);
+  fs::remove(partial);
 }

@@ -60,7 +60,7 @@ Eigen::VectorXd differenced(const std::function<State(double)>& moved, double sc
   std::vector<Eigen::VectorXd> columns;
   for (const double fraction : {1e-3, 1e-4, 1e-5, 1e-6}) {
     const double h = fraction * scale;
-    columns.push_back(test::state_minus(moved(h), moved(-h)) / (2.0 * h));
+    columns.push_back(State::difference(moved(-h), moved(h)) / (2.0 * h));
   }
   std::size_t best = 0;
   for (std::size_t k = 1; k + 1 < columns.size(); ++k)
@@ -154,8 +154,8 @@ TEST(Sensitivity, CircularOrbitTakesTheOneSidedDerivative) {
   const Eigen::VectorXd column = sim.state().tangent.col(0);
   const State z0 = final_state(kElements, {"bodies.planet.orbit.e=0"});
   const double h = 1e-5;
-  const Eigen::VectorXd fd = (4.0 * test::state_minus(final_state(kElements, {"bodies.planet.orbit.e=" + number(h)}), z0) -
-                              test::state_minus(final_state(kElements, {"bodies.planet.orbit.e=" + number(2 * h)}), z0)) /
+  const Eigen::VectorXd fd = (4.0 * State::difference(z0, final_state(kElements, {"bodies.planet.orbit.e=" + number(h)})) -
+                              State::difference(z0, final_state(kElements, {"bodies.planet.orbit.e=" + number(2 * h)}))) /
                              (2.0 * h);
   EXPECT_LT(relative(column, fd), 1e-6);
 }

@@ -96,7 +96,7 @@ Comparison compare_with_differences(const Scene& scene) {
     for (const double fraction : fractions) {
       const double h = steps(scene, fraction)(j);
       const Eigen::VectorXd e = h * Eigen::VectorXd::Unit(N, j);
-      columns.push_back(test::state_minus(run_from(scene, e), run_from(scene, -e)) / (2.0 * h));
+      columns.push_back(State::difference(run_from(scene, -e), run_from(scene, e)) / (2.0 * h));
     }
     std::size_t best = 0;
     for (std::size_t k = 1; k + 1 < columns.size(); ++k)

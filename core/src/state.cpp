@@ -12,6 +12,21 @@ State State::zeros(const System& system) {
   return s;
 }
 
+Eigen::VectorXd State::difference(const State& from, const State& to) {
+  const Eigen::Index n = from.x.cols(), m = from.Pi.cols();
+  Eigen::VectorXd dz(6 * (n + m));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    dz.segment<3>(3 * i) = to.x.col(i) - from.x.col(i);
+    dz.segment<3>(3 * (n + m) + 3 * i) = to.p.col(i) - from.p.col(i);
+  }
+  for (Eigen::Index k = 0; k < m; ++k) {
+    const auto ku = static_cast<std::size_t>(k);
+    dz.segment<3>(3 * n + 3 * k) = log_so3(from.R[ku].transpose() * to.R[ku]);
+    dz.segment<3>(3 * (2 * n + m) + 3 * k) = to.Pi.col(k) - from.Pi.col(k);
+  }
+  return dz;
+}
+
 Eigen::Index State::tangent_rows(const System& system) {
   return static_cast<Eigen::Index>(6 * (system.size() + system.rigid_count()));
 }

@@ -31,22 +31,6 @@ std::string number(double v) {
   return text;
 }
 
-// z = (x, θ, γ, Π) of `b` relative to `a` (θ: R_b = R_a exp(S(θ)); docs/equations.md eq. 21.1).
-Eigen::VectorXd difference(const State& a, const State& b, const System& system) {
-  const Eigen::Index n = static_cast<Eigen::Index>(system.size()), m = static_cast<Eigen::Index>(system.rigid_count());
-  Eigen::VectorXd dz(6 * (n + m));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    dz.segment<3>(3 * i) = b.x.col(i) - a.x.col(i);
-    dz.segment<3>(3 * (n + m) + 3 * i) = b.p.col(i) - a.p.col(i);
-  }
-  for (Eigen::Index k = 0; k < m; ++k) {
-    const auto ku = static_cast<std::size_t>(k);
-    dz.segment<3>(3 * n + 3 * k) = log_so3(a.R[ku].transpose() * b.R[ku]);
-    dz.segment<3>(3 * (2 * n + m) + 3 * k) = b.Pi.col(k) - a.Pi.col(k);
-  }
-  return dz;
-}
-
 struct Key {
   std::string text;      // as given
   std::string body_key;  // "bodies.<name or index>"; "" for G
@@ -220,14 +204,14 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
         Eigen::VectorXd col;
         const auto plus = moved(delta), minus = moved(-delta);
         if (plus && minus) {  // central: error O(δ²)
-          col = difference(minus->initial, plus->initial, system) / (2.0 * delta);
+          col = State::difference(minus->initial, plus->initial) / (2.0 * delta);
         } else {  // one-sided, second order: (−3 z(0) + 4 z(±δ) − z(±2δ)) / (±2δ)
           const double s = plus ? 1.0 : -1.0;
           const auto one = plus ? plus : minus, two = moved(2.0 * s * delta);
           if (!one || !two)
             throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by ±" + number(delta) +
                              " from " + number(base[a]) + " either way, so its derivative cannot be taken there");
-          col = (4.0 * difference(scene.initial, one->initial, system) - difference(scene.initial, two->initial, system)) /
+          col = (4.0 * State::difference(scene.initial, one->initial) - State::difference(scene.initial, two->initial)) /
                 (2.0 * s * delta);
         }
         if (!col.allFinite())
@@ -253,7 +237,7 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
           throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by " + number(offset * d) +
                            " from " + number(base[a]) + ", so its derivative cannot be taken there");
         const double w = weight / (12.0 * d);
-        col += w * difference(scene.initial, other->initial, system);
+        col += w * State::difference(scene.initial, other->initial);
         for (std::size_t i = 0; i < system.size(); ++i) p.mass(static_cast<Eigen::Index>(i)) += w * other->system.body(i).mass;
         for (std::size_t r = 0; r < system.rigid_count(); ++r)
           p.inertia[r] += w * other->system.body(system.body_of_rigid(r)).inertia;

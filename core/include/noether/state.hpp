@@ -33,6 +33,9 @@ struct State {
   // The names of z's coordinates (21.1), "alpha.position.x", "alpha.attitude.x" (θ),
   // "alpha.momentum.x" (γ), "alpha.angular_momentum.x" (Π, body frame).
   static std::vector<std::string> tangent_coordinates(const System& system);
+  // z(to) − z(from) in the coordinates (21.1), attitudes by log(R_fromᵀ R_to): the chart in which
+  // tangents are differenced (two states of the same system).
+  static Eigen::VectorXd difference(const State& from, const State& to);
 };
 
 }  // namespace noether

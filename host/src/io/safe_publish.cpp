@@ -64,7 +64,25 @@ fs::path partial_name(const fs::path& path) {
 }
 
 int create_partial(const fs::path& partial, const fs::path& path) {
-  const int fd = ::open(partial.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const auto create = [&] { return ::open(partial.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644); };
+  int fd = create();
+  if (fd < 0 && errno == EEXIST) {
+    // The name carries this process's pid, so the file was left by a killed run that had the
+    // same pid before (pids are reused): stale, unless a writer still holds its lock (one on
+    // another machine sharing the folder). A stale one is removed and the file made afresh.
+    const int old = ::open(partial.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (old >= 0) {
+      const bool stale = ::flock(old, LOCK_EX | LOCK_NB) == 0;
+      if (stale) ::unlink(partial.c_str());
+      ::close(old);
+      if (stale)
+        fd = create();
+      else
+        errno = EEXIST;
+    } else {
+      errno = EEXIST;
+    }
+  }
   if (fd < 0)
     throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(errno) +
                       " (does its folder exist, and is it writable?)");
