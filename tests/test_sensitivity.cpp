@@ -56,9 +56,10 @@ State final_state(const std::string& text, const std::vector<std::string>& overr
 // A column by central differences of whole runs, the key moved by ±h for h = fraction × scale,
 // fraction 1e-3 … 1e-6, taking the larger h of the two successive ones whose differences agree
 // best (as test_tangent_map.cpp's compare_with_differences: chosen by the differences alone).
-Eigen::VectorXd differenced(const std::function<State(double)>& moved, double scale) {
+Eigen::VectorXd differenced(const std::function<State(double)>& moved, double scale,
+                            const std::vector<double>& fractions = {1e-3, 1e-4, 1e-5, 1e-6}) {
   std::vector<Eigen::VectorXd> columns;
-  for (const double fraction : {1e-3, 1e-4, 1e-5, 1e-6}) {
+  for (const double fraction : fractions) {
     const double h = fraction * scale;
     columns.push_back(State::difference(moved(-h), moved(h)) / (2.0 * h));
   }
@@ -72,9 +73,11 @@ double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a 
 
 // Every column of the run's sensitivities against differences of runs with the key (a scalar
 // key, or a component: "bodies.star.velocity.1") moved from `values` (its value in the scene),
-// by fractions of max(1, |value|), or of |value| itself with `own_scale` (a mass of 1e11 kg).
+// by fractions of max(1, |value|), or of |value| itself with `own_scale` (a mass of 1e11 kg);
+// `fractions` as differenced's.
 double worst_column(const std::string& text, const std::vector<std::string>& overrides,
-                    const std::map<std::string, double>& values, bool own_scale = false) {
+                    const std::map<std::string, double>& values, bool own_scale = false,
+                    const std::vector<double>& fractions = {1e-3, 1e-4, 1e-5, 1e-6}) {
   Scene scene = parse_scene(text, "test", overrides);
   Simulation sim(scene, registry());
   sim.integrate(scene.run.t_end);
@@ -96,7 +99,7 @@ double worst_column(const std::string& text, const std::vector<std::string>& ove
           moved.push_back(names[c] + "=" + number(v + h));
           return final_state(text, moved);
         },
-        own_scale ? std::abs(v) : std::max(1.0, std::abs(v)));
+        own_scale ? std::abs(v) : std::max(1.0, std::abs(v)), fractions);
     const double d = relative(S.col(static_cast<Eigen::Index>(c)), fd);
     if (std::getenv("NOETHER_TEST_VERBOSE")) std::printf("%s: relative difference %.2e\n", names[c].c_str(), d);
     worst = std::max(worst, d);
@@ -206,6 +209,32 @@ TEST(Sensitivity, ShapesAndMassesOfKw4AgreeWithDifferencesOfWholeRuns) {
   EXPECT_LT(worst_column(text, rk4, values, true), 1e-6);
 }
 
+// The LGVI paper's dumbbells (sphere clusters) before their close approach, 5000 steps: alpha's
+// transverse principal moments (the kinetic part alone: the clusters do not depend on them),
+// beta's mass (clusters and kinetic part) and G; with the LGVI's tangent map and rk4's
+// variational equations. The run depends on the small moments (0.0238, spun at 9 rad/s) so
+// nonlinearly that whole-run differences agree to 1e-6 only for steps ≤ 1e-7 of the moment:
+// the fractions go down to 1e-8. (The moment about the dumbbell's own axis is left out: no
+// torque acts about that axis, so the state does not depend on it and its column is round-off.)
+TEST(Sensitivity, InertiasMassesAndGOfTheDumbbellsAgreeWithDifferencesOfWholeRuns) {
+  const std::string text = [] {
+    std::ifstream in(test::source_path("examples/dumbbells.yaml"));
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const std::vector<std::string> overrides = {"run.t_end=1", "run.output_every=0.5",
+                                              "run.sensitivities=[bodies.alpha.inertia.1, bodies.alpha.inertia.2, "
+                                              "bodies.beta.mass, G]"};
+  const std::map<std::string, double> values = {{"bodies.alpha.inertia.1", 0.0238},
+                                                {"bodies.alpha.inertia.2", 0.0238},
+                                                {"bodies.beta.mass", 3},
+                                                {"G", 0.2222222222222222}};
+  const std::vector<double> fractions = {1e-5, 1e-6, 1e-7, 1e-8};
+  EXPECT_LT(worst_column(text, overrides, values, true, fractions), 1e-6);
+  std::vector<std::string> rk4 = overrides;
+  rk4.push_back("integrator={plugin: rk, method: rk4, step: 0.0002}");
+  EXPECT_LT(worst_column(text, rk4, values, true, fractions), 1e-6);
+}
+
 // A rigid body's spin, attitude and another body's position (the dumbbells, LGVI, 5000 steps):
 // the attitude's columns are the right rotations R exp(S(θ)) of the state itself.
 TEST(Sensitivity, RigidBodyKeysAgreeWithDifferencesOfWholeRuns) {
@@ -260,7 +289,7 @@ TEST(Sensitivity, RefusesWhatItCannotDerive) {
   };
   EXPECT_NE(refusal("[bodies.planet.density]").find("gives its mass, not a density"), std::string::npos);
   EXPECT_NE(refusal("[bodies.planet.shape.ellipsoid.semi_axes]").find("has no ellipsoid shape"), std::string::npos);
-  EXPECT_NE(refusal("[bodies.planet.inertia]").find("not a key sensitivities are available to"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.inertia]").find("is a point mass: it has no inertia"), std::string::npos);
   EXPECT_NE(refusal("[integrator.step]").find("not a key sensitivities are available to"), std::string::npos);
   try {
     Scene kw4 = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"), {"run.sensitivities=[G]"});

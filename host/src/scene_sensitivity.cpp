@@ -22,7 +22,8 @@ std::string accepted() {
   return "a body's position, velocity, angular_velocity, angular_momentum (each whole or one component: "
          "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
          "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
-         "density, and its shape.ellipsoid.semi_axes (whole or one of them)";
+         "density, its inertia (three principal moments, or one: inertia.2) and shape.ellipsoid.semi_axes "
+         "(whole or one of them)";
 }
 
 std::string number(double v) {
@@ -81,10 +82,10 @@ Key parse_key(const Scene& scene, const std::string& text) {
   const bool vector = std::find(kVectorFields.begin(), kVectorFields.end(), rest) != kVectorFields.end();
   const bool element = rest.compare(0, 6, "orbit.") == 0 &&
                        std::find(kElements.begin(), kElements.end(), rest.substr(6)) != kElements.end();
-  key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes;
+  key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes || rest == "inertia";
   if (!(vector || rest == "attitude" || (element && key.component < 0) || key.dynamics))
     throw SceneError(where + "'" + rest + "' is not a key sensitivities are available to" +
-                     (rest == "inertia" || rest == "shape" || rest.compare(0, 6, "shape.") == 0
+                     (rest == "shape" || rest.compare(0, 6, "shape.") == 0
                           ? " (of a shape, only an ellipsoid's semi-axes so far)"
                           : "") +
                      "; they are: " + accepted());
@@ -97,6 +98,12 @@ Key parse_key(const Scene& scene, const std::string& text) {
     throw SceneError(where + body + " gives its mass, not a density: take " + key.body_key + ".mass");
   if (rest == kSemiAxes && !(item.has("shape") && item.at("shape").has("ellipsoid")))
     throw SceneError(where + body + " has no ellipsoid shape");
+  if (rest == "inertia" && !item.has("inertia"))
+    throw SceneError(where + body + (rigid ? "'s inertia follows from its shape" : " is a point mass: it has no inertia"));
+  if (rest == "inertia" && !(item.at("inertia").is_sequence() && item.at("inertia").size() == 3 &&
+                             item.at("inertia").items()[0].is_scalar()))
+    throw SceneError(where + body + "'s inertia is a 3×3 matrix; sensitivities are taken to three principal "
+                     "moments [J1, J2, J3]");
   if ((rest == "attitude" || rest.compare(0, 8, "angular_") == 0) && !rigid)
     throw SceneError(where + body + " is a point mass: it has no " + rest);
   if (element && !item.has("orbit"))
@@ -121,6 +128,7 @@ std::vector<double> value_of(const Scene& scene, const Key& key) {
   if (key.field == "G") return {scene.system.G()};
   const Params& item = scene.root.at("bodies").items()[key.body];
   if (key.field == "mass" || key.field == "density") return {item.at(key.field).as_double()};
+  if (key.field == "inertia") return item.at("inertia").as_doubles();
   if (key.field == kSemiAxes) return item.at("shape").at("ellipsoid").at("semi_axes").as_doubles();
   if (key.field.compare(0, 6, "orbit.") == 0) {
     const Params& orbit = item.at("orbit");

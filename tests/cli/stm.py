@@ -5,8 +5,8 @@ det 1 at every frame (the LGVI's map is symplectic), and its column of alpha's x
 last frame is the central difference of two runs started from positions moved with --set. The
 runs that cannot carry it are refused before anything is written: --resume of such a file, and
 a method without a tangent map (the LGVI's Lagrangian form). `--sensitivity KEY` writes
-/derivatives/sensitivity, checked the same way, and refuses a key it cannot derive (an inertia
-given as numbers).
+/derivatives/sensitivity, checked the same way, and refuses a key it cannot derive (a dumbbell's
+length).
 """
 import os
 import subprocess
@@ -71,10 +71,10 @@ column = (final_state_moved(0.67 + h) - final_state_moved(0.67 - h)) / (2 * h)
 expected = np.concatenate([sens[-1][0:6, 0], sens[-1][12:18, 0]])
 sens_error = np.abs(column - expected).max() / np.abs(expected).max()
 assert sens_error < 1e-6, (sens_error, column, expected)
-inertia = subprocess.run([noether, "run", scene, "--sensitivity", "bodies.beta.inertia", "-o", "inertia.h5", *base],
-                         capture_output=True, text=True)
-assert inertia.returncode == 2 and "not a key sensitivities are available to" in inertia.stderr, inertia.stderr
-assert not os.path.exists("inertia.h5")
+length = subprocess.run([noether, "run", scene, "--sensitivity", "bodies.beta.shape.dumbbell.length", "-o",
+                         "length.h5", *base], capture_output=True, text=True)
+assert length.returncode == 2 and "only an ellipsoid's semi-axes so far" in length.stderr, length.stderr
+assert not os.path.exists("length.h5")
 
 resume = subprocess.run([noether, "run", "--resume", "stm.h5", "--t-end", "1", "--no-progress"],
                         capture_output=True, text=True)
