@@ -169,7 +169,8 @@ class Simulation:
                 of the scene's potential plugins (prototyping only: it is slow; docs/python.md)
       stm       carry the state-transition matrix of the integrator's map (run.stm, `noether run
                 --stm`): sim.stm, docs/derivatives.md
-      sensitivities  keys of the bodies' initial states ("bodies.moon.velocity", …; run.sensitivities,
+      sensitivities  keys of the bodies' initial states ("bodies.moon.velocity", …) or parameters of
+                     the dynamics ("bodies.moon.mass", "G", …; run.sensitivities,
                 `noether run --sensitivity`): sim.sensitivities, docs/derivatives.md
 
     The state properties return copies (NumPy arrays) of the state where the simulation stands;
