@@ -12,6 +12,7 @@ ParameterForces::ParameterForces(std::shared_ptr<const ParameterDerivatives> der
       throw Error("ParameterForces: parameter '" + p.name + "' has no stencil of models");
     models_.emplace_back();
     for (const auto& model : p.models) models_.back().emplace_back(model);
+    evaluations_per_call_ += static_cast<std::int64_t>(p.models.size());
   }
 }
 
@@ -25,7 +26,6 @@ const Eigen::MatrixXd& ParameterForces::operator()(const State& state) {
     const std::vector<double>& weights = derivatives_->parameters[j].weights;
     for (std::size_t s = 0; s < weights.size(); ++s) {  // Σ_s w_s (f, M)(p_s)                (22.1)
       models_[j][s](state, forces_);
-      ++evaluations_;
       for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += weights[s] * forces_.f.col(i);
       for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += weights[s] * forces_.M.col(k);
     }

@@ -151,7 +151,7 @@ std::vector<std::string> choices(const Potential& potential) {
 
 }  // namespace
 
-SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
+SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys, const Potential& model,
                                    const PotentialMaker& make_potential) {
   const System& system = scene.system;
   const Eigen::Index rows = State::tangent_rows(system);
@@ -251,7 +251,7 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
           p.inertia[r] += w * other->system.body(system.body_of_rigid(r)).inertia;
         p.models.push_back(make_potential(*other));
         p.weights.push_back(w);
-        if (!base_choices) base_choices = choices(*make_potential(scene));
+        if (!base_choices) base_choices = choices(model);
         if (choices(*p.models.back()) != *base_choices) {
           std::string was;
           for (const std::string& c : *base_choices) was += (was.empty() ? "" : "; ") + c;

@@ -35,11 +35,13 @@ using PotentialMaker = std::function<std::shared_ptr<const Potential>(const Scen
 // component, a component or a scalar one. The scene's map from its keys to z(t0) — barycentric
 // shift, relative_to, orbital elements, units, momenta γ = m v — is differenced (central, 1e-6
 // of the key's scale; one-sided at a bound such as e = 0), an attitude's columns are exact. For
-// a parameter of the dynamics (a mass or density, G, an ellipsoid's semi-axes) the scene is
-// made at p ± d, p ± 2d instead (d = 1e-4 |p|): its start, masses and inertias differenced on
-// that stencil, its models made by `make_potential` for ∂(f, M)/∂p (22.1). SceneError naming the key for a key the scene cannot take, that names
-// no body, or whose model choices (a tolerance's orders) change within the stencil.
-SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys,
+// a parameter of the dynamics (a mass or density, G, principal moments, an ellipsoid's
+// semi-axes) the scene is made at p ± d, p ± 2d instead (d = 1e-4 |p|): its start, masses and
+// inertias differenced on that stencil, its models made by `make_potential` for ∂(f, M)/∂p
+// (22.1), their choices (a tolerance's orders) checked against those of `model`, the run's.
+// SceneError naming the key for a key the scene cannot take, that names no body, or whose
+// model choices change within the stencil.
+SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys, const Potential& model,
                                    const PotentialMaker& make_potential);
 
 }  // namespace noether

@@ -46,14 +46,16 @@ struct Simulation::Impl {
     const Eigen::Index N = State::tangent_rows(scene.system);
     SceneSensitivity s;
     if (!scene.run.sensitivities.empty())
-      s = scene_sensitivity(scene, scene.run.sensitivities,
-                            [this](const Scene& other) { return make_scene_potential(other, *registry); });
+      s = scene_sensitivity(scene, scene.run.sensitivities, *potential, [this](const Scene& other) {
+        if (custom_potential)  // refused before anything is made at p ± d
+          throw SceneError("run.sensitivities: the model is given in code, so noether cannot make it at other "
+                           "values of a parameter of the dynamics");
+        return make_scene_potential(other, *registry);
+      });
     if (s.parameters) {
       std::string names;
       for (const auto& p : s.parameters->parameters) names += (names.empty() ? "" : ", ") + p.name;
-      const std::string why = custom_potential ? "the model is given in code, so noether cannot make it at other "
-                                                 "parameter values"
-                                               : integrator->carry_parameters(s.parameters);
+      const std::string why = integrator->carry_parameters(s.parameters);
       if (!why.empty())
         throw SceneError("run.sensitivities: the parameters of the dynamics " + names + " cannot be carried by integrator '" +
                          scene.integrator.plugin + "': " + why);

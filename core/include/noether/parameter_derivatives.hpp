@@ -43,18 +43,24 @@ struct ParameterDerivatives {
 class ParameterForces {
  public:
   explicit ParameterForces(std::shared_ptr<const ParameterDerivatives> derivatives);
-  // G at `state`, (3n + 3m) × P; one evaluation of each parameter's models.
+  // G at `state`, (3n + 3m) × P: evaluations_per_call() evaluations of the potential, one of
+  // each parameter's models.
   const Eigen::MatrixXd& operator()(const State& state);
   const ParameterDerivatives& derivatives() const { return *derivatives_; }
   std::size_t size() const { return derivatives_->size(); }
-  std::int64_t evaluations() const { return evaluations_; }
+  std::int64_t evaluations_per_call() const { return evaluations_per_call_; }
+  // Whether a state's tangent can carry these parameters: none carried, or at least P columns
+  // (the parameters' are the last P).
+  bool fits(const Eigen::MatrixXd& tangent) const {
+    return tangent.size() == 0 || tangent.cols() >= static_cast<Eigen::Index>(size());
+  }
 
  private:
   std::shared_ptr<const ParameterDerivatives> derivatives_;
   std::vector<std::vector<PotentialEvaluator>> models_;  // per parameter, its stencil's models
   Forces forces_;
   Eigen::MatrixXd G_;
-  std::int64_t evaluations_ = 0;
+  std::int64_t evaluations_per_call_ = 0;
 };
 
 // The parameters' inhomogeneous terms of the variational equations (22.2), added to dV's columns

@@ -258,7 +258,8 @@ const FrameQuantity kFrameSchema[] = {
      "is the right perturbation R exp(S(θ)) of an attitude, Π the body-frame angular momentum",
      -1, stm, nullptr},
     {"sensitivity", "/derivatives/sensitivity/value", E::kSensitivity, D::kMixed, kH5md,
-     "the sensitivities ∂z(t)/∂p of the state to keys of the bodies' initial states (run.sensitivities, "
+     "the sensitivities ∂z(t)/∂p of the state to keys of the bodies' initial states and to parameters of the "
+     "dynamics (run.sensitivities, "
      "docs/derivatives.md): rows in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1, "
      "/derivatives/coordinates), columns named by /derivatives/parameters, per unit of each key as the scene "
      "gives it",

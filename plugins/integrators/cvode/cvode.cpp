@@ -97,6 +97,8 @@ class Cvode final : public noether::Integrator {
 
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
+    if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
+      throw noether::Error("cvode: the tangent has fewer columns than the parameters it carries");
     session_ = std::make_unique<CvodeSession>();
     CvodeSession& s = *session_;
     check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create", state.t);
@@ -253,9 +255,8 @@ class Cvode final : public noether::Integrator {
       noether::variational_rhs(me->equations_->system(), me->stage_, K, me->V_, me->dV_);
       if (me->parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
         auto& forces = *me->parameter_forces_;
-        const std::int64_t before = forces.evaluations();
         const Eigen::MatrixXd& G = forces(me->stage_);
-        me->differenced_evaluations_ += forces.evaluations() - before;
+        me->differenced_evaluations_ += forces.evaluations_per_call();
         noether::add_parameter_rhs(me->equations_->system(), me->stage_, forces.derivatives(), G,
                                    me->dV_.rightCols(static_cast<Eigen::Index>(forces.size())));
       }

@@ -44,8 +44,7 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
   void start(const State& s) override {
-    if (parameter_forces_ && s.tangent.size() > 0 &&
-        s.tangent.cols() < static_cast<Eigen::Index>(parameter_forces_->size()))
+    if (parameter_forces_ && !parameter_forces_->fits(s.tangent))
       throw noether::Error("lgvi: the tangent has fewer columns than the parameters it carries");
     s_ = s;
     evaluate(s_, current_);
@@ -125,10 +124,8 @@ class InertialHamiltonian final : public DiscreteFlow {
   bool carries_parameters() const { return carries_tangent() && parameter_forces_; }
   // ∂(f, M)/∂p (22.1), its evaluations counted as work.
   Eigen::MatrixXd parameter_forces(const State& s) {
-    const std::int64_t before = parameter_forces_->evaluations();
-    Eigen::MatrixXd G = (*parameter_forces_)(s);
-    work.potential_evaluations += parameter_forces_->evaluations() - before;
-    return G;
+    work.potential_evaluations += parameter_forces_->evaluations_per_call();
+    return (*parameter_forces_)(s);
   }
   // The force Jacobian for the tangent map; a differenced one's evaluations count as work.
   Eigen::MatrixXd jacobian(const State& s) {

@@ -97,8 +97,7 @@ class Rk final : public noether::Integrator {
 
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
-    if (parameter_forces_ && state.tangent.size() > 0 &&
-        state.tangent.cols() < static_cast<Eigen::Index>(parameter_forces_->size()))
+    if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
       throw noether::Error("rk: the tangent has fewer columns than the parameters it carries");
     tangent_rows_ = state.tangent.rows();
     tangent_columns_ = state.tangent.cols();
@@ -297,9 +296,8 @@ class Rk final : public noether::Integrator {
                              Eigen::Map<const Eigen::MatrixXd>(y.data() + s, tangent_rows_, tangent_columns_), dV);
     if (parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
       const auto P = static_cast<Eigen::Index>(parameter_forces_->size());
-      const std::int64_t before = parameter_forces_->evaluations();
       const Eigen::MatrixXd& G = (*parameter_forces_)(stage_);
-      differenced_evaluations_ += parameter_forces_->evaluations() - before;
+      differenced_evaluations_ += parameter_forces_->evaluations_per_call();
       noether::add_parameter_rhs(equations_->system(), stage_, parameter_forces_->derivatives(), G, dV.rightCols(P));
     }
   }
