@@ -22,6 +22,20 @@ inline PluginConfig plugin_config(const std::string& yaml) {
   return PluginConfig{p.at("plugin").as_string(), p};
 }
 
+// An inclined Kepler orbit of e ≈ 0.6 (a ≈ 1.01, period ≈ 6.4) about a star 1000 times heavier,
+// the LGVI at h = 0.001 (the derivative tests' first scene).
+inline Scene kepler_scene(const std::vector<std::string>& overrides = {}) {
+  return parse_scene(R"(G: 1
+bodies:
+  - {name: sun, mass: 1, position: [0, 0, 0], velocity: [0, 0, 0]}
+  - {name: planet, mass: 1.0e-3, position: [0.4, 0, 0], velocity: [0, 2.0, 0.1]}
+potential: {plugin: point-mass}
+integrator: {plugin: lgvi, step: 0.001}
+run: {t_end: 2, output_every: 1}
+)",
+                     "kepler", overrides);
+}
+
 inline Scene dumbbell_scene(const std::vector<std::string>& overrides = {}) {
   return load_scene(source_path("examples/dumbbells.yaml"), overrides);
 }

@@ -14,15 +14,6 @@ using namespace noether;
 namespace {
 
 // A Kepler orbit, e = 0.6, of a light body about a heavy one (point masses).
-const char* kKepler = R"(G: 1
-bodies:
-  - {name: sun, mass: 1, position: [0, 0, 0], velocity: [0, 0, 0]}
-  - {name: planet, mass: 1.0e-3, position: [0.4, 0, 0], velocity: [0, 2.0, 0.1]}
-potential: {plugin: point-mass}
-integrator: {plugin: lgvi, step: 0.001}
-run: {t_end: 2, output_every: 1}
-)";
-
 PluginRegistry& registry() {
   static PluginRegistry r = test::bundled_plugins();
   return r;
@@ -122,7 +113,7 @@ Eigen::MatrixXd symplectic_form(const State& z) {
 }
 
 TEST(TangentMap, KeplerAgreesWithDifferencesOfWholeRuns) {
-  const Comparison c = compare_with_differences(parse_scene(kKepler, "kepler"));
+  const Comparison c = compare_with_differences(test::kepler_scene());
   EXPECT_LT(c.worst, 1e-6);
   EXPECT_NEAR(c.stm.determinant(), 1.0, 1e-10);
 }
@@ -148,7 +139,7 @@ TEST(TangentMap, Kw4EllipsoidsAtOrderFourAgreeWithDifferences) {
 // ~ε‖M‖, so the defect is measured against ‖M‖² (the Kepler orbit's shear makes ‖M‖ ~ 3e4 by
 // t = 10); the dumbbells' is also below 1e-10 as it stands.
 TEST(TangentMap, IsSymplecticAfterTenThousandSteps) {
-  for (const Scene& scene : {parse_scene(kKepler, "kepler", {"run.t_end=10", "run.output_every=10"}),
+  for (const Scene& scene : {test::kepler_scene({"run.t_end=10", "run.output_every=10"}),
                              test::dumbbell_scene({"run.t_end=2", "run.output_every=2"})}) {
     Scene with = scene;
     with.run.stm = true;
@@ -178,7 +169,7 @@ const char* kBdf = "integrator={plugin: cvode, method: bdf, rtol: 1e-12, atol: 1
 
 TEST(TangentMap, ContinuousStmsAgreeWithDifferencesOfWholeRuns) {
   for (const char* integrator : {kRk4Kepler, kDopri5, kRkf78, kAdams, kBdf}) {
-    const Comparison c = compare_with_differences(parse_scene(kKepler, "kepler", {integrator}));
+    const Comparison c = compare_with_differences(test::kepler_scene({integrator}));
     EXPECT_LT(c.worst, 1e-6) << integrator;
     std::printf("kepler, %s: worst column %.3e\n", integrator, c.worst);
   }
@@ -224,7 +215,7 @@ TEST(TangentMap, ErrorControlOnTheStmTakesMoreStepsAndAgrees) {
   for (const char* plugin : {"rk", "cvode"}) {
     std::int64_t steps[2];
     for (const bool control : {false, true}) {
-      Scene scene = parse_scene(kKepler, "kepler",
+      Scene scene = test::kepler_scene(
                                 {std::string("integrator={plugin: ") + plugin + ", rtol: 1e-12, atol: 1e-14, stm_error_control: " +
                                  (control ? "true" : "false") + "}"});
       const Comparison c = compare_with_differences(scene);

@@ -177,7 +177,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
   struct Options {
     std::string scene, output, resume, summary = "text";
     std::vector<std::string> overrides, sensitivities;
-    bool no_progress = false, force = false, stm = false;
+    bool no_progress = false, force = false, stm = false, chaos = false;
     double max_wall_time = 0.0, resume_t_end = std::numeric_limits<double>::quiet_NaN();
   };
   auto o = std::make_shared<Options>();
@@ -193,6 +193,9 @@ void add_run_command(CLI::App& app, Command& chosen) {
   cmd->add_flag("--stm", o->stm,
                 "carry the state-transition matrix of the integrator's map and write it at every frame "
                 "(/derivatives/stm; the same as --set run.stm=true)");
+  cmd->add_flag("--chaos", o->chaos,
+                "compute the chaos indicators MEGNO and FLI from a deviation vector the tangent map carries, at every "
+                "frame (/derivatives/megno, /derivatives/fli) and in the summary (the same as --set run.chaos=true)");
   cmd->add_option("--sensitivity", o->sensitivities,
                   "write the derivative of the state at every frame with respect to this key of a body's initial "
                   "state, e.g. bodies.moon.velocity or bodies.moon.orbit.e (/derivatives/sensitivity; repeatable; "
@@ -212,9 +215,9 @@ void add_run_command(CLI::App& app, Command& chosen) {
         return 2;
       }
       if (!o->resume.empty() && (!o->output.empty() || !o->overrides.empty() || o->force || o->stm ||
-                                  !o->sensitivities.empty())) {
+                                  o->chaos || !o->sensitivities.empty())) {
         std::cerr << "noether run: --resume appends to the file it continues, with the scene recorded there: "
-                     "-o, --set, --stm, --sensitivity and --force do not apply (extend a run with --t-end)\n";
+                     "-o, --set, --stm, --chaos, --sensitivity and --force do not apply (extend a run with --t-end)\n";
         return 2;
       }
       if (o->resume.empty() && !std::isnan(o->resume_t_end)) {
@@ -222,6 +225,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
         return 2;
       }
       if (o->stm) o->overrides.push_back("run.stm=true");
+      if (o->chaos) o->overrides.push_back("run.chaos=true");
       for (const std::string& key : o->sensitivities) o->overrides.push_back("run.sensitivities+=" + key);
       return run(o->scene, o->output, o->overrides, !o->no_progress, o->force, o->summary == "json", o->max_wall_time,
                  o->resume, o->resume_t_end);

@@ -109,6 +109,7 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
     r.summary = {s.final_state.t, s.max_abs_energy_error, s.max_rel_energy_error, s.max_rel_angular_momentum_error,
                  s.min_distance, static_cast<double>(s.work.steps), static_cast<double>(s.work.potential_evaluations)};
     r.final_state = s.final_state;
+    r.indicators = detail::indicator_values(sim.scene(), s);
     if (pair_a != pair_b) {
       const System& sys = sim.scene().system;
       const auto A = static_cast<Eigen::Index>(pair_a), B = static_cast<Eigen::Index>(pair_b);
@@ -132,9 +133,30 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
   return r;
 }
 
+namespace detail {
+
+std::vector<Indicator> ensemble_indicators(const Scene& scene) {
+  std::vector<Indicator> out;
+  if (scene.run.chaos) {
+    const std::string per_time = scene.units.declared ? "1/" + scene.units.of_time() : "1/time";
+    out.insert(out.end(), {{"megno", "1"}, {"fli", "1"}, {"lyapunov", per_time}});
+  }
+  return out;
+}
+
+std::vector<double> indicator_values(const Scene& scene, const RunSummary& s) {
+  std::vector<double> out;
+  if (scene.run.chaos) out.insert(out.end(), {s.chaos_values.megno, s.chaos_values.fli, s.chaos_values.lyapunov});
+  return out;
+}
+
+}  // namespace detail
+
 std::vector<double> SampleResult::pack() const {
   std::vector<double> out{static_cast<double>(outcome), static_cast<double>(trustworthy), a, e, period, wall, setup};
   out.insert(out.end(), summary.begin(), summary.end());
+  out.push_back(static_cast<double>(indicators.size()));
+  out.insert(out.end(), indicators.begin(), indicators.end());
   out.push_back(static_cast<double>(final_state.x.cols()));
   out.push_back(static_cast<double>(final_state.R.size()));
   out.push_back(final_state.t);
@@ -156,6 +178,8 @@ SampleResult SampleResult::unpack(const std::vector<double>& in, std::string mes
   r.trustworthy = static_cast<std::int8_t>(next());
   r.a = next(), r.e = next(), r.period = next(), r.wall = next(), r.setup = next();
   for (std::size_t j = 0; j < kSummaryCount; ++j) r.summary.push_back(next());
+  const auto indicators = static_cast<std::size_t>(next());
+  for (std::size_t j = 0; j < indicators; ++j) r.indicators.push_back(next());
   const auto nb = static_cast<Eigen::Index>(next()), nr = static_cast<Eigen::Index>(next());
   r.final_state.t = next();
   r.final_state.x.resize(3, nb);

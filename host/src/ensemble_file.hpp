@@ -3,6 +3,7 @@
 // the samples and hands each result to it). docs/ensembles.md lists its layout.
 #include <noether/ensemble.hpp>
 #include <noether/error.hpp>
+#include <noether/simulation.hpp>
 
 #include "h5_helpers.hpp"
 #include "io/checksum.hpp"
@@ -39,6 +40,14 @@ const char* const kSummary[] = {"final_time",   "max_abs_energy_error", "max_rel
                                 "max_rel_angular_momentum_error", "min_distance", "steps",
                                 "potential_evaluations"};
 constexpr std::size_t kSummaryCount = sizeof kSummary / sizeof kSummary[0];
+
+// The per-sample indicators of a scene's runs (/indicators/<name>), with their units, and their
+// values from a run's summary in the same order (ensemble.cpp).
+struct Indicator {
+  std::string name, unit;
+};
+std::vector<Indicator> ensemble_indicators(const Scene& scene);
+std::vector<double> indicator_values(const Scene& scene, const RunSummary& summary);
 constexpr std::size_t kMessageBytes = 512;
 
 // The ensemble file: fixed-size datasets allocated up front (a kill changes raw data only), one
@@ -48,7 +57,8 @@ class EnsembleFile {
   EnsembleFile(const std::filesystem::path& path, const Scene& scene, const std::string& scene_text,
                const std::vector<std::string>& overrides, const EnsembleOptions& options, std::size_t samples,
                std::size_t pair_a, std::size_t pair_b)
-      : path_(path), samples_(samples), nb_(scene.system.size()), nr_(scene.system.rigid_count()) {
+      : path_(path), samples_(samples), nb_(scene.system.size()), nr_(scene.system.rigid_count()),
+        indicators_(ensemble_indicators(scene)) {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
     std::error_code ec;
@@ -136,6 +146,14 @@ class EnsembleFile {
       const std::string summary_units[kSummaryCount] = {u.of_time(), u.of_energy(), "1", "1", u.of_length(), "1", "1"};
       for (std::size_t k = 0; k < kSummaryCount; ++k)
         with_unit(create(summary, kSummary[k], H5T_NATIVE_DOUBLE, {}), summary_units[k]);
+      if (!indicators_.empty()) {
+        const io::H5Handle group(make_group(file_, "indicators"));
+        string_attribute(group, "description",
+                         "each sample's chaos indicators at its end (run.chaos; docs/derivatives.md): MEGNO <Y>, the "
+                         "FLI, ln|delta|/t");
+        for (const auto& indicator : indicators_)
+          with_unit(create(group, indicator.name.c_str(), H5T_NATIVE_DOUBLE, {}), indicator.unit);
+      }
       const io::H5Handle fin(make_group(file_, "final"));
       with_unit(create(fin, "positions", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_length());
       with_unit(create(fin, "momenta", H5T_NATIVE_DOUBLE, {nb_, 3}), u.of_momentum());
@@ -206,6 +224,8 @@ class EnsembleFile {
         put("final/angular_momenta", i, r.final_state.Pi.data(), 3 * nr_);
       }
     }
+    for (std::size_t k = 0; k < indicators_.size() && k < r.indicators.size(); ++k)
+      put(("indicators/" + indicators_[k].name).c_str(), i, &r.indicators[k], 1);
     put("orbit/a", i, &r.a, 1);
     put("orbit/e", i, &r.e, 1);
     put("orbit/period", i, &r.period, 1);
@@ -251,7 +271,7 @@ class EnsembleFile {
   // ensemble whose file would not fit on its disk, before writing anything.
   // Returns the bytes the datasets take.
   double check_disk_space(const std::filesystem::path& path, std::size_t varied) const {
-    const double row = 1.0 + 8.0 + kMessageBytes + 8.0 * (kSummaryCount + 6.0 * nb_ + 12.0 * nr_ + 3 + 2 + varied) + 1.0;
+    const double row = 1.0 + 8.0 + kMessageBytes + 8.0 * (kSummaryCount + indicators_.size() + 6.0 * nb_ + 12.0 * nr_ + 3 + 2 + varied) + 1.0;
     const double needed = row * static_cast<double>(samples_);
     std::filesystem::path folder = path.parent_path();
     if (folder.empty()) folder = ".";
@@ -348,6 +368,7 @@ class EnsembleFile {
   std::string identity_;
   std::vector<std::int8_t> done_;
   std::vector<std::pair<std::size_t, std::int8_t>> pending_;
+  std::vector<Indicator> indicators_;
 };
 
 }  // namespace noether::detail

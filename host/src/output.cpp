@@ -91,12 +91,12 @@ H5Writer::~H5Writer() {
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
-                           const std::vector<double>& integrator_checkpoint) {
+                           const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos) {
   Impl& m = *impl_;
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
   const io::FrameInput in{*m.system, m.primary, m.secondary, state, d, work, interpolated_frames, wall_seconds,
-                          integrator_checkpoint, m.layout.stm_columns};
+                          integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos};
   // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
   // seeded with the frame's index (the bytes a continued run reads back).
   const std::uint64_t seed = frames_written_ + m.buffered;

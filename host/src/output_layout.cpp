@@ -60,7 +60,8 @@ void H5Writer::create_layout(const Scene& scene) {
   // Every series is allocated for the frames the run will write, up to a budget; a run that
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
-  m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size());
+  m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size(),
+                           options.chaos);
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;

@@ -486,7 +486,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   const Params& run = root.at("run");
-  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm", "sensitivities"},
+  run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm", "sensitivities",
+                  "chaos"},
                  "'run'");
   if (run.has("escape")) scene.run.escape = parse_escape(run.at("escape"), scene.system);
   if (run.has("trust")) {
@@ -503,6 +504,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   scene.run.close_approach = run.get("close_approach", 0.0);
   scene.run.collisions = run.get("collisions", true);
   scene.run.stm = run.get("stm", false);
+  scene.run.chaos = run.get("chaos", false);
   if (run.has("sensitivities")) {  // keys, checked against the bodies where the run starts
     const Params& keys = run.at("sensitivities");
     if (keys.is_scalar() && !keys.as_string().empty()) {

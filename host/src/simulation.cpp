@@ -46,12 +46,15 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
-  if (sc.run.stm || !sc.run.sensitivities.empty()) {
-    const char* key = sc.run.stm ? "stm" : "sensitivities";
+  if (m.carries_tangent()) {
+    const char* key = sc.run.stm ? "stm" : sc.run.chaos ? "chaos" : "sensitivities";
     if (const std::string why = m.integrator->tangent_map_unavailable(); !why.empty())
       throw SceneError((sc.root.at("run").has(key) ? sc.root.at("run").at(key).here() : std::string()) + "run." +
                        key + ": integrator '" + sc.integrator.plugin + "' cannot carry " +
-                       (sc.run.stm ? "the state-transition matrix" : "sensitivities") + ": " + why);
+                       (sc.run.stm    ? "the state-transition matrix"
+                        : sc.run.chaos ? "the deviation vector of the chaos indicators"
+                                       : "sensitivities") +
+                       ": " + why);
     m.state.tangent = m.initial_tangent();
   }
   m.t_origin = sc.initial.t;
@@ -159,6 +162,10 @@ StopInfo Simulation::integrate(double t_end) {
       stop_flag = -1;
     }
   };
+  if (m.chaos)  // MEGNO and the FLI follow the deviation column after every step (eq. 23.2–23.5)
+    schedule.after_step = [&m, column = m.deviation_column()](const State& reached) {
+      m.chaos->step(reached.t, reached.tangent.col(column));
+    };
   StopInfo stop;
   try {
     stop = advance(*m.integrator, *m.potential, sc.system, m.state, schedule, *m.observer);
@@ -226,8 +233,9 @@ void Simulation::set_state(const State& s) {
     throw Error("set_state: the tangent must be " + std::to_string(N) + " × " + std::to_string(N) +
                 " (6 coordinates per body and 6 per rigid body, docs/equations.md eq. 21.1) and finite");
   m.state = s;
-  // A new segment: the state-transition matrix starts again at the identity unless one is given.
-  if (m.scene.run.stm && s.tangent.size() == 0) m.state.tangent = Eigen::MatrixXd::Identity(N, N);
+  // A new segment: the state-transition matrix starts again at the identity unless one is given,
+  // the chaos indicators again from δ0.
+  if (m.carries_tangent()) m.state.tangent = m.segment_tangent(s.tangent);
   m.failure.clear();
   m.t_origin = s.t;
   m.steps_before = 0;
@@ -249,6 +257,10 @@ RunSummary Simulation::summary() const {
   s.wall_seconds = m.wall_now();
   s.final_state = m.state;
   s.pair_models = m.pair_models();
+  if (m.chaos) {
+    s.chaos = true;
+    s.chaos_values = m.chaos->values();
+  }
   judge(s, m.scene);
   return s;
 }

@@ -4,6 +4,7 @@
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
 
+#include "chaos_indicators.hpp"
 #include "scene_sensitivity.hpp"
 #include "io/frame_schema.hpp"
 #include "run_statistics.hpp"
@@ -38,10 +39,32 @@ struct Simulation::Impl {
   std::string failure;  // the error that ended the run, if any
   // The tangent's columns after the state-transition matrix's: ∂z/∂key for run.sensitivities.
   std::vector<std::string> sensitivity_names;
+  // MEGNO and the FLI (run.chaos) from the tangent's column deviation_column().
+  std::unique_ptr<ChaosIndicators> chaos;
 
-  // The tangent at t0: [I | ∂z(t0)/∂keys] (each part only when asked for: run.stm,
-  // run.sensitivities; docs/derivatives.md); fills sensitivity_names and hands the integrator
-  // the parameters of the dynamics among the keys.
+  // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
+  bool carries_tangent() const { return scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos; }
+  // The column of the tangent that holds the chaos indicators' deviation δ (after the STM's).
+  Eigen::Index deviation_column() const { return scene.run.stm ? State::tangent_rows(scene.system) : 0; }
+  // The tangent of a new segment from the state where the run stands (set_state): the STM's
+  // identity, or `stm` when given, and δ0; the indicators start again there.
+  Eigen::MatrixXd segment_tangent(const Eigen::MatrixXd& stm) {
+    const Eigen::Index N = State::tangent_rows(scene.system);
+    Eigen::MatrixXd V(N, (scene.run.stm ? N : 0) + (scene.run.chaos ? 1 : 0));
+    if (scene.run.stm) V.leftCols(N) = stm.size() > 0 ? stm : Eigen::MatrixXd::Identity(N, N);
+    if (scene.run.chaos) start_chaos(V);
+    return V;
+  }
+  // δ0 into V's deviation column, and the indicators started from the state where the run stands.
+  void start_chaos(Eigen::MatrixXd& V) {
+    chaos = std::make_unique<ChaosIndicators>(scene.system, state);
+    V.col(deviation_column()) = chaos->initial_deviation();
+    chaos->start(state.t, V.col(deviation_column()));
+  }
+
+  // The tangent at t0: [I | δ0 | ∂z(t0)/∂keys] (each part only when asked for: run.stm,
+  // run.chaos, run.sensitivities; docs/derivatives.md); fills sensitivity_names, starts the
+  // chaos indicators and hands the integrator the parameters of the dynamics among the keys.
   Eigen::MatrixXd initial_tangent() {
     const Eigen::Index N = State::tangent_rows(scene.system);
     SceneSensitivity s;
@@ -61,9 +84,10 @@ struct Simulation::Impl {
                          scene.integrator.plugin + "': " + why);
     }
     sensitivity_names = s.names;
-    const Eigen::Index stm = scene.run.stm ? N : 0;
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + s.columns.cols());
+    const Eigen::Index stm = scene.run.stm ? N : 0, deviation = scene.run.chaos ? 1 : 0;
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + deviation + s.columns.cols());
     V.leftCols(stm).setIdentity();
+    if (deviation) start_chaos(V);
     if (s.columns.cols() > 0) V.rightCols(s.columns.cols()) = s.columns;  // (a 0×0 U does not fit N × 0)
     return V;
   }
@@ -102,7 +126,9 @@ struct Simulation::Impl {
   }
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
-      if (writer) writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint());
+      if (writer)
+        writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
+                            chaos ? chaos->values() : ChaosValues{});
     });
   }
   // The output file's options; `continuation`: a resumed run's new file, which replaces the
@@ -117,6 +143,7 @@ struct Simulation::Impl {
     }
     output.stm_columns = scene.run.stm ? static_cast<std::size_t>(State::tangent_rows(scene.system)) : 0;
     output.sensitivity_names = sensitivity_names;
+    output.chaos = scene.run.chaos;
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;

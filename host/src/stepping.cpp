@@ -194,9 +194,11 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
 
     // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
     // variant of regula falsi on the interpolated positions (16.3).
-    if (!watch.empty()) {
+    if (!watch.empty() || schedule.after_step) {
       integrator.current_state(reached);
       reached.t = t;
+    }
+    if (!watch.empty()) {
       if (!reached.x.allFinite())  // not a collision: the method failed
         throw IntegrationError("the state became non-finite (NaN or infinite positions) in the step to t = " +
                                    std::to_string(t) + "; the last valid state is kept",
@@ -247,6 +249,7 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
           interpolated = true;
         }
         state.t = t_event;
+        if (schedule.after_step) schedule.after_step(state);
         observe(interpolated);
         stop.reason = hit->describe(system, t_event);
         stop.event = hit->name();
@@ -255,8 +258,17 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         stop.body_b = hit->b;
         return stop;
       }
-      std::swap(previous, reached);
     }
+    if (schedule.after_step) {
+      // A method that passed t_end (dense dopri5): its state at t_end, where the run ends.
+      if (t > t_end && integrator.interpolate(t_end, probe)) {
+        probe.t = t_end;
+        schedule.after_step(probe);
+      } else {
+        schedule.after_step(reached);
+      }
+    }
+    if (!watch.empty()) std::swap(previous, reached);
 
     if (h > 0) {
       if (k % stride == 0 || k == n_steps) {

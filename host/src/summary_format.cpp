@@ -72,6 +72,17 @@ std::string format_summary(const RunSummary& s) {
     }
     optional += line;
   }
+  if (s.chaos) {  // docs/derivatives.md, "Chaos indicators"
+    const ChaosValues& c = s.chaos_values;
+    std::snprintf(line, sizeof line, "chaos indicators              MEGNO <Y> = %.6g, FLI = %.4g, lambda ~ ln|delta|/t = %.4g%s%s\n",
+                  c.megno, c.fli, c.lyapunov, with_unit(s.energy_unit.empty() ? "" : "1/" + s.time_unit).c_str(),
+                  c.overflowed ? " (the deviation overflowed: they stop there)" : "");
+    optional += line;
+    std::snprintf(line, sizeof line,
+                  "                              at t = %.6g (<Y> -> 2 on a regular orbit, ~ lambda t/2 on a chaotic one)\n",
+                  c.t);
+    optional += line;
+  }
   if (!s.orbits.empty()) {
     // The smallest orbit's scale: what the energy error means for the most fragile motion.
     const OrbitScale& o = s.orbits.front();
@@ -179,6 +190,14 @@ std::string format_summary_json(const RunSummary& s) {
   field("mutual_pair", s.mutual_pair.empty() ? "null" : json_string(s.mutual_pair));
   field("mutual_period", s.mutual_revolutions > 0 ? json_number(s.mutual_period) : "null");
   field("mutual_revolutions", std::to_string(s.mutual_revolutions));
+  if (s.chaos) {
+    const ChaosValues& c = s.chaos_values;
+    field("chaos", "{\"megno\": " + json_number(c.megno) + ", \"megno_y\": " + json_number(c.megno_y) +
+                       ", \"fli\": " + json_number(c.fli) + ", \"lyapunov\": " + json_number(c.lyapunov) +
+                       ", \"t\": " + json_number(c.t) + ", \"overflowed\": " + (c.overflowed ? "true" : "false") + "}");
+  } else {
+    field("chaos", "null");
+  }
   field("closest_approach_pair", std::isfinite(s.min_distance) ? json_string(s.min_distance_pair) : "null");
   std::string orbits = "[";
   for (const auto& o : s.orbits)

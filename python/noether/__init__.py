@@ -148,18 +148,20 @@ def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
     raise TypeError("lyapunov_orbit(scene): a path to a YAML scene, or a dict of its keys")
 
 
-def _derivative_overrides(set, stm, sensitivities):
-    """The overrides of set=, stm= and sensitivities= (as `noether run --set/--stm/--sensitivity`)."""
+def _derivative_overrides(set, stm, sensitivities, chaos=False):
+    """The overrides of set=, stm=, sensitivities= and chaos= (as `noether run --set/--stm/
+    --sensitivity/--chaos`)."""
     if isinstance(sensitivities, str):
         sensitivities = [sensitivities]
     return (([set] if isinstance(set, str) else list(set)) + (["run.stm=true"] if stm else [])
-            + [f"run.sensitivities+={key}" for key in sensitivities])
+            + [f"run.sensitivities+={key}" for key in sensitivities] + (["run.chaos=true"] if chaos else []))
 
 
 class Simulation:
     """A run held open: integrate to a time, read or set the state, integrate on.
 
-    Simulation(scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=())
+    Simulation(scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=(),
+               chaos=False)
       scene     a path to a YAML scene file, or a dict with the keys of one (docs/user-guide.md)
       set       overrides as for `noether run --set`: ["integrator.step=1e-3", ...]
       output    an HDF5 file to write as the command does (frames at run.output_every and at
@@ -172,14 +174,17 @@ class Simulation:
       sensitivities  keys of the bodies' initial states ("bodies.moon.velocity", …) or parameters of
                      the dynamics ("bodies.moon.mass", "G", …; run.sensitivities,
                 `noether run --sensitivity`): sim.sensitivities, docs/derivatives.md
+      chaos     compute MEGNO and the fast Lyapunov indicator from a deviation vector the tangent
+                map carries (run.chaos, `noether run --chaos`): sim.chaos, docs/derivatives.md
 
     The state properties return copies (NumPy arrays) of the state where the simulation stands;
     assigning one (sim.positions = x) or calling set_state(...) replaces that part, checked, and
     starts a new segment (the summary's references are taken there).
     """
 
-    def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=()):
-        overrides = _derivative_overrides(set, stm, sensitivities)
+    def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=(),
+                 chaos=False):
+        overrides = _derivative_overrides(set, stm, sensitivities, chaos)
         if isinstance(scene, _Simulation):  # from load()
             self._sim = scene
         elif isinstance(scene, dict):
@@ -193,10 +198,10 @@ class Simulation:
 
     @classmethod
     def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False,
-                  sensitivities=()):
+                  sensitivities=(), chaos=False):
         """A simulation of a scene given as YAML text (relative shape paths: from the working
         folder)."""
-        overrides = _derivative_overrides(set, stm, sensitivities)
+        overrides = _derivative_overrides(set, stm, sensitivities, chaos)
         return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
 
     @classmethod
@@ -250,6 +255,14 @@ class Simulation:
         (docs/equations.md eq. 21.1; names in stm_coordinates); None unless the simulation
         carries it (stm=True)."""
         return self._sim.stm
+
+    @property
+    def chaos(self):
+        """The chaos indicators where the simulation stands (chaos=True), a dict: megno (⟨Y⟩, → 2
+        on a regular orbit, ≈ λ t / 2 on a chaotic one), megno_y (Y), fli (log10 of the
+        deviation's largest growth), lyapunov (ln ‖δ‖ / t), t (the step they stand at),
+        overflowed; None unless asked for (docs/derivatives.md, "Chaos indicators")."""
+        return self.summary()["chaos"]
 
     @property
     def sensitivities(self):

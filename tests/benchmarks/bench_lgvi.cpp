@@ -41,24 +41,27 @@ void BM_LgviDumbbellStep(benchmark::State& st) {
 }
 BENCHMARK(BM_LgviDumbbellStep)->Unit(benchmark::kMicrosecond);
 
-// The same steps carrying the 24 × 24 state-transition matrix (docs/equations.md §21): one
-// analytic force Jacobian and the tangent map's matrix products per step on top.
-void BM_LgviDumbbellStepWithStm(benchmark::State& st) {
+// The same steps carrying a tangent: the 24 × 24 state-transition matrix (Arg 24; docs/equations.md
+// §21), or one deviation vector (Arg 1; run.chaos, §23). Either way one analytic force Jacobian
+// and the implicit equation's derivative per step on top, and the tangent map's matrix products.
+void BM_LgviDumbbellStepWithTangent(benchmark::State& st) {
   DumbbellLgvi d;
   auto& [scene, registry, potential, lgvi, h] = d;
   Null null;
   const auto N = State::tangent_rows(scene.system);
+  const auto columns = static_cast<Eigen::Index>(st.range(0));
   for (auto _ : st) {
     State s = scene.initial;
-    s.tangent = Eigen::MatrixXd::Identity(N, N);
+    s.tangent = Eigen::MatrixXd::Identity(N, columns);
     advance(*lgvi, *potential, scene.system, s, {1000 * h, 1000 * h}, null);
     benchmark::DoNotOptimize(s.tangent.data());
   }
+  st.SetLabel(columns == N ? "stm" : "deviation vector");
   st.SetItemsProcessed(st.iterations() * 1000);
   st.counters["ns_per_step"] = benchmark::Counter(
       static_cast<double>(st.iterations()) * 1000, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_LgviDumbbellStepWithStm)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_LgviDumbbellStepWithTangent)->Arg(24)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 // KW4 as two ellipsoids, mutual-series order 4, with and without the STM: the series has no
 // analytic Jacobian yet, so each step with the STM differences it (2 × 12 more evaluations).

@@ -11,7 +11,7 @@ check() { bash "$expect" "$@" >/dev/null || { echo "FAILED: ${*:3}"; bash "$expe
 check 2 "give a scene, or --resume" "$noether" run
 check 2 "give a scene, or --resume FILE.h5 \(not both\)" "$noether" run "$src/examples/dumbbells.yaml" --resume x.h5
 check 2 "missing.h5: no such file" "$noether" run --resume missing.h5
-check 2 "-o, --set, --stm, --sensitivity and --force do not apply" "$noether" run --resume x.h5 --set run.t_end=3
+check 2 "-o, --set, --stm, --chaos, --sensitivity and --force do not apply" "$noether" run --resume x.h5 --set run.t_end=3
 check 2 "--t-end goes with --resume" "$noether" run "$src/examples/dumbbells.yaml" --t-end 3
 echo "not hdf5" > text.h5
 check 2 "text.h5 is not an HDF5 file" "$noether" run --resume text.h5

@@ -69,6 +69,9 @@ struct SampleResult {
   double a = NAN, e = NAN, period = NAN;  // the pair's osculating mutual orbit at the end
   double wall = 0.0, setup = 0.0;
   std::int8_t trustworthy = -1;  // the verdict: 1, 0 (why: in message), −1 when it failed
+  // The run's indicators (/indicators/<name>, named by ensemble_indicator_names): the chaos
+  // indicators when the scene asks for them (run.chaos); NaN when it failed.
+  std::vector<double> indicators;
   // As numbers (all but the message), for sending between processes.
   std::vector<double> pack() const;
   static SampleResult unpack(const std::vector<double>& numbers, std::string message);

@@ -4,6 +4,7 @@
 // then /frames_complete advanced, so a run killed at any moment leaves a readable file whose
 // series all have one length and whose first /frames_complete frames are complete. Every frame
 // of what a continued run reads back is checksummed (/checkpoint/checksum).
+#include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/potential.hpp>
@@ -34,6 +35,7 @@ struct OutputOptions {
   // off), then one per sensitivity (/derivatives/sensitivity, named by /derivatives/parameters).
   std::size_t stm_columns = 0;
   std::vector<std::string> sensitivity_names;
+  bool chaos = false;  // /derivatives/megno and /derivatives/fli (run.chaos)
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
   // Build the file under its hidden name until publish() (a continued run: the old file stays
   // as it is until its frames have been read back, verified and copied).
@@ -52,10 +54,10 @@ class H5Writer {
   H5Writer& operator=(const H5Writer&) = delete;
 
   // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
-  // checkpoint a continued run starts from).
+  // checkpoint a continued run starts from); the chaos indicators there (options.chaos).
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
                    double wall_seconds, std::int64_t interpolated_frames = 0,
-                   const std::vector<double>& integrator_checkpoint = {});
+                   const std::vector<double>& integrator_checkpoint = {}, const ChaosValues& chaos = {});
   // Moves the file from its hidden name to its path (done by the constructor unless
   // options.defer_publish); until then the path holds what it held before.
   void publish();

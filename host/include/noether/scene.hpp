@@ -42,6 +42,10 @@ struct RunSettings {
   // Keys of the bodies' initial states (run.sensitivities, `noether run --sensitivity KEY`;
   // docs/derivatives.md): ∂z(t)/∂key at every output frame, /derivatives/sensitivity.
   std::vector<std::string> sensitivities;
+  // Chaos indicators (run.chaos, `noether run --chaos`; docs/derivatives.md): MEGNO and the fast
+  // Lyapunov indicator from a deviation vector the tangent map carries, /derivatives/megno and
+  // /derivatives/fli at every output frame and their last values in the summary.
+  bool chaos = false;
   TrustThresholds trust;
 };
 

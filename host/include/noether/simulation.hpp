@@ -1,6 +1,7 @@
 #pragma once
 // Simulation: one run of a scene — plugins made by name, the integrator driven to t_end,
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
+#include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/stepping.hpp>
@@ -102,6 +103,9 @@ struct RunSummary {
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
+  // The chaos indicators at the run's last step (run.chaos; NaN without): docs/derivatives.md.
+  bool chaos = false;
+  ChaosValues chaos_values;
   std::string time_unit;    // the scene's unit of time, for the summary
   // The scene's units of energy and length when it declares units (empty otherwise): the
   // summary prints its numbers with them.

@@ -54,6 +54,10 @@ struct Schedule {
   // When non-null and set (to a signal number, by a signal handler), the run stops after the
   // current step: the state there is observed and the run ends as by an event, "interrupted".
   const volatile std::sig_atomic_t* interrupt = nullptr;
+  // Called after every step that stands (not one an event cut short) with the state the method
+  // reached, its tangent included, and at an event with the state there; before the frame at
+  // that time is observed. May be empty (then no state is read after a step without events).
+  std::function<void(const State&)> after_step = nullptr;
 
   // Continuing a run (Simulation::integrate called again, `noether run --resume`): the time of
   // step 0 and of frame 0 (NaN: state.t); the fixed steps already taken from there to state.t;

@@ -49,8 +49,11 @@ void stm(const FrameInput& in, void* out) {
   tangent_columns(in.state.tangent, 0, static_cast<Eigen::Index>(in.stm_columns), out);
 }
 void sensitivity(const FrameInput& in, void* out) {
-  tangent_columns(in.state.tangent, static_cast<Eigen::Index>(in.stm_columns), in.state.tangent.cols(), out);
+  const Eigen::Index last = in.state.tangent.cols();
+  tangent_columns(in.state.tangent, last - static_cast<Eigen::Index>(in.sensitivity_columns), last, out);
 }
+void megno(const FrameInput& in, void* out) { copy(in.chaos.megno, out); }
+void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
 void velocity(const FrameInput& in, void* out) {  // v = γ/m
   double* v = doubles(out);
   for (std::size_t i = 0; i < in.system.size(); ++i)
@@ -264,6 +267,16 @@ const FrameQuantity kFrameSchema[] = {
      "/derivatives/coordinates), columns named by /derivatives/parameters, per unit of each key as the scene "
      "gives it",
      -1, sensitivity, nullptr},
+    {"megno", "/derivatives/megno/value", E::kChaos, D::kOne, kH5md,
+     "MEGNO ⟨Y⟩ (Cincotta & Simó 2000; run.chaos, docs/derivatives.md, docs/equations.md eq. 23.3) of a deviation "
+     "vector carried by the tangent map, at the method's last step up to each frame: → 2 on a regular orbit, "
+     "grows as λ t / 2 on a chaotic one; NaN before the first step and after ‖δ‖ overflowed",
+     -1, megno, nullptr},
+    {"fli", "/derivatives/fli/value", E::kChaos, D::kOne, kH5md,
+     "fast Lyapunov indicator, max over s ≤ t of log10 ‖δ(s)‖/‖δ0‖ (Froeschlé, Lega & Gonczi 1997; run.chaos, "
+     "docs/equations.md eq. 23.4), in the scaled norm of eq. 23.1: grows as log10 t on a regular orbit, linearly in "
+     "t on a chaotic one",
+     -1, fli, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -305,6 +318,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kIntegrator: return l.width > 0;
     case E::kTangent: return l.stm_columns > 0;
     case E::kSensitivity: return l.sensitivity_columns > 0;
+    case E::kChaos: return l.chaos;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -319,6 +333,7 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
   switch (q.extent) {
     case E::kStepCount:
     case E::kScalar:
+    case E::kChaos:
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return {};
     case E::kVector:
@@ -339,8 +354,9 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
 }
 
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
-                      std::size_t sensitivity_columns) {
+                      std::size_t sensitivity_columns, bool chaos) {
   FrameLayout l;
+  l.chaos = chaos;
   l.stm_columns = stm_columns;
   l.sensitivity_columns = sensitivity_columns;
   l.bodies = system.size();
@@ -358,7 +374,7 @@ bool rigid_only(const FrameQuantity& q) {
   return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix;
 }
 bool optional(const FrameQuantity& q) {
-  return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity;
+  return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos;
 }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
@@ -372,6 +388,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kIntegrator: return "an integrator with variables of its own";
     case E::kTangent: return "run.stm";
     case E::kSensitivity: return "run.sensitivities";
+    case E::kChaos: return "run.chaos";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -404,7 +421,8 @@ std::string unit_of(Dimension d, const Units& u) {
 std::string describe_extent(Extent e) {
   switch (e) {
     case E::kStepCount:
-    case E::kScalar: return "[frame]";
+    case E::kScalar:
+    case E::kChaos: return "[frame]";
     case E::kVector: return "[frame][3]";
     case E::kBodyVector: return "[frame][body][3]";
     case E::kRigidVector: return "[frame][rigid body][3]";

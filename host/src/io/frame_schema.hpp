@@ -6,6 +6,7 @@
 // checkpointed rows back (run_record.cpp), `noether schema` prints it, and the Python reader's
 // series list is tested against it (tests/python). Adding an output quantity is one row here
 // plus the function that computes it (docs/architecture.md, "Where to add").
+#include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/state.hpp>
@@ -31,6 +32,8 @@ struct FrameInput {
   double wall_seconds = 0.0;
   const std::vector<double>& integrator;  // Integrator::checkpoint()
   std::size_t stm_columns = 0;  // the state-transition matrix's columns of State::tangent (first), 0: none
+  std::size_t sensitivity_columns = 0;  // the sensitivities' columns of State::tangent (last), 0: none
+  const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
@@ -62,14 +65,16 @@ enum class Extent {
   kSecondaryAngle,   // []      idem, when the secondary is rigid
   kSecondaryVector,  // [3]     idem
   kTangent,          // [coordinate][coordinate]: the STM, State::tangent's first columns (run.stm)
-  kSensitivity,      // [coordinate][parameter]: State::tangent's columns after the STM's (run.sensitivities)
+  kSensitivity,      // [coordinate][parameter]: State::tangent's last columns (run.sensitivities)
+  kChaos,            // []: a chaos indicator (run.chaos)
 };
 
 // What decides which series a file has, and their shapes.
 struct FrameLayout {
   std::size_t bodies = 0, rigid = 0, width = 0;  // width: Integrator::checkpoint()'s size
   std::size_t stm_columns = 0;          // State::tangent's columns of the STM (0: run.stm off)
-  std::size_t sensitivity_columns = 0;  // its columns after those (run.sensitivities)
+  std::size_t sensitivity_columns = 0;  // its last columns (run.sensitivities)
+  bool chaos = false;                   // the chaos indicators (run.chaos)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -107,9 +112,9 @@ inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
 bool present(const FrameQuantity& q, const FrameLayout& layout);
 std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& layout);
 // The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
-// a tangent of `stm_columns` + `sensitivity_columns` columns.
+// a tangent of `stm_columns` + (δ of the chaos indicators) + `sensitivity_columns` columns.
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
-                      std::size_t sensitivity_columns = 0);
+                      std::size_t sensitivity_columns = 0, bool chaos = false);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

@@ -1,0 +1,57 @@
+"""chaos.py NOETHER SOURCE_DIR WORK_DIR: `noether run --chaos` and the ensemble's indicator columns
+(docs/derivatives.md, "Chaos indicators"; docs/ensembles.md) as a user meets them.
+
+The tumbling moon's MEGNO grows far beyond 2 while the same moon started synchronous on a
+circular orbit stays near 2; the file's /derivatives/megno and /derivatives/fli end at the
+summary's values; an ensemble over the moon's eccentricity writes /indicators/{megno,fli,lyapunov}
+equal to those of `noether run` with each sample's overrides; --resume of such a file is refused.
+"""
+import json
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
+os.makedirs(work, exist_ok=True)
+os.chdir(work)
+scene = os.path.join(src, "examples", "tumbling-moon.yaml")
+base = ["--no-progress", "--force", "--summary", "json", "--set", "run.t_end=300", "--set", "run.output_every=10"]
+
+
+def run(*extra, output="chaos.h5"):
+    done = subprocess.run([noether, "run", scene, "--chaos", "-o", output, *base, *extra], check=True,
+                          capture_output=True, text=True)
+    return json.loads(done.stdout)["chaos"]
+
+
+tumbling = run()
+assert tumbling["megno"] > 10 and tumbling["t"] == 300 and not tumbling["overflowed"], tumbling
+with h5py.File("chaos.h5", "r") as f:
+    megno, fli = f["derivatives/megno/value"][:], f["derivatives/fli/value"][:]
+    assert np.array_equal(f["derivatives/megno/time"][:], f["particles/bodies/position/time"][:])
+assert megno.shape == (31,) and np.isnan(megno[0]), megno
+assert megno[-1] == tumbling["megno"] and fli[-1] == tumbling["fli"], (megno[-1], fli[-1], tumbling)
+assert np.all(np.diff(fli[1:]) >= 0), fli
+
+regular = run("--set", "bodies.moon.orbit.e=0", "--set", "bodies.moon.angular_velocity=[0,0,1.02]")
+assert abs(regular["megno"] - 2) < 0.1, regular
+
+# The ensemble's columns are the runs' own numbers.
+subprocess.run([noether, "ensemble", scene, "--set", "run.chaos=true", "--set", "run.t_end=300",
+                "--set", "run.output_every=10", "--vary", "bodies.moon.orbit.e=grid(0,0.1,3)", "-o", "ensemble.h5",
+                "--force"], check=True, capture_output=True, text=True)
+with h5py.File("ensemble.h5", "r") as f:
+    e = f["inputs/bodies.moon.orbit.e"][:]
+    columns = {k: f["indicators/" + k][:] for k in ("megno", "fli", "lyapunov")}
+    assert f["indicators/megno"].attrs["unit"] in (b"1", "1")
+for i, ecc in enumerate(e):
+    single = run("--set", f"bodies.moon.orbit.e={ecc!r}", output="sample.h5")
+    for k, values in columns.items():
+        assert abs(values[i] - single[k]) <= 1e-12 * abs(single[k]), (i, k, values[i], single[k])
+
+resume = subprocess.run([noether, "run", "--resume", "chaos.h5", "--no-progress"], capture_output=True, text=True)
+assert resume.returncode != 0 and "run.chaos" in resume.stderr, (resume.returncode, resume.stderr)
+print("chaos: tumbling <Y> =", tumbling["megno"], "regular <Y> =", regular["megno"])
