@@ -222,15 +222,18 @@ void Simulation::save(const std::filesystem::path& path) const {
   writer.flush();
   const RunSummary& s = m.summary;
   const auto [p_scale, L_scale] = m.observer->scales();
+  std::vector<std::pair<std::string, std::vector<double>>> numbers{
+      {"initial", pack(s.initial)},
+      {"final", pack(s.final)},
+      {"statistics",
+       {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
+        s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0, s.conserves_angular_momentum ? 1.0 : 0.0,
+        s.min_gap, s.min_gap_reach, s.min_distance, s.t_of_min_distance, p_scale, L_scale}},
+      {"frames", {static_cast<double>(s.frames)}},
+      {"orbit_scales", orbit_scales(s.orbits)}};
+  if (const auto spin = m.observer->spin_state_numbers(); !spin.empty()) numbers.emplace_back("spin_state", spin);
   writer.write_summary_values(
-      {{"initial", pack(s.initial)},
-       {"final", pack(s.final)},
-       {"statistics",
-        {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
-         s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0, s.conserves_angular_momentum ? 1.0 : 0.0,
-         s.min_gap, s.min_gap_reach, s.min_distance, s.t_of_min_distance, p_scale, L_scale}},
-       {"frames", {static_cast<double>(s.frames)}},
-       {"orbit_scales", orbit_scales(s.orbits)}},
+      numbers,
       {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
        {"orbits", orbit_names(s.orbits)}});
   writer.publish();
@@ -281,6 +284,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     s.min_distance_pair = run.summary_text("min_distance_pair");
     s.orbits = orbits_of(run);
     s.stop_reason = run.summary_text("stop_reason");
+    for (const auto& [key, values] : run.summary_numbers)  // absent from an older noether's file
+      if (key == "spin_state") m.observer->set_spin_state_numbers(values);
   } else if (!with_output) {  // a run's file: its frames replayed into the summary, as --resume does
     m.new_segment();
     replay(run, m, last, options.interrupt);

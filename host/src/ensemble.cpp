@@ -6,6 +6,7 @@
 #include <noether/simulation.hpp>
 
 #include "ensemble_file.hpp"
+#include "spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -135,11 +136,22 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
 
 namespace detail {
 
+namespace {
+// The spin states a run of the scene reports, with no values yet (the bodies and their binary).
+std::vector<SpinState> spin_state_template(const Scene& scene) { return SpinStateTracker(scene.system).spin_states(); }
+}  // namespace
+
 std::vector<Indicator> ensemble_indicators(const Scene& scene) {
   std::vector<Indicator> out;
   if (scene.run.chaos) {
     const std::string per_time = scene.units.declared ? "1/" + scene.units.of_time() : "1/time";
     out.insert(out.end(), {{"megno", "1"}, {"fli", "1"}, {"lyapunov", per_time}});
+  }
+  for (const SpinState& spin : spin_state_template(scene)) {
+    if (!spin.other.empty())
+      out.insert(out.end(), {{spin.body + ".libration_amplitude", "deg"}, {spin.body + ".turns", "1"},
+                             {spin.body + ".max_pitch", "deg"}, {spin.body + ".max_roll", "deg"}});
+    out.push_back({spin.body + ".max_nutation", "deg"});
   }
   return out;
 }
@@ -147,6 +159,13 @@ std::vector<Indicator> ensemble_indicators(const Scene& scene) {
 std::vector<double> indicator_values(const Scene& scene, const RunSummary& s) {
   std::vector<double> out;
   if (scene.run.chaos) out.insert(out.end(), {s.chaos_values.megno, s.chaos_values.fli, s.chaos_values.lyapunov});
+  std::vector<SpinState> spins = s.spin_states;
+  if (spins.size() != scene.system.rigid_count()) spins = spin_state_template(scene);  // a run that never started
+  for (const SpinState& spin : spins) {
+    if (!spin.other.empty())
+      out.insert(out.end(), {spin.libration_amplitude, spin.turns, spin.max_pitch, spin.max_roll});
+    out.push_back(spin.max_nutation);
+  }
   return out;
 }
 

@@ -149,8 +149,10 @@ class EnsembleFile {
       if (!indicators_.empty()) {
         const io::H5Handle group(make_group(file_, "indicators"));
         string_attribute(group, "description",
-                         "each sample's chaos indicators at its end (run.chaos; docs/derivatives.md): MEGNO <Y>, the "
-                         "FLI, ln|delta|/t");
+                         "each sample's indicators at its end: with run.chaos MEGNO <Y>, the FLI, ln|delta|/t "
+                         "(docs/derivatives.md); for each rigid body its spin state, <body>.libration_amplitude, "
+                         ".turns, .max_pitch, .max_roll (one of the binary) and .max_nutation (docs/user-guide.md, "
+                         "\"Spin state\")");
         for (const auto& indicator : indicators_)
           with_unit(create(group, indicator.name.c_str(), H5T_NATIVE_DOUBLE, {}), indicator.unit);
       }

@@ -9,6 +9,7 @@
 
 #include "binary_pair.hpp"
 #include "event_watch.hpp"
+#include "spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ namespace noether::detail {
 class RunStatistics final : public Observer {
  public:
   RunStatistics(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
-      : system_(system), s_(summary), write_(std::move(write)) {
+      : system_(system), s_(summary), write_(std::move(write)), spin_(system) {
     if (system.size() <= 64) contacts_ = watches(system, Events{0.0, true, {}});  // O(n²): small scenes only
   }
 
@@ -81,6 +82,7 @@ class RunStatistics final : public Observer {
       s_.orbits = orbit_scales(state);
       start_mutual_orbit(state);
       detect_conservation(state, forces);
+      spin_.start();
     }
     s_.final = d;
     s_.max_abs_energy_error = std::max(s_.max_abs_energy_error, std::abs(d.energy - s_.initial.energy));
@@ -112,6 +114,10 @@ class RunStatistics final : public Observer {
       }
     }
     track_mutual_orbit(state);
+    if (system_.rigid_count() > 0) {
+      spin_.observe(state);
+      s_.spin_states = spin_.spin_states();
+    }
     ++s_.frames;
     return d;
   }
@@ -119,6 +125,12 @@ class RunStatistics final : public Observer {
   // The scales of the relative momentum errors (a saved simulation keeps them).
   std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
+  // The spin states' running values (a saved simulation keeps them).
+  std::vector<double> spin_state_numbers() const { return spin_.pack(); }
+  void set_spin_state_numbers(const std::vector<double>& numbers) {
+    spin_.unpack(numbers);
+    s_.spin_states = spin_.spin_states();
+  }
 
  private:
   // The mutual orbit of a two-body-like scene (RunSummary::mutual_period): its plane at t0.
@@ -227,6 +239,7 @@ class RunStatistics final : public Observer {
     Vec3 e1 = Vec3::Zero(), e2 = Vec3::Zero();  // the orbit's plane at t0: r0 and its prograde normal
     double t0 = 0.0, t_prev = 0.0, angle_prev = 0.0, swept = 0.0;
   } mutual_;
+  SpinStateTracker spin_;  // the rigid bodies' libration and nutation (RunSummary::spin_states)
 };
 
 // Work counters added up; −1 (not reported) stays −1.

@@ -42,7 +42,7 @@ std::string format_summary(const RunSummary& s) {
   const double steps = static_cast<double>(std::max<std::int64_t>(1, s.work.steps));
   // Only what the scene conserves, and a closest approach only where there are two bodies.
   std::string optional;
-  char line[256];
+  char line[512];
   if (s.conserves_linear_momentum) {
     std::snprintf(line, sizeof line, "max rel. linear momentum err  %.3e\n", s.max_rel_linear_momentum_error);
     optional += line;
@@ -70,6 +70,30 @@ std::string format_summary(const RunSummary& s) {
       std::snprintf(line, sizeof line, "mutual orbit period           not measured: %s made less than one revolution\n",
                     s.mutual_pair.c_str());
     }
+    optional += line;
+  }
+  for (const SpinState& spin : s.spin_states) {  // docs/user-guide.md, "Spin state"
+    std::string what;
+    char part[256];
+    if (!spin.other.empty()) {
+      if (spin.undersampled) {
+        what = "libration not measured: the frames are too far apart to follow the yaw (lower run.output_every)";
+      } else if (spin.libration_amplitude > 90.0) {
+        std::snprintf(part, sizeof part, "circulates, %+.4g turns relative to the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.turns, spin.max_pitch, spin.max_roll);
+        what = part;
+      } else if (std::isfinite(spin.libration_amplitude)) {
+        std::snprintf(part, sizeof part, "librates +-%.4g deg about the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.libration_amplitude, spin.max_pitch, spin.max_roll);
+        what = part;
+      }
+    }
+    if (std::isfinite(spin.max_nutation))
+      std::snprintf(part, sizeof part, "nutation %.3g deg (max %.3g)", spin.nutation, spin.max_nutation);
+    else
+      std::snprintf(part, sizeof part, "not rotating");
+    what += (what.empty() ? "" : "; ") + std::string(part);
+    std::snprintf(line, sizeof line, "spin state %-18s %s\n", spin.body.c_str(), what.c_str());
     optional += line;
   }
   if (s.chaos) {  // docs/derivatives.md, "Chaos indicators"
@@ -190,6 +214,16 @@ std::string format_summary_json(const RunSummary& s) {
   field("mutual_pair", s.mutual_pair.empty() ? "null" : json_string(s.mutual_pair));
   field("mutual_period", s.mutual_revolutions > 0 ? json_number(s.mutual_period) : "null");
   field("mutual_revolutions", std::to_string(s.mutual_revolutions));
+  std::string spins = "[";
+  for (const SpinState& spin : s.spin_states)
+    spins += std::string(spins.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +
+             ", \"other\": " + (spin.other.empty() ? "null" : json_string(spin.other)) +
+             ", \"libration_amplitude\": " + json_number(spin.libration_amplitude) +
+             ", \"turns\": " + json_number(spin.turns) + ", \"max_pitch\": " + json_number(spin.max_pitch) +
+             ", \"max_roll\": " + json_number(spin.max_roll) +
+             ", \"undersampled\": " + (spin.undersampled ? "true" : "false") +
+             ", \"nutation\": " + json_number(spin.nutation) + ", \"max_nutation\": " + json_number(spin.max_nutation) + "}";
+  field("spin_states", spins + "]");
   if (s.chaos) {
     const ChaosValues& c = s.chaos_values;
     field("chaos", "{\"megno\": " + json_number(c.megno) + ", \"megno_y\": " + json_number(c.megno_y) +

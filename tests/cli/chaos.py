@@ -1,10 +1,12 @@
-"""chaos.py NOETHER SOURCE_DIR WORK_DIR: `noether run --chaos` and the ensemble's indicator columns
-(docs/derivatives.md, "Chaos indicators"; docs/ensembles.md) as a user meets them.
+"""chaos.py NOETHER SOURCE_DIR WORK_DIR: `noether run --chaos`, the spin states, and the ensemble's
+indicator columns (docs/derivatives.md, "Chaos indicators"; docs/user-guide.md, "Spin state";
+docs/ensembles.md) as a user meets them.
 
 The tumbling moon's MEGNO grows far beyond 2 while the same moon started synchronous on a
 circular orbit stays near 2; the file's /derivatives/megno and /derivatives/fli end at the
 summary's values; an ensemble over the moon's eccentricity writes /indicators/{megno,fli,lyapunov}
-equal to those of `noether run` with each sample's overrides; --resume of such a file is refused.
+and the spin states' columns equal to those of `noether run` with each sample's overrides;
+--resume of such a file is refused.
 """
 import json
 import os
@@ -21,10 +23,10 @@ scene = os.path.join(src, "examples", "tumbling-moon.yaml")
 base = ["--no-progress", "--force", "--summary", "json", "--set", "run.t_end=300", "--set", "run.output_every=10"]
 
 
-def run(*extra, output="chaos.h5"):
+def run(*extra, output="chaos.h5", what="chaos"):
     done = subprocess.run([noether, "run", scene, "--chaos", "-o", output, *base, *extra], check=True,
                           capture_output=True, text=True)
-    return json.loads(done.stdout)["chaos"]
+    return json.loads(done.stdout)[what]
 
 
 tumbling = run()
@@ -41,16 +43,27 @@ assert abs(regular["megno"] - 2) < 0.1, regular
 
 # The ensemble's columns are the runs' own numbers.
 subprocess.run([noether, "ensemble", scene, "--set", "run.chaos=true", "--set", "run.t_end=300",
-                "--set", "run.output_every=10", "--vary", "bodies.moon.orbit.e=grid(0,0.1,3)", "-o", "ensemble.h5",
+                "--set", "run.output_every=0.05", "--vary", "bodies.moon.orbit.e=grid(0,0.1,3)", "-o", "ensemble.h5",
                 "--force"], check=True, capture_output=True, text=True)
 with h5py.File("ensemble.h5", "r") as f:
     e = f["inputs/bodies.moon.orbit.e"][:]
     columns = {k: f["indicators/" + k][:] for k in ("megno", "fli", "lyapunov")}
+    spin_columns = {k: f["indicators/moon." + k][:] for k in ("libration_amplitude", "turns", "max_pitch", "max_roll",
+                                                               "max_nutation")}
     assert f["indicators/megno"].attrs["unit"] in (b"1", "1")
+    assert f["indicators/moon.max_nutation"].attrs["unit"] in (b"deg", "deg")
 for i, ecc in enumerate(e):
-    single = run("--set", f"bodies.moon.orbit.e={ecc!r}", output="sample.h5")
+    done = subprocess.run([noether, "run", scene, "--chaos", *base, "--set", "run.output_every=0.05", "--set",
+                           f"bodies.moon.orbit.e={ecc!r}"], check=True, capture_output=True, text=True)
+    summary = json.loads(done.stdout)
     for k, values in columns.items():
-        assert abs(values[i] - single[k]) <= 1e-12 * abs(single[k]), (i, k, values[i], single[k])
+        expected = summary["chaos"][k]
+        assert abs(values[i] - expected) <= 1e-12 * abs(expected), (i, k, values[i], expected)
+    moon = next(s for s in summary["spin_states"] if s["body"] == "moon")
+    assert moon["other"] == "planet", moon
+    for k, values in spin_columns.items():
+        expected = moon[k]
+        assert expected is not None and values[i] == expected, (i, k, values[i], expected)
 
 resume = subprocess.run([noether, "run", "--resume", "chaos.h5", "--no-progress"], capture_output=True, text=True)
 assert resume.returncode != 0 and "run.chaos" in resume.stderr, (resume.returncode, resume.stderr)

@@ -2,6 +2,7 @@
 // Simulation: one run of a scene — plugins made by name, the integrator driven to t_end,
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
 #include <noether/chaos_values.hpp>
+#include <noether/spin_state.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/stepping.hpp>
@@ -103,6 +104,9 @@ struct RunSummary {
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
+  // Each rigid body's libration about its binary's line of centres and its nutation, from the
+  // output frames (docs/user-guide.md "Spin state").
+  std::vector<SpinState> spin_states;
   // The chaos indicators at the run's last step (run.chaos; NaN without): docs/derivatives.md.
   bool chaos = false;
   ChaosValues chaos_values;

@@ -10,6 +10,7 @@
 #include <noether/orbital_elements.hpp>
 
 #include "../binary_pair.hpp"
+#include "../spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -143,22 +144,17 @@ void copy_degrees(const Vec3& radians, void* out) { copy(Vec3(radians * (180.0 /
 void euler_angles(const FrameInput& in, void* out) {  // eq. 17.9 of each rigid body's R
   for (std::size_t k = 0; k < in.state.R.size(); ++k) copy_degrees(euler_angles_321(in.state.R[k]), doubles(out) + 3 * k);
 }
-// Eq. 17.9 of A = Oᵀ R_s (eq. 17.10): the secondary's attitude in the orbit frame, whose x axis
-// points at the primary and z along the orbit normal; yaw folded into (−90, 90] by turning the
-// body half a turn about its z axis (A Rz(π) has the angles (ψ ± π, −θ, −φ)).
+// Eq. 17.10: the secondary's attitude in the orbit frame, whose x axis points at the primary and
+// z along the orbit normal, yaw folded into (−90, 90].
 void secondary_euler_angles(const FrameInput& in, void* out) {
-  const Vec3 r = relative_position(in), h = r.cross(relative_velocity(in));
-  Mat3 O;
-  O.col(0) = -r.normalized();
-  O.col(2) = h.normalized();
-  O.col(1) = O.col(2).cross(O.col(0));
-  Vec3 a = euler_angles_321(O.transpose() * attitude_of(in, in.secondary));
-  if (a.x() > std::numbers::pi / 2 || a.x() <= -std::numbers::pi / 2) {
-    a.x() += a.x() > 0 ? -std::numbers::pi : std::numbers::pi;
-    a.y() = -a.y();
-    a.z() = -a.z();
+  const Vec3 r = relative_position(in);
+  copy_degrees(orbit_frame_angles(-r, r.cross(relative_velocity(in)), attitude_of(in, in.secondary)), out);
+}
+void nutation_angles(const FrameInput& in, void* out) {  // eq. 17.11, degrees
+  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
+    const Vec3 axis = largest_moment_axis(in.system.body(in.system.body_of_rigid(k)).inertia);
+    doubles(out)[k] = nutation_angle(axis, in.state.Pi.col(static_cast<Eigen::Index>(k))) * (180.0 / std::numbers::pi);
   }
-  copy_degrees(a, out);
 }
 
 // The restore functions of the checkpointed series (FrameQuantity::restore).
@@ -255,6 +251,10 @@ const FrameQuantity kFrameSchema[] = {
      "z along the orbit normal r × v; eq. 17.10), yaw folded into (−90, 90] (either end of the axis may face the "
      "primary): a synchronous secondary's libration in yaw, pitch and roll",
      -1, secondary_euler_angles, nullptr},
+    {"nutation_angles", "/observables/nutation_angle/value", E::kRigidScalar, D::kDegrees, kH5md,
+     "the angle between each rigid body's angular momentum and its principal axis of largest moment (eq. 17.11), "
+     "in [0, 90]: 0 for rotation about that axis (the relaxed state), larger for a tumbling or precessing body",
+     -1, nutation_angles, nullptr},
     {"stm", "/derivatives/stm/value", E::kTangent, D::kMixed, kH5md,
      "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "
      "columns in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1), named by /derivatives/coordinates; θ "
@@ -314,7 +314,8 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
   switch (q.extent) {
     case E::kRigidVector:
     case E::kRigidQuaternion:
-    case E::kRigidMatrix: return l.rigid > 0;
+    case E::kRigidMatrix:
+    case E::kRigidScalar: return l.rigid > 0;
     case E::kIntegrator: return l.width > 0;
     case E::kTangent: return l.stm_columns > 0;
     case E::kSensitivity: return l.sensitivity_columns > 0;
@@ -342,6 +343,7 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kSecondaryVector: return {3};
     case E::kBinaryElements: return {6};
     case E::kBodyVector: return {l.bodies, 3};
+    case E::kRigidScalar: return {l.rigid};
     case E::kRigidVector: return {l.rigid, 3};
     case E::kRigidQuaternion: return {l.rigid, 4};
     case E::kRigidMatrix: return {l.rigid, 3, 3};
@@ -371,7 +373,8 @@ FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_c
 }
 
 bool rigid_only(const FrameQuantity& q) {
-  return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix;
+  return q.extent == E::kRigidVector || q.extent == E::kRigidQuaternion || q.extent == E::kRigidMatrix ||
+         q.extent == E::kRigidScalar;
 }
 bool optional(const FrameQuantity& q) {
   return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos;
@@ -384,7 +387,8 @@ std::string requirement(const FrameQuantity& q) {
   switch (q.extent) {
     case E::kRigidVector:
     case E::kRigidQuaternion:
-    case E::kRigidMatrix: return "rigid bodies";
+    case E::kRigidMatrix:
+    case E::kRigidScalar: return "rigid bodies";
     case E::kIntegrator: return "an integrator with variables of its own";
     case E::kTangent: return "run.stm";
     case E::kSensitivity: return "run.sensitivities";
@@ -426,6 +430,7 @@ std::string describe_extent(Extent e) {
     case E::kVector: return "[frame][3]";
     case E::kBodyVector: return "[frame][body][3]";
     case E::kRigidVector: return "[frame][rigid body][3]";
+    case E::kRigidScalar: return "[frame][rigid body]";
     case E::kRigidQuaternion: return "[frame][rigid body][4]";
     case E::kRigidMatrix: return "[frame][rigid body][3][3]";
     case E::kWork: return "[frame][5]";

@@ -53,7 +53,8 @@ enum class Extent {
   kScalar,           // []
   kVector,           // [3]
   kBodyVector,       // [body][3]
-  kRigidVector,      // [rigid body][3]          (present when the scene has rigid bodies)
+  kRigidScalar,      // [rigid body]             (present when the scene has rigid bodies)
+  kRigidVector,      // [rigid body][3]          (idem)
   kRigidQuaternion,  // [rigid body][4]          (idem)
   kRigidMatrix,      // [rigid body][3][3]       (idem)
   kWork,             // [5] int64: steps, evaluations, Newton iterations, rejections, interpolated
