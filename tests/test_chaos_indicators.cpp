@@ -95,22 +95,20 @@ TEST(ChaosIndicators, MegnoTendsToTwoOnTheKeplerProblem) {
   }
 }
 
-// A synchronous moon on a circular orbit librates (regular): ⟨Y⟩ stays near 2, and the LGVI's
-// discrete tangent map and dopri5's variational equations agree on it (measured: 1.9882 and
-// 1.9882 at t = 1000).
+// A synchronous moon on a circular orbit librates (regular): ⟨Y⟩ stays near 2 (measured 1.9882
+// at t = 1000), and the LGVI's discrete tangent map and dopri5's variational equations agree on
+// it (at t = 300, where dopri5's run costs a third).
 TEST(ChaosIndicators, MegnoStaysNearTwoOnAStableLibration) {
-  std::vector<double> megno;
-  for (const char* integrator : {"integrator={plugin: lgvi, step: 0.01}",
-                                 "integrator={plugin: rk, method: dopri5, rtol: 1e-11, atol: 1e-14}"}) {
-    SCOPED_TRACE(integrator);
-    std::vector<std::string> set = kSynchronous;
-    set.push_back(integrator);
+  auto librating = [](std::vector<std::string> set) {
+    set.insert(set.end(), kSynchronous.begin(), kSynchronous.end());
     set.push_back("run.chaos=true");
-    const ChaosValues c = run_chaos(load_scene(test::source_path("examples/tumbling-moon.yaml"), set));
-    EXPECT_NEAR(c.megno, 2.0, 0.05);
-    megno.push_back(c.megno);
-  }
-  EXPECT_NEAR(megno[0], megno[1], 1e-3);
+    return run_chaos(load_scene(test::source_path("examples/tumbling-moon.yaml"), set));
+  };
+  EXPECT_NEAR(librating({}).megno, 2.0, 0.05);
+  const ChaosValues lgvi = librating({"run.t_end=300"}),
+                    dopri5 = librating({"run.t_end=300", "integrator={plugin: rk, method: dopri5, rtol: 1e-11, atol: 1e-14}"});
+  EXPECT_NEAR(lgvi.megno, 2.0, 0.1);
+  EXPECT_NEAR(lgvi.megno, dopri5.megno, 1e-3);
 }
 
 // The tumbling moon is chaotic: ⟨Y⟩ grows linearly, at the rate λ/2 of the Lyapunov exponent

@@ -52,7 +52,8 @@ integrator: {plugin: lgvi, step: 0.01}
 run: {t_end: 50, output_every: 0.1}
 )",
                                  "top");
-  const SpinState& top = spin_of(run(scene), "top");
+  const RunSummary summary = run(scene);
+  const SpinState& top = spin_of(summary, "top");
   const double expected = std::atan2(std::hypot(0.3, 0.1), 2.0) * kDegrees;  // Π = J Ω = (0.3, 0.1, 2)
   EXPECT_NEAR(top.nutation, expected, 1e-9);
   EXPECT_NEAR(top.max_nutation, expected, 1e-9);

@@ -17,10 +17,11 @@ import h5py
 import numpy as np
 
 noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
+t_end = 150 if len(sys.argv) > 4 and sys.argv[4] == "light" else 300  # light: under the sanitizers
 os.makedirs(work, exist_ok=True)
 os.chdir(work)
 scene = os.path.join(src, "examples", "tumbling-moon.yaml")
-base = ["--no-progress", "--force", "--summary", "json", "--set", "run.t_end=300", "--set", "run.output_every=10"]
+base = ["--no-progress", "--force", "--summary", "json", "--set", f"run.t_end={t_end}", "--set", "run.output_every=10"]
 
 
 def run(*extra, output="chaos.h5", what="chaos"):
@@ -30,11 +31,11 @@ def run(*extra, output="chaos.h5", what="chaos"):
 
 
 tumbling = run()
-assert tumbling["megno"] > 10 and tumbling["t"] == 300 and not tumbling["overflowed"], tumbling
+assert tumbling["megno"] > 5 and tumbling["t"] == t_end and not tumbling["overflowed"], tumbling
 with h5py.File("chaos.h5", "r") as f:
     megno, fli = f["derivatives/megno/value"][:], f["derivatives/fli/value"][:]
     assert np.array_equal(f["derivatives/megno/time"][:], f["particles/bodies/position/time"][:])
-assert megno.shape == (31,) and np.isnan(megno[0]), megno
+assert megno.shape == (t_end // 10 + 1,) and np.isnan(megno[0]), megno
 assert megno[-1] == tumbling["megno"] and fli[-1] == tumbling["fli"], (megno[-1], fli[-1], tumbling)
 assert np.all(np.diff(fli[1:]) >= 0), fli
 
@@ -42,7 +43,7 @@ regular = run("--set", "bodies.moon.orbit.e=0", "--set", "bodies.moon.angular_ve
 assert abs(regular["megno"] - 2) < 0.1, regular
 
 # The ensemble's columns are the runs' own numbers.
-subprocess.run([noether, "ensemble", scene, "--set", "run.chaos=true", "--set", "run.t_end=300",
+subprocess.run([noether, "ensemble", scene, "--set", "run.chaos=true", "--set", f"run.t_end={t_end}",
                 "--set", "run.output_every=0.05", "--vary", "bodies.moon.orbit.e=grid(0,0.1,3)", "-o", "ensemble.h5",
                 "--force"], check=True, capture_output=True, text=True)
 with h5py.File("ensemble.h5", "r") as f:
