@@ -25,13 +25,15 @@ namespace noether {
 
 namespace {
 
-// A run that carries a tangent cannot be continued, saved or loaded yet: its files hold the
-// tangent's frames but not the state of its integration (the chaos indicators' sums, the
-// parameters' stencils).
-void refuse_tangent(const Scene& scene, const std::string& doing, const std::string& advice) {
+// What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
+// tangent's frames but not the state of its integration: the chaos indicators' sums, the
+// parameters' stencils), and a scene with impulses (which of them a continuation has passed).
+void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
+  if (!scene.impulses.empty())
+    throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
 }
 
 // Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied
@@ -102,7 +104,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_tangent(scene, file.string() + ": continuing", "; run it again whole");
+  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
@@ -200,7 +202,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  refuse_tangent(m.scene, "save: saving", "");
+  refuse_unsupported(m.scene, "save: saving", "");
   // The file is built under a hidden name and published once complete (io/safe_publish.hpp):
   // a kill while saving leaves the previous checkpoint; a link, or the simulation's own output
   // file, is refused.
@@ -256,7 +258,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
-  refuse_tangent(scene, path.string() + ": loading", "");
+  refuse_unsupported(scene, path.string() + ": loading", "");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);

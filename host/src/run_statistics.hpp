@@ -122,6 +122,20 @@ class RunStatistics final : public Observer {
     return d;
   }
 
+  // An impulse (Simulation, docs/equations.md §24) changed the momenta from `before` to `after` at
+  // the same positions (potential energy U): the references of the conserved quantities move by
+  // the jump (24.3), and the mutual orbit is timed afresh from here.
+  void impulse(const State& before, const State& after, double U) {
+    const Diagnostics a = diagnose(system_, before, U), b = diagnose(system_, after, U);
+    s_.initial.energy += b.energy - a.energy;
+    s_.initial.kinetic_translational += b.kinetic_translational - a.kinetic_translational;
+    s_.initial.linear_momentum += b.linear_momentum - a.linear_momentum;
+    s_.initial.angular_momentum += b.angular_momentum - a.angular_momentum;
+    ++s_.impulses;
+    s_.impulse_energy += b.energy - a.energy;
+    start_mutual_orbit(after);
+  }
+
   // The scales of the relative momentum errors (a saved simulation keeps them).
   std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }

@@ -318,6 +318,39 @@ PluginConfig plugin_config(const Params& p, const std::string& what) {
   return {p.at("plugin").as_string(), p};
 }
 
+// impulses: [{body, time, delta_v}], each at a time after t0 (docs/user-guide.md "Impulses").
+std::vector<Impulse> parse_impulses(const Params& list, const System& system, double t0) {
+  const char* form = "'impulses' must be a list of {body: NAME, time: T, delta_v: [x, y, z]}";
+  if (!list.is_sequence()) throw SceneError(list.here() + form);
+  std::vector<std::string> names;
+  for (const auto& b : system.bodies()) names.push_back(b.name);
+  std::vector<Impulse> out;
+  for (const Params& item : list.items()) {
+    if (!item.is_map()) throw SceneError(item.here() + form);
+    item.check_keys({"body", "time", "delta_v"}, "an impulse");
+    for (const char* key : {"body", "time", "delta_v"})
+      if (!item.has(key)) throw SceneError(item.here() + "'" + item.path() + "' needs '" + key + "': " + form);
+    Impulse impulse;
+    const std::string name = item.at("body").as_string();
+    const auto found = std::find(names.begin(), names.end(), name);
+    if (found == names.end()) {
+      const std::string near = closest_match(name, names);
+      throw SceneError(item.at("body").here() + "'" + item.at("body").path() + "': no body '" + name + "'" +
+                       (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
+    }
+    impulse.body = static_cast<std::size_t>(found - names.begin());
+    impulse.time = item.at("time").as_double();
+    if (!std::isfinite(impulse.time) || !(impulse.time > t0))
+      throw SceneError(item.at("time").here() + "'" + item.at("time").path() + "' must be a time after the start (" +
+                       std::to_string(t0) + "); a change of velocity at the start is the body's velocity");
+    impulse.delta_v = vec3(item.at("delta_v"));
+    if (!impulse.delta_v.allFinite())
+      throw SceneError(item.at("delta_v").here() + "'" + item.at("delta_v").path() + "' must be finite");
+    out.push_back(impulse);
+  }
+  return out;
+}
+
 // run.escape: {body, about, distance, unbound}; body defaults to the lightest body, about to
 // the heaviest other one.
 Escape parse_escape(const Params& e, const System& system) {
@@ -368,7 +401,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (!root.is_map()) throw SceneError(file + ": a scene must be a YAML mapping (G, bodies, ...)");
   for (const auto& o : overrides) apply_override(root, o);
   root.set_path("");
-  root.check_keys({"description", "units", "G", "bodies", "potential", "integrator", "run", "barycentric"},
+  root.check_keys({"description", "units", "G", "bodies", "potential", "integrator", "run", "barycentric", "impulses"},
                   "the scene");
   if (root.has("units")) scene.units = parse_units(root.at("units"));
   const double G = scene_gravitational_constant(root, scene.units);
@@ -485,6 +518,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
     scene.potentials.push_back(plugin_config(potential, "potential"));
   }
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
+  if (root.has("impulses")) scene.impulses = parse_impulses(root.at("impulses"), scene.system, scene.initial.t);
   const Params& run = root.at("run");
   run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm", "sensitivities",
                   "chaos"},

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <stdexcept>
+#include <utility>
 
 namespace noether {
 namespace {
@@ -23,7 +25,30 @@ std::string accepted() {
          "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
          "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
          "density, its inertia (three principal moments, or one: inertia.2) and shape.ellipsoid.semi_axes "
-         "(whole or one of them)";
+         "(whole or one of them); and an impulse's impulses.K.delta_v (whole or one component)";
+}
+
+// impulses.K.delta_v[.a]: the impulse's index and component (−1: all three), or SceneError.
+std::pair<std::size_t, int> parse_impulse_key(const Scene& scene, const std::string& text) {
+  const std::string where = "run.sensitivities: '" + text + "': ";
+  const std::string rest = text.substr(9);  // after "impulses."
+  const std::size_t dot = rest.find('.');
+  std::size_t index = 0;
+  try {
+    std::size_t used = 0;
+    index = std::stoul(rest.substr(0, dot), &used);
+    if (used != dot) throw std::invalid_argument("index");
+  } catch (const std::exception&) {
+    throw SceneError(where + "an impulse is named by its index in the scene's impulses: impulses.0.delta_v");
+  }
+  if (index >= scene.impulses.size())
+    throw SceneError(where + "names no impulse (the scene has " + std::to_string(scene.impulses.size()) + ")");
+  const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
+  if (field == "delta_v") return {index, -1};
+  if (field.size() == 9 && field.compare(0, 8, "delta_v.") == 0 && std::string("012xyz").find(field[8]) != std::string::npos)
+    return {index, field[8] >= '0' && field[8] <= '2' ? field[8] - '0' : field[8] - 'x'};
+  throw SceneError(where + "of an impulse, sensitivities are taken to its delta_v (whole or one component: "
+                   "impulses.0.delta_v.1)");
 }
 
 std::string number(double v) {
@@ -163,6 +188,15 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
   auto parameters = std::make_shared<ParameterDerivatives>();
   std::optional<std::vector<std::string>> base_choices;  // the run's model's choices, once needed
   for (const std::string& text : keys) {
+    if (text.compare(0, 9, "impulses.") == 0) {  // 0 at t0: the run adds m e_a at the impulse (24.2)
+      const auto [index, component] = parse_impulse_key(scene, text);
+      for (int a = 0; a < 3; ++a) {
+        if (component >= 0 && a != component) continue;
+        columns.push_back(Eigen::VectorXd::Zero(rows));
+        out.names.push_back("impulses." + std::to_string(index) + ".delta_v." + std::to_string(a));
+      }
+      continue;
+    }
     const Key key = parse_key(scene, text);
     if (key.field == "attitude") {  // exact: the columns are the attitude's own coordinates θ
       const Eigen::Index r = system.rigid_index(key.body);

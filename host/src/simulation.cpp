@@ -58,6 +58,14 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
     m.state.tangent = m.initial_tangent();
   }
   m.t_origin = sc.initial.t;
+  // Impulses in the order of their times; a fixed-step method applies each at a step of its grid.
+  m.impulse_order.resize(sc.impulses.size());
+  for (std::size_t k = 0; k < sc.impulses.size(); ++k) m.impulse_order[k] = k;
+  std::stable_sort(m.impulse_order.begin(), m.impulse_order.end(),
+                   [&sc](std::size_t a, std::size_t b) { return sc.impulses[a].time < sc.impulses[b].time; });
+  if (const double h = m.integrator->fixed_step(); h > 0)
+    for (std::size_t k = 0; k < sc.impulses.size(); ++k)
+      whole_steps(sc.impulses[k].time - sc.initial.t, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
   m.make_observer();
   // Frame 0: the integrator started at the initial state (which also tells the size of its
   // checkpoint, for the output's layout), its forces there.
@@ -115,18 +123,11 @@ Simulation::~Simulation() {
   }
 }
 
-StopInfo Simulation::integrate(double t_end) {
-  Impl& m = *impl_;
-  if (m.finished) throw Error("the simulation is finished (finish() was called); make a new one");
-  if (!m.failure.empty())
-    throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
-                "); set a state to continue from");
-  if (!(t_end > m.state.t)) {
-    std::ostringstream why;
-    why.precision(17);
-    why << "integrate(t): t = " << t_end << " is not after the current time " << m.state.t;
-    throw Error(why.str());
-  }
+namespace {
+
+// Integrates from where the run stands to t_end, with no impulse in between (the stepping loop
+// with the output, the statistics, signals and the wall-time budget).
+StopInfo integrate_to(Simulation::Impl& m, double t_end) {
   const Scene& sc = m.scene;
   const RunOptions& options = m.options;
   if (const double h = m.integrator->fixed_step(); h > 0 && t_end != sc.run.t_end)
@@ -197,6 +198,73 @@ StopInfo Simulation::integrate(double t_end) {
   return stop;
 }
 
+// Applies the scene's impulse k where the run stands, at its time (docs/equations.md §24): the
+// body's momentum jumps by m Δv (24.1), the tangent's columns of its Δv and of parameters that
+// move its mass by their derivatives (24.2), the integrator starts afresh there, and the frame
+// after the jump is observed with the statistics' references moved by it.
+void apply_impulse(Simulation::Impl& m, std::size_t k) {
+  const Impulse& impulse = m.scene.impulses[k];
+  const System& sys = m.scene.system;
+  const auto b = static_cast<Eigen::Index>(impulse.body);
+  const double mass = sys.body(impulse.body).mass;
+  const State before = m.state;
+  m.state.p.col(b) += mass * impulse.delta_v;  // (24.1)
+  Eigen::MatrixXd& V = m.state.tangent;
+  if (V.size() > 0) {  // (24.2): ∂γ_b⁺/∂Δv = m I, ∂γ_b⁺/∂p += (∂m/∂p) Δv
+    const Eigen::Index row = 3 * static_cast<Eigen::Index>(sys.size() + sys.rigid_count()) + 3 * b;
+    const auto P = static_cast<Eigen::Index>(m.sensitivity_names.size());
+    for (Eigen::Index c = 0; c < P; ++c)
+      for (int a = 0; a < 3; ++a)
+        if (m.sensitivity_names[static_cast<std::size_t>(c)] ==
+            "impulses." + std::to_string(k) + ".delta_v." + std::to_string(a))
+          V(row + a, V.cols() - P + c) += mass;
+    if (m.parameters) {
+      const auto Q = static_cast<Eigen::Index>(m.parameters->size());
+      for (Eigen::Index j = 0; j < Q; ++j)
+        V.block(row, V.cols() - Q + j, 3, 1) +=
+            m.parameters->parameters[static_cast<std::size_t>(j)].mass(b) * impulse.delta_v;
+    }
+  }
+  const Forces forces = m.start_here(impulse.time);
+  m.observer->impulse(before, m.state, forces.U);
+  m.observer->observe(m.state, forces, false);
+}
+
+}  // namespace
+
+StopInfo Simulation::integrate(double t_end) {
+  Impl& m = *impl_;
+  if (m.finished) throw Error("the simulation is finished (finish() was called); make a new one");
+  if (!m.failure.empty())
+    throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
+                "); set a state to continue from");
+  if (!(t_end > m.state.t)) {
+    std::ostringstream why;
+    why.precision(17);
+    why << "integrate(t): t = " << t_end << " is not after the current time " << m.state.t;
+    throw Error(why.str());
+  }
+  // Up to each impulse before t_end, the impulse, and on (an event before one stops there).
+  while (m.next_impulse < m.impulse_order.size()) {
+    const std::size_t k = m.impulse_order[m.next_impulse];
+    const double t_impulse = m.scene.impulses[k].time;
+    if (t_impulse > t_end) break;
+    if (t_impulse > m.state.t) {
+      const StopInfo stop = integrate_to(m, t_impulse);
+      if (!stop.event.empty()) return stop;
+    }
+    apply_impulse(m, k);
+    ++m.next_impulse;
+    if (t_impulse == t_end) {
+      StopInfo stop;
+      stop.t = t_end;
+      stop.steps = m.steps_before;
+      return stop;
+    }
+  }
+  return integrate_to(m, t_end);
+}
+
 double Simulation::time() const { return impl_->state.t; }
 const State& Simulation::state() const { return impl_->state; }
 const Scene& Simulation::scene() const { return impl_->scene; }
@@ -237,16 +305,14 @@ void Simulation::set_state(const State& s) {
   // the chaos indicators again from δ0.
   if (m.carries_tangent()) m.state.tangent = m.segment_tangent(s.tangent);
   m.failure.clear();
+  m.next_impulse = 0;  // the impulses after the new state's time are still to come
+  while (m.next_impulse < m.impulse_order.size() && m.scene.impulses[m.impulse_order[m.next_impulse]].time <= s.t)
+    ++m.next_impulse;
   m.t_origin = s.t;
   m.steps_before = 0;
   m.integrator_at_state = false;
   m.new_segment();  // its first frame, below, gives the references
-  Forces forces;
-  forces.resize(sys);
-  m.integrator->start(m.state);
-  m.integrator->current(m.state, forces);
-  m.state.t = s.t;
-  m.integrator_at_state = true;
+  const Forces forces = m.start_here(s.t);
   m.observer->observe(m.state, forces, false);
 }
 

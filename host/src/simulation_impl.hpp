@@ -41,6 +41,11 @@ struct Simulation::Impl {
   std::vector<std::string> sensitivity_names;
   // MEGNO and the FLI (run.chaos) from the tangent's column deviation_column().
   std::unique_ptr<ChaosIndicators> chaos;
+  // The parameters of the dynamics among run.sensitivities (their columns are the tangent's last).
+  std::shared_ptr<const ParameterDerivatives> parameters;
+  // The scene's impulses in the order of their times, and the next one to apply.
+  std::vector<std::size_t> impulse_order;
+  std::size_t next_impulse = 0;
 
   // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
   bool carries_tangent() const { return scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos; }
@@ -84,12 +89,25 @@ struct Simulation::Impl {
                          scene.integrator.plugin + "': " + why);
     }
     sensitivity_names = s.names;
+    parameters = s.parameters;
     const Eigen::Index stm = scene.run.stm ? N : 0, deviation = scene.run.chaos ? 1 : 0;
     Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + deviation + s.columns.cols());
     V.leftCols(stm).setIdentity();
     if (deviation) start_chaos(V);
     if (s.columns.cols() > 0) V.rightCols(s.columns.cols()) = s.columns;  // (a 0×0 U does not fit N × 0)
     return V;
+  }
+
+  // Starts the integrator afresh at `state` (a new segment, an impulse), which stands at time t;
+  // the forces there.
+  Forces start_here(double t) {
+    Forces forces;
+    forces.resize(scene.system);
+    integrator->start(state);
+    integrator->current(state, forces);
+    state.t = t;
+    integrator_at_state = true;
+    return forces;
   }
 
   WorkCounters work() const { return base_work + integrator->work(); }
@@ -111,6 +129,8 @@ struct Simulation::Impl {
     s.min_gap = std::numeric_limits<double>::infinity();
     s.min_gap_reach = 0.0;
     s.min_gap_pair.clear();
+    s.impulses = 0;
+    s.impulse_energy = 0.0;
   }
   // Stands at a recorded frame: its state, the integrator's own variables, the work and wall
   // time spent to reach it (a continued or loaded run).

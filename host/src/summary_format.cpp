@@ -61,6 +61,13 @@ std::string format_summary(const RunSummary& s) {
                   with_unit(s.energy_unit.empty() ? "" : s.time_unit).c_str());
     optional += line;
   }
+  if (s.impulses > 0) {  // docs/user-guide.md, "Impulses"
+    std::snprintf(line, sizeof line,
+                  "impulses                      %d applied, energy changed by %+.6g%s (errors measured from the "
+                  "references each one moved)\n",
+                  s.impulses, s.impulse_energy, with_unit(s.energy_unit).c_str());
+    optional += line;
+  }
   if (!s.mutual_pair.empty()) {
     if (s.mutual_revolutions > 0) {
       std::snprintf(line, sizeof line, "mutual orbit period           %.10g %s%s (%s, %d revolution%s of the trajectory)\n",
@@ -214,6 +221,8 @@ std::string format_summary_json(const RunSummary& s) {
   field("mutual_pair", s.mutual_pair.empty() ? "null" : json_string(s.mutual_pair));
   field("mutual_period", s.mutual_revolutions > 0 ? json_number(s.mutual_period) : "null");
   field("mutual_revolutions", std::to_string(s.mutual_revolutions));
+  field("impulses", std::to_string(s.impulses));
+  field("impulse_energy", json_number(s.impulse_energy));
   std::string spins = "[";
   for (const SpinState& spin : s.spin_states)
     spins += std::string(spins.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +

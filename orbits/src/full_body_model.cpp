@@ -6,6 +6,9 @@ namespace noether {
 
 FullBodyModel FullBodyModel::from_scene(const Scene& scene, PluginRegistry& registry) {
   if (scene.system.size() < 1) throw SceneError("the orbit tools need at least one body");
+  if (!scene.impulses.empty())
+    throw SceneError("the orbit tools follow the scene's conservative dynamics; its impulses would break every "
+                     "orbit: remove them (--set impulses=[])");
   FullBodyModel m;
   m.system = scene.system;
   m.potentials = scene.potentials;

@@ -19,6 +19,9 @@ using Eigen::VectorXd;
 OrbitModel OrbitModel::from_scene(const Scene& scene, PluginRegistry& registry) {
   const System& system = scene.system;
   if (system.size() < 1) throw SceneError("periodic orbits need at least one body");
+  if (!scene.impulses.empty())
+    throw SceneError("periodic orbits follow the scene's conservative dynamics; its impulses would break every "
+                     "orbit: remove them (--set impulses=[])");
   if (system.rigid_count() > 0)
     throw SceneError("least-action orbits: point masses only; body '" + system.body(system.body_of_rigid(0)).name +
                      "' is rigid (for rigid bodies: noether orbit equilibrium for relative equilibria, orbit "

@@ -49,6 +49,15 @@ struct RunSettings {
   TrustThresholds trust;
 };
 
+// An instantaneous change of a body's velocity during the run (the scene's `impulses:`; a kinetic
+// impactor such as DART): at `time` its linear momentum jumps by m Δv (docs/user-guide.md,
+// "Impulses"; docs/equations.md §24).
+struct Impulse {
+  std::size_t body = 0;
+  double time = 0.0;
+  Vec3 delta_v = Vec3::Zero();  // inertial frame, the scene's unit of velocity
+};
+
 struct Scene {
   std::string file;                      // as given, for messages
   std::string text;                      // the scene text as read (before overrides)
@@ -60,6 +69,7 @@ struct Scene {
   std::vector<PluginConfig> potentials;  // summed when more than one
   PluginConfig integrator;
   RunSettings run;
+  std::vector<Impulse> impulses;  // in the scene's order (keys impulses.K.…), times after t0
 };
 
 // The scene as run (its resolved tree, after the overrides) as YAML text: load_scene on it

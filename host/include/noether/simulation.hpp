@@ -104,6 +104,10 @@ struct RunSummary {
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
+  // The scene's impulses applied so far (in this segment) and the energy they added: each moves
+  // the references E0, P0, L0 by its jump, so the errors above are the integrator's alone.
+  int impulses = 0;
+  double impulse_energy = 0.0;
   // Each rigid body's libration about its binary's line of centres and its nutation, from the
   // output frames (docs/user-guide.md "Spin state").
   std::vector<SpinState> spin_states;

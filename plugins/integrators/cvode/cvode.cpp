@@ -125,6 +125,8 @@ class Cvode final : public noether::Integrator {
     }
     tangent_rows_ = state.tangent.rows();
     if (state.tangent.size() > 0) start_sensitivities(state);
+    start_tangent_ = state.tangent;
+    stepped_ = false;
     t_ = state.t;
     base_ = work_;  // counters of earlier sessions (restarts) carry on
     differenced_evaluations_ = 0;  // this session's
@@ -147,6 +149,7 @@ class Cvode final : public noether::Integrator {
       throw IntegrationError(msg.str(), t_);
     }
     t_ = t_reached;
+    stepped_ = true;
     if (max_steps_ > 0 && work_.steps > max_steps_) {
       std::ostringstream msg;
       msg << "cvode (" << method_ << ", rtol " << rtol_ << ", atol " << atol_ << "): more than max_steps = "
@@ -167,7 +170,9 @@ class Cvode final : public noether::Integrator {
   void current_state(noether::State& state) override {
     equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
     state.tangent.resize(0, 0);
-    if (session_->Ns > 0) {  // the sensitivities where the solver stands (its last step's end)
+    if (session_->Ns > 0 && !stepped_) {  // as started: CVODES has no step to read them from yet
+      state.tangent = start_tangent_;
+    } else if (session_->Ns > 0) {  // the sensitivities where the solver stands (its last step's end)
       double t_sensitivities = t_;
       check(CVodeGetSens(session_->memory, &t_sensitivities, session_->yS), "CVodeGetSens", t_);
       tangent_from(session_->yS, state);
@@ -335,6 +340,8 @@ class Cvode final : public noether::Integrator {
   // The tangent (run.stm): its rows, their slots in y, scratch for the variational equations,
   // and the evaluations made to difference a force Jacobian.
   Eigen::Index tangent_rows_ = 0;
+  Eigen::MatrixXd start_tangent_;  // the tangent given to start(), what current() returns before the first step
+  bool stepped_ = false;           // a step was taken since start()
   std::vector<std::size_t> slots_;
   Eigen::MatrixXd V_, dV_;
   noether::State stage_;

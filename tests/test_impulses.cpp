@@ -1,0 +1,141 @@
+// Impulses during a run (the scene's `impulses:`; docs/user-guide.md "Impulses", docs/equations.md
+// §24): the same as stopping, changing the velocity and going on; the verdict's references move
+// with the jump; sensitivities to the Δv and to the mass against differences of whole runs; and
+// what refuses them.
+#include "test_support.hpp"
+
+#include <noether/full_body_model.hpp>
+#include <noether/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+using namespace noether;
+
+namespace {
+
+PluginRegistry& registry() {
+  static PluginRegistry r = test::bundled_plugins();
+  return r;
+}
+
+const std::string kImpulse = "impulses=[{body: planet, time: 1.25, delta_v: [0.01, -0.02, 0.005]}]";
+
+// The Kepler orbit with one impulse on the planet at t = 1.25, run to t = 2.
+Scene kicked(std::vector<std::string> overrides = {}) {
+  overrides.insert(overrides.begin(), kImpulse);
+  return test::kepler_scene(overrides);
+}
+
+State final_state(const Scene& scene) {
+  Simulation sim(scene, registry());
+  sim.integrate(scene.run.t_end);
+  return sim.state();
+}
+
+}  // namespace
+
+// The impulse is the run stopped at its time, the planet's velocity changed, and the run went
+// on: bitwise, for the LGVI and rk4 (both start afresh from the changed state).
+TEST(Impulses, AreTheRunStoppedTheVelocityChangedAndGoneOn) {
+  for (const char* integrator : {"integrator={plugin: lgvi, step: 0.001}", "integrator={plugin: rk, method: rk4, step: 0.001}"}) {
+    SCOPED_TRACE(integrator);
+    const State with = final_state(kicked({integrator}));
+    Simulation by_hand(test::kepler_scene({integrator}), registry());
+    by_hand.integrate(1.25);
+    State s = by_hand.state();
+    s.p.col(1) += 1e-3 * Vec3(0.01, -0.02, 0.005);
+    by_hand.set_state(s);
+    by_hand.integrate(2.0);
+    EXPECT_EQ((with.x - by_hand.state().x).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ((with.p - by_hand.state().p).cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
+// The jump changes the energy by ½ m (|v + Δv|² − |v|²), 1 % of |E0| here; the verdict measures
+// the integrator's error from references moved by it (as without the impulse), and says how
+// much the impulses changed.
+TEST(Impulses, MoveTheVerdictsReferences) {
+  Simulation sim(kicked(), registry());
+  sim.integrate(2.0);
+  const RunSummary s = sim.finish();
+  Simulation plain(test::kepler_scene(), registry());
+  plain.integrate(2.0);
+  const RunSummary p = plain.finish();
+  EXPECT_EQ(s.impulses, 1);
+  EXPECT_GT(std::abs(s.impulse_energy), 5e-3 * std::abs(p.initial.energy));
+  EXPECT_LT(s.max_rel_energy_error, 2 * p.max_rel_energy_error + 1e-12);
+  EXPECT_LT(s.max_rel_linear_momentum_error, 1e-13);
+  EXPECT_LT(s.max_rel_angular_momentum_error, 1e-13);
+  EXPECT_TRUE(s.verdict.trustworthy);
+  EXPECT_EQ(s.frames, 5u);  // 0, 1, 1.25 before and after the jump, 2
+}
+
+// ∂z/∂Δv starts at 0 and jumps by m at the impulse (24.2); a mass's column gains (∂m/∂p) Δv
+// there. Both against central differences of whole runs, for the LGVI, rk4 and cvode (measured:
+// 2e-9 and 8e-8 with rk4).
+TEST(Impulses, SensitivitiesToTheDeltaVAndTheMassAgreeWithDifferences) {
+  for (const char* integrator : {"integrator={plugin: lgvi, step: 0.001}", "integrator={plugin: rk, method: rk4, step: 0.001}",
+                                 "integrator={plugin: cvode, rtol: 1e-12, atol: 1e-15}"}) {
+    SCOPED_TRACE(integrator);
+    Simulation sim(kicked({integrator, "run.sensitivities=[impulses.0.delta_v, bodies.planet.mass]"}), registry());
+    sim.integrate(2.0);
+    const Eigen::MatrixXd& V = sim.state().tangent;
+    ASSERT_EQ(V.cols(), 4);
+    const Vec3 dv(0.01, -0.02, 0.005);
+    auto moved = [&](const std::string& set) {
+      return final_state(test::kepler_scene({integrator, set}));
+    };
+    const double h = 1e-6;
+    for (int a = 0; a < 3; ++a) {
+      Vec3 plus = dv, minus = dv;
+      plus(a) += h, minus(a) -= h;
+      auto impulse = [](const Vec3& v) {
+        std::ostringstream text;
+        text.precision(17);
+        text << "impulses=[{body: planet, time: 1.25, delta_v: [" << v(0) << ", " << v(1) << ", " << v(2) << "]}]";
+        return text.str();
+      };
+      const Eigen::VectorXd column = State::difference(moved(impulse(minus)), moved(impulse(plus))) / (2 * h);
+      EXPECT_LE((column - V.col(a)).norm(), 1e-6 * V.col(a).norm()) << "delta_v." << a;
+    }
+    const double m = 1e-3, d = 1e-4 * m;
+    auto with_mass = [&](double mass) {
+      std::ostringstream text;
+      text.precision(17);
+      text << "bodies.planet.mass=" << mass;
+      Scene s = kicked({integrator, text.str()});
+      Simulation run(s, registry());
+      run.integrate(2.0);
+      return run.state();
+    };
+    const Eigen::VectorXd column = State::difference(with_mass(m - d), with_mass(m + d)) / (2 * d);
+    EXPECT_LE((column - V.col(3)).norm(), 1e-6 * V.col(3).norm()) << "mass";
+  }
+}
+
+// What is refused, with a message naming the key: an impulse off a fixed step's grid, at or
+// before the start, on no body; the orbit tools and saving such a run.
+TEST(Impulses, AreRefusedWhereTheyCannotBeApplied) {
+  auto refused = [](const std::vector<std::string>& set, const char* expected) {
+    try {
+      Scene s = test::kepler_scene(set);
+      Simulation sim(s, registry());
+      ADD_FAILURE() << "accepted: " << set.back();
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  refused({"impulses=[{body: planet, time: 1.2345, delta_v: [0, 0.01, 0]}]"}, "impulses.0.time");
+  refused({"impulses=[{body: planet, time: 0, delta_v: [0, 0.01, 0]}]"}, "must be a time after the start");
+  refused({"impulses=[{body: planets, time: 1, delta_v: [0, 0.01, 0]}]"}, "did you mean 'planet'");
+  refused({"impulses=[{body: planet, time: 1}]"}, "needs 'delta_v'");
+  refused({kImpulse, "run.sensitivities=[impulses.1.delta_v]"}, "names no impulse");
+  EXPECT_THROW(FullBodyModel::from_scene(kicked(), registry()), SceneError);
+  Simulation sim(kicked(), registry());
+  sim.integrate(1.0);
+  EXPECT_THROW(sim.save(std::filesystem::temp_directory_path() / "noether-impulse-save.h5"), Error);
+}
