@@ -114,10 +114,7 @@ class RunStatistics final : public Observer {
       }
     }
     track_mutual_orbit(state);
-    if (system_.rigid_count() > 0) {
-      spin_.observe(state);
-      s_.spin_states = spin_.spin_states();
-    }
+    if (system_.rigid_count() > 0) spin_.observe(state);
     ++s_.frames;
     return d;
   }
@@ -141,10 +138,9 @@ class RunStatistics final : public Observer {
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
   // The spin states' running values (a saved simulation keeps them).
   std::vector<double> spin_state_numbers() const { return spin_.pack(); }
-  void set_spin_state_numbers(const std::vector<double>& numbers) {
-    spin_.unpack(numbers);
-    s_.spin_states = spin_.spin_states();
-  }
+  void set_spin_state_numbers(const std::vector<double>& numbers) { spin_.unpack(numbers); }
+  // RunSummary::spin_states where the run stands (made when a summary is asked for, not per frame).
+  std::vector<SpinState> spin_states() const { return spin_.spin_states(); }
 
  private:
   // The mutual orbit of a two-body-like scene (RunSummary::mutual_period): its plane at t0.

@@ -213,11 +213,10 @@ void apply_impulse(Simulation::Impl& m, std::size_t k) {
   if (V.size() > 0) {  // (24.2): ∂γ_b⁺/∂Δv = m I, ∂γ_b⁺/∂p += (∂m/∂p) Δv
     const Eigen::Index row = 3 * static_cast<Eigen::Index>(sys.size() + sys.rigid_count()) + 3 * b;
     const auto P = static_cast<Eigen::Index>(m.sensitivity_names.size());
+    const std::string key = "impulses." + std::to_string(k) + ".delta_v.";  // + the component
     for (Eigen::Index c = 0; c < P; ++c)
-      for (int a = 0; a < 3; ++a)
-        if (m.sensitivity_names[static_cast<std::size_t>(c)] ==
-            "impulses." + std::to_string(k) + ".delta_v." + std::to_string(a))
-          V(row + a, V.cols() - P + c) += mass;
+      if (const std::string& name = m.sensitivity_names[static_cast<std::size_t>(c)]; name.rfind(key, 0) == 0)
+        V(row + (name.back() - '0'), V.cols() - P + c) += mass;
     if (m.parameters) {
       const auto Q = static_cast<Eigen::Index>(m.parameters->size());
       for (Eigen::Index j = 0; j < Q; ++j)
@@ -323,6 +322,7 @@ RunSummary Simulation::summary() const {
   s.wall_seconds = m.wall_now();
   s.final_state = m.state;
   s.pair_models = m.pair_models();
+  s.spin_states = m.observer->spin_states();
   if (m.chaos) {
     s.chaos = true;
     s.chaos_values = m.chaos->values();
