@@ -138,6 +138,9 @@ int lyapunov(const OrbitOptions& o, const noether::Scene& scene, const noether::
     return 1;
   }
   const auto mu = noether::lyapunov_multipliers(model, scene.integrator, ly, o.tolerance);
+  std::printf("monodromy                        %s\n", mu.monodromy == "tangent map"
+                                                             ? "the integrator's tangent map (docs/equations.md eq. 19.4)"
+                                                             : "differences of the map (this integrator has no tangent map)");
   std::printf("multipliers (the map %s the energy):", mu.energy_conserved ? "conserves" : "does not conserve");
   for (auto m : mu.multipliers) std::printf(" %.6g%+.6gi", m.real(), m.imag());
   if (!mu.family.empty()) {
@@ -409,8 +412,11 @@ int orbit_rigid_stability(const OrbitOptions& o) {
     return 1;
   }
   const auto mu = noether::relative_orbit_multipliers(model, scene.integrator, orbit, o.tolerance);
-  std::printf("the map %s the energy (defect %.1e): projected out are the barycentre, L.k, the rotations%s "
-              "(invariance defect %.1e)\n",
+  std::printf("monodromy: %s\n", mu.monodromy == "tangent map"
+                                      ? "the integrator's tangent map (docs/equations.md eq. 19.4)"
+                                      : "differences of the map (this integrator has no tangent map)");
+  std::printf("the map %s the energy (defect %.1e): reduced by the barycentre, L, the rotation about k%s "
+              "(docs/equations.md §19; invariance defect %.1e)\n",
               mu.energy_conserved ? "conserves" : "does not conserve", mu.energy_defect,
               mu.energy_conserved ? ", the energy and the flow" : "", mu.invariance_defect);
   // A multiplier e^{iθ} on the unit circle is an oscillation of frequency (θ + 2πk)/T in the

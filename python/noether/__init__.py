@@ -114,7 +114,8 @@ def relative_periodic_orbit(scene, set=(), period=None, turns=0, tolerance=1e-6)
     Returns a dict: period, angle (α), axis, initial_closure, closure, iterations, converged
     (closure ≤ 1e-9), integrator and, when converged, multipliers (complex, by modulus),
     max_modulus, verdict, energy_conserved (the map conserves E: projected out), energy_defect,
-    invariance_defect and scene (YAML text of one period, the step kept, for
+    invariance_defect, monodromy ("tangent map": from the integrator's, docs/equations.md eq.
+    19.4; "differences": of the map) and scene (YAML text of one period, the step kept, for
     Simulation.from_yaml)."""
     overrides = [set] if isinstance(set, str) else list(set)
     period = None if period is None else float(period)
@@ -137,7 +138,8 @@ def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
     Returns a dict: period, linear_period (2π/ν of the mode), angle (α), initial_closure,
     closure, iterations, converged, step and steps (0 for adaptive integrators) and, when
     converged, multipliers (complex), family (the pair at 1 set apart, on a map that does not
-    conserve E), verdict and scene (YAML text of one period, for Simulation.from_yaml)."""
+    conserve E), verdict, monodromy ("tangent map" or "differences") and scene (YAML text of one
+    period, for Simulation.from_yaml)."""
     overrides = [set] if isinstance(set, str) else list(set)
     if isinstance(scene, dict):
         text, name = _scene_text(scene)

@@ -54,6 +54,7 @@ py::dict lyapunov_orbit(PluginRegistry& registry, const std::string& file, const
   out["multipliers"] = complex_array(mu.multipliers);
   out["family"] = complex_array(mu.family);
   out["verdict"] = mu.verdict;
+  out["monodromy"] = mu.monodromy;  // "tangent map" or "differences"
   Scene written = scene;
   written.integrator = lyapunov_integrator(scene.integrator, ly);
   out["scene"] = scene_with_state(written, ly.orbit.state, ly.orbit.period,

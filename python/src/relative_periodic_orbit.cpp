@@ -46,6 +46,7 @@ py::dict relative_periodic_orbit(PluginRegistry& registry, const std::string& fi
   out["max_modulus"] = mu.max_modulus;
   out["verdict"] = mu.verdict;
   out["energy_conserved"] = mu.energy_conserved;
+  out["monodromy"] = mu.monodromy;  // "tangent map" or "differences"
   out["energy_defect"] = mu.energy_defect;
   out["invariance_defect"] = mu.invariance_defect;
   out["scene"] = scene_with_state(scene, orbit.state, T, frames_keeping_step(scene, T),

@@ -26,6 +26,10 @@ def test_on_the_flow_the_period_grows_as_the_pendulums(moon):
     growth = orbit["period"] / orbit["linear_period"] - 1
     pendulum = theta0**2 / 4 + 11 * theta0**4 / 192
     assert growth == pytest.approx(pendulum, rel=0.02)  # m/M = 1e-3: measured +0.1 %
+    # The monodromy from rkf78's variational equations (eq. 19.4): on the unit circle to 2.2e-8,
+    # so the verdict is decided at the default tolerance 1e-6.
+    assert orbit["monodromy"] == "tangent map"
+    assert np.abs(np.abs(orbit["multipliers"]) - 1).max() < 1e-7 and orbit["verdict"] == "linearly stable"
 
 
 def test_on_the_lgvi_the_orbit_is_the_maps_and_stable(moon):
@@ -33,6 +37,7 @@ def test_on_the_lgvi_the_orbit_is_the_maps_and_stable(moon):
     assert orbit["converged"] and orbit["closure"] < 1e-12
     assert orbit["step"] * orbit["steps"] == pytest.approx(orbit["period"], rel=1e-15)
     assert len(orbit["family"]) == 2 and np.abs(orbit["family"] - 1).max() < 1e-4
+    assert orbit["monodromy"] == "tangent map"  # the LGVI's discrete tangent map
     assert np.abs(np.abs(orbit["multipliers"]) - 1).max() < 1e-6 and orbit["verdict"] == "linearly stable"
     sim = noether.Simulation.from_yaml(orbit["scene"])
     d0 = sim.positions[1] - sim.positions[0]

@@ -6,6 +6,7 @@
 // T = N h, whose periodic orbits are those of the symplectic map itself. Shooting (Newton on s
 // and α, T fixed) and the multipliers of D(Rot(−α) Φ_T) with the symmetry directions projected out.
 #include <noether/full_body_model.hpp>
+#include <noether/phase_chart.hpp>
 #include <noether/scene.hpp>
 
 #include <complex>
@@ -17,8 +18,20 @@ namespace noether {
 // Φ_T(s) by `integrator` (collisions and close approaches are not watched).
 State integrator_map(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T);
 
-// s turned by the rotation Q about the origin: x → Q x, γ → Q γ, R → Q R, Π unchanged.
+// s turned by the rotation Q about the origin: x → Q x, γ → Q γ, R → Q R, Π unchanged (and the
+// tangent's rows of x and γ turned by Q, when it carries one).
 State rotated(const State& s, const Mat3& Q);
+
+// The monodromy of δ ↦ local(Rot(Q) Φ_T(retract(δ))) at δ = 0 from `integrator`'s tangent map
+// (docs/equations.md eq. 19.4, §21): exact for the map up to the charts' own derivatives.
+// Empty when the integrator carries no tangent map.
+Eigen::MatrixXd tangent_monodromy(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
+                                  double T, const Mat3& Q);
+
+// The gradients of the conserved quantities in `chart`'s coordinates at its base: row 0 ∂E/∂δ,
+// then ∂(L·a)/∂δ for each column a of `axes` (L about the barycentre). Analytic, from the
+// potential's forces and moments.
+Eigen::MatrixXd conserved_gradients(const FullBodyModel& model, const PhaseChart& chart, const Eigen::Matrix3Xd& axes);
 
 // How far the map returns a state from itself, up to a turn about k̂ (19.1), without Newton.
 struct RelativeClosure {
@@ -57,15 +70,21 @@ struct OrbitMultipliers {
   double energy_defect = 0;
   bool energy_conserved = false;
   std::string verdict;  // "linearly stable" (every |μ| ≤ 1 + tol), "unstable" (> 1 + 100 tol), "undecided"
+  // How the monodromy was made: "tangent map" (the integrator's, §21) or "differences" (of the
+  // whole map, for integrators without one: noise ~ the integrator's error / 1e-5).
+  std::string monodromy;
   // Set apart, not judged: a Lyapunov orbit's pair at 1 on a map that does not conserve E (its
   // family and its phase; lyapunov_multipliers).
   std::vector<std::complex<double>> family;
 };
 
-// The monodromy D(Rot(−α) Φ_T) by central differences, restricted to the barycentre-free
+// The monodromy D(Rot(−α) Φ_T) — from the integrator's tangent map, or by central differences
+// of the map for an integrator without one — restricted to the barycentre-free
 // perturbations with L·k̂ (and, when the map conserves it, the energy) fixed, modulo the
 // rotations (and the flow).
+// `differenced`: difference the map even when the integrator has a tangent map (to compare).
 OrbitMultipliers relative_orbit_multipliers(const FullBodyModel& model, const PluginConfig& integrator,
-                                            const RelativePeriodicOrbit& orbit, double tolerance = 1e-6);
+                                            const RelativePeriodicOrbit& orbit, double tolerance = 1e-6,
+                                            bool differenced = false);
 
 }  // namespace noether
