@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -117,6 +119,96 @@ TEST(Impulses, SensitivitiesToTheDeltaVAndTheMassAgreeWithDifferences) {
   }
 }
 
+// A Δv in the RTN frame (radial, along-track, normal of the planet's orbit about the sun at the
+// impulse's time) is the inertial Q Δv with Q's columns r̂, n̂ × r̂, n̂ of that state (24.4).
+TEST(Impulses, InTheRtnFrameAreTheOrbitsAxesAtTheirTime) {
+  const char* integrator = "integrator={plugin: rk, method: rk4, step: 0.001}";
+  const State with = final_state(test::kepler_scene(
+      {integrator, "impulses=[{body: planet, time: 1.25, delta_v: [0.01, -0.02, 0.005], frame: rtn}]"}));
+  Simulation by_hand(test::kepler_scene({integrator}), registry());
+  by_hand.integrate(1.25);
+  State s = by_hand.state();
+  const Vec3 r = s.x.col(1) - s.x.col(0), v = s.p.col(1) / 1e-3 - s.p.col(0) / 1.0;
+  const Vec3 rhat = r / r.norm(), nhat = r.cross(v) / r.cross(v).norm(), that = nhat.cross(rhat);
+  s.p.col(1) += 1e-3 * (0.01 * rhat - 0.02 * that + 0.005 * nhat);
+  by_hand.set_state(s);
+  by_hand.integrate(2.0);
+  EXPECT_LE((with.x - by_hand.state().x).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LE((with.p - by_hand.state().p).cwiseAbs().maxCoeff(), 1e-18);
+  // An along-track Δv on this prograde orbit adds energy: ½ m (2 v·t̂ Δv + Δv²) > 0.
+  Simulation along(test::kepler_scene({integrator, "impulses=[{body: planet, time: 1.25, delta_v: [0, 0.01, 0], frame: rtn}]"}),
+                   registry());
+  along.integrate(2.0);
+  EXPECT_GT(along.finish().impulse_energy, 0.0);
+}
+
+// The tangent's jump in the RTN frame turns with the orbit (24.6), and the sensitivity to the
+// impulse's time is the jump of the vector field (24.7): the STM (through a velocity key), the
+// mass, Δv_RTN and the time against central differences of whole runs, for the adaptive cvode and
+// rkf78 (the time moves freely) and, without the time, the LGVI and rk4 on their grid.
+TEST(Impulses, SensitivitiesInTheRtnFrameAndToTheTimeAgreeWithDifferences) {
+  const std::string base_impulse = "{body: planet, time: 1.25, delta_v: [0.01, -0.02, 0.005], frame: rtn";
+  for (const char* integrator : {"integrator={plugin: cvode, rtol: 1e-12, atol: 1e-15}",
+                                 "integrator={plugin: rk, method: rkf78, rtol: 1e-13, atol: 1e-16}",
+                                 "integrator={plugin: lgvi, step: 0.001}", "integrator={plugin: rk, method: rk4, step: 0.001}"}) {
+    SCOPED_TRACE(integrator);
+    const bool adaptive = std::string(integrator).find("step:") == std::string::npos;
+    const std::string keys = std::string("run.sensitivities=[bodies.planet.velocity.1, bodies.planet.mass, impulses.0.delta_v") +
+                             (adaptive ? ", impulses.0.time]" : "]");
+    Simulation sim(test::kepler_scene({integrator, "impulses=[" + base_impulse + "}]", keys}), registry());
+    sim.integrate(2.0);
+    const Eigen::MatrixXd& V = sim.state().tangent;
+    ASSERT_EQ(V.cols(), adaptive ? 6 : 5);
+    auto run = [&](const std::string& impulse, const std::string& set) {
+      std::vector<std::string> o{integrator, "impulses=[" + impulse + "}]"};
+      if (!set.empty()) o.push_back(set);
+      return final_state(test::kepler_scene(o));
+    };
+    auto number = [](double x) {
+      std::ostringstream t;
+      t.precision(17);
+      t << x;
+      return t.str();
+    };
+    const auto& names = sim.sensitivity_names();
+    auto check = [&](const Eigen::VectorXd& differenced, const std::string& key, const char* what) {
+      const auto found = std::find(names.begin(), names.end(), key);
+      ASSERT_NE(found, names.end()) << key;
+      const auto column = static_cast<Eigen::Index>(found - names.begin());
+      const double error = (differenced - V.col(column)).norm() / V.col(column).norm();
+      std::printf("%-28s relative difference %.1e\n", what, error);
+      EXPECT_LE(error, 1e-6) << what;
+    };
+    const double hv = 1e-6;  // the velocity's y component (2.0)
+    check(State::difference(run(base_impulse, "bodies.planet.velocity.1=" + number(2.0 - hv)),
+                            run(base_impulse, "bodies.planet.velocity.1=" + number(2.0 + hv))) / (2 * hv),
+          "bodies.planet.velocity.1", "velocity.1 (the STM's column)");
+    const double m = 1e-3, dm = 1e-4 * m;
+    check(State::difference(run(base_impulse, "bodies.planet.mass=" + number(m - dm)),
+                            run(base_impulse, "bodies.planet.mass=" + number(m + dm))) / (2 * dm),
+          "bodies.planet.mass", "mass");
+    const Vec3 dv(0.01, -0.02, 0.005);
+    for (int a = 0; a < 3; ++a) {
+      Vec3 plus = dv, minus = dv;
+      plus(a) += 1e-6, minus(a) -= 1e-6;
+      auto impulse = [&](const Vec3& w) {
+        return "{body: planet, time: 1.25, delta_v: [" + number(w(0)) + ", " + number(w(1)) + ", " + number(w(2)) +
+               "], frame: rtn";
+      };
+      check(State::difference(run(impulse(minus), ""), run(impulse(plus), "")) / 2e-6,
+            "impulses.0.delta_v." + std::to_string(a),
+            a == 0 ? "delta_v.0 (radial)" : a == 1 ? "delta_v.1 (along-track)" : "delta_v.2 (normal)");
+    }
+    if (adaptive) {
+      const double ht = 1e-5;
+      auto at = [&](double t) {
+        return "{body: planet, time: " + number(t) + ", delta_v: [0.01, -0.02, 0.005], frame: rtn";
+      };
+      check(State::difference(run(at(1.25 - ht), ""), run(at(1.25 + ht), "")) / (2 * ht), "impulses.0.time", "time");
+    }
+  }
+}
+
 // What is refused, with a message naming the key: an impulse off a fixed step's grid, at or
 // before the start, on no body; the orbit tools and saving such a run.
 TEST(Impulses, AreRefusedWhereTheyCannotBeApplied) {
@@ -134,6 +226,11 @@ TEST(Impulses, AreRefusedWhereTheyCannotBeApplied) {
   refused({"impulses=[{body: planets, time: 1, delta_v: [0, 0.01, 0]}]"}, "did you mean 'planet'");
   refused({"impulses=[{body: planet, time: 1}]"}, "needs 'delta_v'");
   refused({kImpulse, "run.sensitivities=[impulses.1.delta_v]"}, "names no impulse");
+  refused({kImpulse, "run.sensitivities=[impulses.0.mass]"}, "or its time (impulses.0.time)");
+  refused({"impulses=[{body: planet, time: 1, delta_v: [0, 0.01, 0], frame: lvlh}]"}, "it must be inertial");
+  refused({"impulses=[{body: planet, time: 1, delta_v: [0, 0.01, 0], frame: rtn, around: planet}]"},
+          "cannot orbit itself");
+  refused({"impulses=[{body: planet, time: 1, delta_v: [0, 0.01, 0], around: sun}]"}, "used only with frame: rtn");
   EXPECT_THROW(FullBodyModel::from_scene(kicked(), registry()), SceneError);
   Simulation sim(kicked(), registry());
   sim.integrate(1.0);

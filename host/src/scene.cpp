@@ -320,25 +320,29 @@ PluginConfig plugin_config(const Params& p, const std::string& what) {
 
 // impulses: [{body, time, delta_v}], each at a time after t0 (docs/user-guide.md "Impulses").
 std::vector<Impulse> parse_impulses(const Params& list, const System& system, double t0) {
-  const char* form = "'impulses' must be a list of {body: NAME, time: T, delta_v: [x, y, z]}";
+  const char* form = "'impulses' must be a list of {body: NAME, time: T, delta_v: [x, y, z]} (optionally "
+                     "frame: rtn, around: NAME)";
   if (!list.is_sequence()) throw SceneError(list.here() + form);
   std::vector<std::string> names;
   for (const auto& b : system.bodies()) names.push_back(b.name);
-  std::vector<Impulse> out;
-  for (const Params& item : list.items()) {
-    if (!item.is_map()) throw SceneError(item.here() + form);
-    item.check_keys({"body", "time", "delta_v"}, "an impulse");
-    for (const char* key : {"body", "time", "delta_v"})
-      if (!item.has(key)) throw SceneError(item.here() + "'" + item.path() + "' needs '" + key + "': " + form);
-    Impulse impulse;
-    const std::string name = item.at("body").as_string();
+  auto body_named = [&](const Params& key) {
+    const std::string name = key.as_string();
     const auto found = std::find(names.begin(), names.end(), name);
     if (found == names.end()) {
       const std::string near = closest_match(name, names);
-      throw SceneError(item.at("body").here() + "'" + item.at("body").path() + "': no body '" + name + "'" +
+      throw SceneError(key.here() + "'" + key.path() + "': no body '" + name + "'" +
                        (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
     }
-    impulse.body = static_cast<std::size_t>(found - names.begin());
+    return static_cast<std::size_t>(found - names.begin());
+  };
+  std::vector<Impulse> out;
+  for (const Params& item : list.items()) {
+    if (!item.is_map()) throw SceneError(item.here() + form);
+    item.check_keys({"body", "time", "delta_v", "frame", "around"}, "an impulse");
+    for (const char* key : {"body", "time", "delta_v"})
+      if (!item.has(key)) throw SceneError(item.here() + "'" + item.path() + "' needs '" + key + "': " + form);
+    Impulse impulse;
+    impulse.body = body_named(item.at("body"));
     impulse.time = item.at("time").as_double();
     if (!std::isfinite(impulse.time) || !(impulse.time > t0))
       throw SceneError(item.at("time").here() + "'" + item.at("time").path() + "' must be a time after the start (" +
@@ -346,6 +350,28 @@ std::vector<Impulse> parse_impulses(const Params& list, const System& system, do
     impulse.delta_v = vec3(item.at("delta_v"));
     if (!impulse.delta_v.allFinite())
       throw SceneError(item.at("delta_v").here() + "'" + item.at("delta_v").path() + "' must be finite");
+    const std::string frame = item.get("frame", std::string("inertial"));
+    if (frame == "rtn") {
+      impulse.frame = Impulse::Frame::rtn;
+      if (system.size() < 2)
+        throw SceneError(item.at("frame").here() + "'" + item.path() + ".frame: rtn' needs a second body to orbit");
+      if (item.has("around")) {
+        impulse.around = body_named(item.at("around"));
+        if (impulse.around == impulse.body)
+          throw SceneError(item.at("around").here() + "'" + item.at("around").path() + "': a body cannot orbit itself");
+      } else {  // the heaviest other body
+        impulse.around = impulse.body == 0 ? 1 : 0;
+        for (std::size_t i = 0; i < system.size(); ++i)
+          if (i != impulse.body && system.body(i).mass > system.body(impulse.around).mass) impulse.around = i;
+      }
+    } else if (frame != "inertial") {
+      throw SceneError(item.at("frame").here() + "'" + item.at("frame").path() + "' is '" + frame +
+                       "'; it must be inertial (the scene's axes, the default) or rtn (radial, along-track, normal "
+                       "of the body's orbit about 'around' at the impulse's time)");
+    } else if (item.has("around")) {
+      throw SceneError(item.at("around").here() + "'" + item.at("around").path() +
+                       "' is used only with frame: rtn (an inertial delta_v needs no orbit)");
+    }
     out.push_back(impulse);
   }
   return out;

@@ -25,10 +25,11 @@ std::string accepted() {
          "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
          "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
          "density, its inertia (three principal moments, or one: inertia.2) and shape.ellipsoid.semi_axes "
-         "(whole or one of them); and an impulse's impulses.K.delta_v (whole or one component)";
+         "(whole or one of them); and an impulse's impulses.K.delta_v (whole or one component) or impulses.K.time";
 }
 
-// impulses.K.delta_v[.a]: the impulse's index and component (−1: all three), or SceneError.
+// impulses.K.delta_v[.a] or impulses.K.time: the impulse's index and component (−1: all three
+// of Δv; 3: its time), or SceneError.
 std::pair<std::size_t, int> parse_impulse_key(const Scene& scene, const std::string& text) {
   const std::string where = "run.sensitivities: '" + text + "': ";
   const std::string rest = text.substr(9);  // after "impulses."
@@ -45,10 +46,11 @@ std::pair<std::size_t, int> parse_impulse_key(const Scene& scene, const std::str
     throw SceneError(where + "names no impulse (the scene has " + std::to_string(scene.impulses.size()) + ")");
   const std::string field = dot == std::string::npos ? "" : rest.substr(dot + 1);
   if (field == "delta_v") return {index, -1};
+  if (field == "time") return {index, 3};
   if (field.size() == 9 && field.compare(0, 8, "delta_v.") == 0 && std::string("012xyz").find(field[8]) != std::string::npos)
     return {index, field[8] >= '0' && field[8] <= '2' ? field[8] - '0' : field[8] - 'x'};
   throw SceneError(where + "of an impulse, sensitivities are taken to its delta_v (whole or one component: "
-                   "impulses.0.delta_v.1)");
+                   "impulses.0.delta_v.1) or its time (impulses.0.time)");
 }
 
 std::string number(double v) {
@@ -190,6 +192,11 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
   for (const std::string& text : keys) {
     if (text.compare(0, 9, "impulses.") == 0) {  // 0 at t0: the run adds m e_a at the impulse (24.2)
       const auto [index, component] = parse_impulse_key(scene, text);
+      if (component == 3) {  // the time: the run adds the jump of the vector field there (24.7)
+        columns.push_back(Eigen::VectorXd::Zero(rows));
+        out.names.push_back("impulses." + std::to_string(index) + ".time");
+        continue;
+      }
       for (int a = 0; a < 3; ++a) {
         if (component >= 0 && a != component) continue;
         columns.push_back(Eigen::VectorXd::Zero(rows));

@@ -5,6 +5,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "impulse_frame.hpp"
 #include "simulation_impl.hpp"
 
 #include <chrono>
@@ -199,30 +200,64 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
 }
 
 // Applies the scene's impulse k where the run stands, at its time (docs/equations.md §24): the
-// body's momentum jumps by m Δv (24.1), the tangent's columns of its Δv and of parameters that
-// move its mass by their derivatives (24.2), the integrator starts afresh there, and the frame
-// after the jump is observed with the statistics' references moved by it.
+// body's momentum jumps by m Δv (24.1), the tangent by the jump's derivative (24.2, 24.6), the
+// integrator starts afresh there, and the frame after the jump is observed with the statistics'
+// references moved by it.
 void apply_impulse(Simulation::Impl& m, std::size_t k) {
   const Impulse& impulse = m.scene.impulses[k];
   const System& sys = m.scene.system;
-  const auto b = static_cast<Eigen::Index>(impulse.body);
+  const auto b = static_cast<Eigen::Index>(impulse.body), c = static_cast<Eigen::Index>(impulse.around);
   const double mass = sys.body(impulse.body).mass;
   const State before = m.state;
-  m.state.p.col(b) += mass * impulse.delta_v;  // (24.1)
+  const bool rtn = impulse.frame == Impulse::Frame::rtn;
+  const detail::RelativeOrbit orbit = rtn ? detail::relative_orbit(impulse, sys, before) : detail::RelativeOrbit{};
+  const Mat3 Q = rtn ? detail::rtn_frame(orbit.r, orbit.v) : Mat3::Identity();
+  const Vec3 dv = Q * impulse.delta_v;
+  m.state.p.col(b) += mass * dv;  // (24.1)
   Eigen::MatrixXd& V = m.state.tangent;
-  if (V.size() > 0) {  // (24.2): ∂γ_b⁺/∂Δv = m I, ∂γ_b⁺/∂p += (∂m/∂p) Δv
-    const Eigen::Index row = 3 * static_cast<Eigen::Index>(sys.size() + sys.rigid_count()) + 3 * b;
+  if (V.size() > 0) {
+    const auto n = static_cast<Eigen::Index>(sys.size()), q = 3 * (n + static_cast<Eigen::Index>(sys.rigid_count()));
+    const Eigen::Index row = q + 3 * b;  // γ_b's rows; x_b's are 3b
     const auto P = static_cast<Eigen::Index>(m.sensitivity_names.size());
-    const std::string key = "impulses." + std::to_string(k) + ".delta_v.";  // + the component
-    for (Eigen::Index c = 0; c < P; ++c)
-      if (const std::string& name = m.sensitivity_names[static_cast<std::size_t>(c)]; name.rfind(key, 0) == 0)
-        V(row + (name.back() - '0'), V.cols() - P + c) += mass;
-    if (m.parameters) {
-      const auto Q = static_cast<Eigen::Index>(m.parameters->size());
-      for (Eigen::Index j = 0; j < Q; ++j)
-        V.block(row, V.cols() - Q + j, 3, 1) +=
-            m.parameters->parameters[static_cast<std::size_t>(j)].mass(b) * impulse.delta_v;
+    const auto Qp = m.parameters ? static_cast<Eigen::Index>(m.parameters->size()) : Eigen::Index{0};
+    auto mass_derivative = [&](Eigen::Index column, std::size_t body) {  // ∂m_body/∂p of a parameter's column
+      const Eigen::Index j = column - (V.cols() - Qp);
+      return j >= 0 ? m.parameters->parameters[static_cast<std::size_t>(j)].mass(static_cast<Eigen::Index>(body)) : 0.0;
+    };
+    if (rtn) {  // (24.6): the frame turns with the orbit, ∂γ_b⁺/∂z⁻ = m_b (∂Q/∂z⁻) Δv_RTN, on every column
+      const double mc = sys.body(impulse.around).mass;
+      const Eigen::MatrixXd W = V;
+      for (Eigen::Index j = 0; j < V.cols(); ++j) {
+        const double dmb = mass_derivative(j, impulse.body), dmc = mass_derivative(j, impulse.around);
+        const Vec3 dr = W.block<3, 1>(3 * b, j) - W.block<3, 1>(3 * c, j);
+        const Vec3 dvel = (W.block<3, 1>(q + 3 * b, j) - before.p.col(b) * dmb / mass) / mass -
+                          (W.block<3, 1>(q + 3 * c, j) - before.p.col(c) * dmc / mc) / mc;
+        V.block<3, 1>(row, j) += mass * detail::rtn_frame_derivative(orbit.r, orbit.v, dr, dvel) * impulse.delta_v;
+      }
     }
+    const std::string key = "impulses." + std::to_string(k) + ".";  // + delta_v.a or time
+    for (Eigen::Index col = 0; col < P; ++col) {
+      const std::string& name = m.sensitivity_names[static_cast<std::size_t>(col)];
+      if (name.rfind(key, 0) != 0) continue;
+      const Eigen::Index j = V.cols() - P + col;
+      if (name == key + "time") {
+        // (24.7): ∂z⁺/∂t_i = F(z⁻) − F(z⁺) + (∂z⁺/∂z⁻ − I) F(z⁻): x_b's rate drops by Δv; in the RTN
+        // frame Δv also turns with the orbit along the flow (δr = v, δv = the relative acceleration).
+        V.block<3, 1>(3 * b, j) -= dv;
+        if (rtn) {
+          Forces f;
+          f.resize(sys);
+          m.potential->evaluate(before, f, *m.potential->make_workspace());
+          const Vec3 acceleration = f.f.col(b) / mass - f.f.col(c) / sys.body(impulse.around).mass;
+          V.block<3, 1>(row, j) +=
+              mass * detail::rtn_frame_derivative(orbit.r, orbit.v, orbit.v, acceleration) * impulse.delta_v;
+        }
+      } else {  // (24.2): ∂γ_b⁺/∂Δv = m_b Q
+        V.block<3, 1>(row, j) += mass * Q.col(name.back() - '0');
+      }
+    }
+    for (Eigen::Index j = V.cols() - Qp; j < V.cols(); ++j)  // (24.2): ∂γ_b⁺/∂p += (∂m_b/∂p) Δv
+      V.block<3, 1>(row, j) += mass_derivative(j, impulse.body) * dv;
   }
   const Forces forces = m.start_here(impulse.time);
   m.observer->impulse(before, m.state, forces.U);

@@ -14,8 +14,9 @@ messages the command prints.
 """
 import json
 import os
-
 import sys
+
+import numpy as _np
 
 try:
     from ._noether import (Error, IntegrationError, OutputError, PluginError, SceneError, __version__,
@@ -284,7 +285,14 @@ class Simulation:
 
     def sensitivity(self, name):
         """∂z(t)/∂p for one key of sensitivity_names (sim.sensitivity("bodies.beta.mass")), a
-        vector in the order of stm_coordinates; KeyError for a key the run does not carry."""
+        vector in the order of stm_coordinates; for a key whose components are carried
+        ("impulses.0.delta_v": .0, .1, .2) a matrix of those columns, in order; KeyError for a key
+        the run does not carry."""
+        names = self._sim.sensitivity_names
+        if name not in names:
+            parts = [n for n in names if n.startswith(name + ".")]
+            if parts:
+                return _np.column_stack([self._sim.sensitivity(n) for n in parts])
         return self._sim.sensitivity(name)
 
     @property

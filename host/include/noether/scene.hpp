@@ -53,9 +53,14 @@ struct RunSettings {
 // impactor such as DART): at `time` its linear momentum jumps by m Δv (docs/user-guide.md,
 // "Impulses"; docs/equations.md §24).
 struct Impulse {
+  // The axes delta_v is given in: the scene's inertial ones, or the RTN frame of the body's orbit
+  // about `around` at `time` (radial, along-track, normal; docs/equations.md eq. 24.4).
+  enum class Frame { inertial, rtn };
   std::size_t body = 0;
   double time = 0.0;
-  Vec3 delta_v = Vec3::Zero();  // inertial frame, the scene's unit of velocity
+  Vec3 delta_v = Vec3::Zero();  // in `frame`, the scene's unit of velocity
+  Frame frame = Frame::inertial;
+  std::size_t around = 0;  // for rtn: the body orbited (default: the heaviest other body)
 };
 
 struct Scene {
