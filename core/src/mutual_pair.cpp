@@ -1,5 +1,7 @@
 #include <noether/mutual_pair.hpp>
 
+#include <vector>
+
 namespace noether {
 
 PairFrame pair_frame(const State& s, const MutualPair& p) {
@@ -18,6 +20,41 @@ void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualT
   out.f.col(static_cast<Eigen::Index>(p.b)) -= f;
   if (p.rigid_a >= 0) out.M.col(p.rigid_a) += t.torque_A;
   if (p.rigid_b >= 0) out.M.col(p.rigid_b) += frame.C.transpose() * t.torque_B;
+}
+
+void add_mutual_jacobian(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, const MutualJacobian& J,
+                         std::size_t n, Eigen::MatrixXd& K) {
+  using Eigen::Index;
+  const Index xa = 3 * static_cast<Index>(p.a), xb = 3 * static_cast<Index>(p.b);
+  const Index N = 3 * static_cast<Index>(n);
+  const Mat3 Ct = frame.C.transpose();
+  // Each variable moves the pair's R (A's frame) and turns B about its centre in A's axes (φ),
+  // (25.6): δR = R_aᵀ(δx_b − δx_a) + S(R) θ_a,  δφ = C θ_b − θ_a.
+  struct Variable {
+    Index column;
+    Mat3 dR, dphi;
+    bool theta_a, theta_b;
+  };
+  std::vector<Variable> variables = {{xa, -frame.Ra.transpose(), Mat3::Zero(), false, false},
+                                     {xb, frame.Ra.transpose(), Mat3::Zero(), false, false}};
+  if (p.rigid_a >= 0) variables.push_back({N + 3 * p.rigid_a, hat(frame.R), -Mat3::Identity(), true, false});
+  if (p.rigid_b >= 0) variables.push_back({N + 3 * p.rigid_b, Mat3::Zero(), frame.C, false, true});
+  for (const Variable& v : variables) {
+    // f_a = R_a g: δf_a = R_a (δg + θ_a × g); f_b = −f_a.
+    Mat3 df = frame.Ra * (J.g_R * v.dR + J.g_phi * v.dphi);
+    if (v.theta_a) df -= frame.Ra * hat(t.dU_dR);
+    K.block<3, 3>(xa, v.column) += df;
+    K.block<3, 3>(xb, v.column) -= df;
+    // M_a = τ_A (A's body frame).
+    if (p.rigid_a >= 0) K.block<3, 3>(N + 3 * p.rigid_a, v.column) += J.tauA_R * v.dR + J.tauA_phi * v.dphi;
+    // M_b = Cᵀ τ_B: C → (I − S(θ_a)) C and C (I + S(θ_b)) turn Cᵀ τ_B too.
+    if (p.rigid_b >= 0) {
+      Mat3 dM = Ct * (J.tauB_R * v.dR + J.tauB_phi * v.dphi);
+      if (v.theta_a) dM -= Ct * hat(t.torque_B);
+      if (v.theta_b) dM += hat(Ct * t.torque_B);
+      K.block<3, 3>(N + 3 * p.rigid_b, v.column) += dM;
+    }
+  }
 }
 
 }  // namespace noether

@@ -43,8 +43,8 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
       torque_.push_back(t);
     }
   }
-  for (int d = 0; d <= order + 2; ++d) first_of_degree_.push_back(multi_index::first_of_degree(d));
-  for (int i = 1; i < count(order + 1); ++i) {
+  for (int d = 0; d <= order + 3; ++d) first_of_degree_.push_back(multi_index::first_of_degree(d));
+  for (int i = 1; i < count(order + 2); ++i) {  // to degree N + 2 for the jacobian
     const auto [t, u, v] = exponents(i);
     const int c = t > 0 ? 0 : (u > 0 ? 1 : 2);
     std::array<int, 3> e{t, u, v};
@@ -63,7 +63,101 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
   M_.resize(static_cast<std::size_t>(n));
   B_.resize(static_cast<std::size_t>(n));
   L_.resize(static_cast<std::size_t>(n));
-  Rj_.resize(static_cast<std::size_t>((order + 2) * count(order + 1)));
+  Rj_.resize(static_cast<std::size_t>((order + 3) * count(order + 2)));
+}
+
+const double* MutualSeries::derivatives_at(const Vec3& e, int L) {
+  // D^γ(1/r) at the unit vector e, |γ| ≤ L, by the recurrence (13.4):
+  //   R^{(j)}_{000} = (−1)^j (2j−1)!!,  R^{(j)}_γ = (γ_c − 1) R^{(j+1)}_{γ−2e_c} + e_c R^{(j+1)}_{γ−e_c}
+  const int stride = count(L);
+  double* Rj = Rj_.data();
+  double dfact = 1.0;
+  for (int j = 0; j <= L; ++j) {
+    Rj[j * stride] = (j % 2 ? -1.0 : 1.0) * dfact;
+    dfact *= 2 * j + 1;
+  }
+  const double ec[3] = {e.x(), e.y(), e.z()};
+  for (int d = 1; d <= L; ++d) {
+    const Recurrence* first = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d)] - 1;
+    const Recurrence* last = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d + 1)] - 1;
+    for (int j = 0; j <= L - d; ++j) {
+      double* out = Rj + j * stride;
+      const double* in = Rj + (j + 1) * stride;
+      for (const Recurrence* r = first; r != last; ++r)
+        out[r->gamma] = r->factor * in[r->minus2] + ec[r->component] * in[r->minus1];
+    }
+  }
+  return Rj;
+}
+
+void MutualSeries::rotate_generator(const std::vector<double>& X, int c, int n, std::vector<double>& out) const {
+  out.assign(static_cast<std::size_t>(n), 0.0);
+  for (int k = 0; k + 1 < n; ++k) {
+    const auto& term = torque_[static_cast<std::size_t>(k)].terms[static_cast<std::size_t>(c)];
+    out[static_cast<std::size_t>(k + 1)] = term[0].first * X[static_cast<std::size_t>(term[0].second)] +
+                                           term[1].first * X[static_cast<std::size_t>(term[1].second)];
+  }
+}
+
+MutualTerms MutualSeries::jacobian(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB, const Vec3& Rv,
+                                   const Mat3& C, MutualJacobian& J) {
+  const InertiaIntegrals* B = &TB;
+  if (TB.order > 0) {
+    rotation_.apply(C, TB, rotated_, order_);
+    B = &rotated_;
+  }
+  // The terms (and, in the scratch, A_α = (−1)^{|α|} T_A^α/(α! R^{|α|}), B_β = T'^β/R^{|β|}, L_β).
+  const MutualTerms t = evaluate_rotated(G, TA, *B, Rv);
+  const int N = order_;
+  const int na = count(std::min(N, TA.order)), nb = count(std::min(N, B->order));
+  const double R = Rv.norm();
+  const double* D = derivatives_at(Rv / R, N + 2);
+  // h_ij = Σ_β T'^β/β! Σ_α A_α D^{α+β+e_i+e_j} and l_β,i = Σ_α A_α D^{α+β+e_i} (scaled, (25.1)).
+  Mat3 h = Mat3::Zero();
+  std::vector<Vec3> l(static_cast<std::size_t>(nb), Vec3::Zero());
+  for (int b = 0; b < nb; ++b) {
+    const double Bw = B_[static_cast<std::size_t>(b)] * inverse_factorial_[static_cast<std::size_t>(b)];
+    Vec3& lb = l[static_cast<std::size_t>(b)];
+    for (const Pair& p : pairs_[static_cast<std::size_t>(b)]) {
+      if (p.alpha >= na) break;
+      const double a = A_[static_cast<std::size_t>(p.alpha)];
+      lb += a * Vec3(D[p.gamma_e[0]], D[p.gamma_e[1]], D[p.gamma_e[2]]);
+      if (Bw == 0.0) continue;
+      const auto& g = exponents(p.gamma);
+      const double ab = a * Bw;
+      h(0, 0) += ab * D[index(g[0] + 2, g[1], g[2])];
+      h(1, 1) += ab * D[index(g[0], g[1] + 2, g[2])];
+      h(2, 2) += ab * D[index(g[0], g[1], g[2] + 2)];
+      h(0, 1) += ab * D[index(g[0] + 1, g[1] + 1, g[2])];
+      h(0, 2) += ab * D[index(g[0] + 1, g[1], g[2] + 1)];
+      h(1, 2) += ab * D[index(g[0], g[1] + 1, g[2] + 1)];
+    }
+  }
+  h(1, 0) = h(0, 1), h(2, 0) = h(0, 2), h(2, 1) = h(1, 2);
+  J.g_R = (-G / (R * R * R)) * h;  // (25.1)
+  // τ_B's derivatives (25.2–25.3): O_c B and O_d O_c B, the in-degree rotation (13.6) once and twice.
+  J.tauB_R.setZero();
+  J.tauB_phi.setZero();
+  if (nb > 1) {
+    for (int c = 0; c < 3; ++c) rotate_generator(B_, c, nb, OB_[c]);
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d) rotate_generator(OB_[c], d, nb, OOB_[d][c]);
+    for (int b = 1; b < nb; ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      const double w = inverse_factorial_[k];
+      for (int c = 0; c < 3; ++c) {
+        for (int i = 0; i < 3; ++i) J.tauB_R(c, i) += w * l[k][i] * OB_[c][k];
+        for (int d = 0; d < 3; ++d) J.tauB_phi(d, c) += L_[k] * OOB_[d][c][k];
+      }
+    }
+    J.tauB_R *= G / (R * R);
+    J.tauB_phi *= G / R;
+  }
+  J.g_phi = -J.tauB_R.transpose();  // ∂²U/∂R∂φ: g = ∂U/∂R, τ_B = −∂U/∂φ (25.4)
+  // τ_A = R × g − τ_B holds for the truncated series (13.7), and so for its derivatives (25.5).
+  J.tauA_R = hat(Rv) * J.g_R - hat(t.dU_dR) - J.tauB_R;
+  J.tauA_phi = hat(Rv) * J.g_phi - J.tauB_phi;
+  return t;
 }
 
 MutualTerms MutualSeries::evaluate(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
@@ -90,27 +184,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
       M_[static_cast<std::size_t>(a)] = 0.0;
     }
 
-  // D^γ(1/r) at the unit vector e, |γ| ≤ N + 1, by the recurrence (13.4):
-  //   R^{(j)}_{000} = (−1)^j (2j−1)!!,  R^{(j)}_γ = (γ_c − 1) R^{(j+1)}_{γ−2e_c} + e_c R^{(j+1)}_{γ−e_c}
-  const int L = N + 1, stride = count(L);
-  double* Rj = Rj_.data();
-  double dfact = 1.0;
-  for (int j = 0; j <= L; ++j) {
-    Rj[j * stride] = (j % 2 ? -1.0 : 1.0) * dfact;
-    dfact *= 2 * j + 1;
-  }
-  const double ec[3] = {e.x(), e.y(), e.z()};
-  for (int d = 1; d <= L; ++d) {
-    const Recurrence* first = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d)] - 1;
-    const Recurrence* last = recurrence_.data() + first_of_degree_[static_cast<std::size_t>(d + 1)] - 1;
-    for (int j = 0; j <= L - d; ++j) {
-      double* out = Rj + j * stride;
-      const double* in = Rj + (j + 1) * stride;
-      for (const Recurrence* r = first; r != last; ++r)
-        out[r->gamma] = r->factor * in[r->minus2] + ec[r->component] * in[r->minus1];
-    }
-  }
-  const double* D = Rj;
+  const double* D = derivatives_at(e, N + 1);
 
   // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (13.2), (13.5)),
   // and for A's torque M_α = Σ_β (T'^β/β!) D^{α+β} (∝ ∂U/∂T_A^α)

@@ -27,6 +27,11 @@ PairFrame pair_frame(const State& s, const MutualPair& p);
 // out.U += U; f_a += R_a ∂U/∂R, f_b −= R_a ∂U/∂R; M_a += τ_a; M_b += Cᵀ τ_b.
 void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out);
 
+// K += the pair's block of the force Jacobian ∂(f, M)/∂(x, θ) (docs/equations.md (20.0), (25.6))
+// from its terms and their derivatives J; n bodies (K's attitude columns start at 3n).
+void add_mutual_jacobian(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, const MutualJacobian& J,
+                         std::size_t n, Eigen::MatrixXd& K);
+
 }  // namespace noether
 
 #pragma GCC visibility pop

@@ -23,6 +23,15 @@ struct MutualTerms {
   Vec3 torque_B = Vec3::Zero();  // on B about its centre of mass, A frame
 };
 
+// The derivatives of MutualTerms' ∂U/∂R (g), τ_A and τ_B, all in A's frame, with respect to R and
+// to a rotation φ of B about its centre of mass, in A's axes (B's integrals T' → exp(S(φ)) T'):
+// the second derivatives of the series (docs/equations.md §25).
+struct MutualJacobian {
+  Mat3 g_R = Mat3::Zero(), g_phi = Mat3::Zero();
+  Mat3 tauA_R = Mat3::Zero(), tauA_phi = Mat3::Zero();
+  Mat3 tauB_R = Mat3::Zero(), tauB_phi = Mat3::Zero();
+};
+
 // One evaluator per order; it keeps its scratch, so use one per thread.
 class MutualSeries {
  public:
@@ -36,6 +45,9 @@ class MutualSeries {
   // The same with B's integrals already in A's frame (T'_B).
   MutualTerms evaluate_rotated(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB_in_A,
                                const Vec3& R);
+  // The terms and their derivatives J (25.1–25.5), from the same recurrence one degree higher.
+  MutualTerms jacobian(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB, const Vec3& R,
+                       const Mat3& C, MutualJacobian& J);
 
  private:
   struct Pair {
@@ -52,6 +64,11 @@ class MutualSeries {
     int beta;
     std::array<std::array<std::pair<double, int>, 2>, 3> terms;
   };
+  // D^γ(1/r) at the unit vector e for |γ| ≤ L (13.4), in Rj_ (stride count(L)).
+  const double* derivatives_at(const Vec3& e, int L);
+  // (O_c X)_β: the in-degree derivative (13.6) of integrals X under a rotation about axis c.
+  void rotate_generator(const std::vector<double>& X, int c, int n, std::vector<double>& out) const;
+
   int order_;
   std::vector<std::vector<Pair>> pairs_;  // per β (|β| ≤ N): every α with |α| ≤ N − |β|
   std::vector<double> sign_over_factorial_;  // (−1)^{|α|}/α!
@@ -63,6 +80,7 @@ class MutualSeries {
   IntegralRotation rotation_;
   InertiaIntegrals rotated_;
   std::vector<double> Rj_, A_, S_, B_, L_, M_;
+  std::vector<double> OB_[3], OOB_[3][3];  // O_c B and O_d O_c B (jacobian)
 };
 
 }  // namespace noether

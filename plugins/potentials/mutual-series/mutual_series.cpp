@@ -139,6 +139,34 @@ class MutualSeriesPotential final : public noether::Potential {
   }
 
 
+  // K = ∂(f, M)/∂(x, θ) pair by pair from the series' second derivatives (docs/equations.md §25).
+  bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace& workspace) const override {
+    auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
+    if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
+      const int order = w.pairs[k].order;
+      const noether::PairFrame frame = noether::pair_frame(s, p);
+      const double R = frame.R.norm();
+      if (!(R > 0.0)) throw noether::IntegrationError("mutual-series: bodies '" + names_[p.a] + "' and '" + names_[p.b] +
+                                                      "' are at the same position (a collision)", s.t);
+      noether::MutualJacobian J;
+      noether::MutualTerms t;
+      if (order == 0) {  // point masses: g = G m_a m_b R/R³, ∂g/∂R = G m_a m_b (I − 3 R̂R̂ᵀ)/R³
+        const double Gmm = G_ * mass_[p.a] * mass_[p.b];
+        const Vec3 e = frame.R / R;
+        t.U = -Gmm / R;
+        t.dU_dR = (Gmm / (R * R)) * e;
+        J.g_R = (Gmm / (R * R * R)) * (noether::Mat3::Identity() - 3.0 * e * e.transpose());
+        J.tauA_R = noether::hat(frame.R) * J.g_R - noether::hat(t.dU_dR);
+      } else {
+        t = w.bank.at(order).jacobian(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C, J);
+      }
+      noether::add_mutual_jacobian(p, frame, t, J, mass_.size(), K);
+    }
+    return true;
+  }
+
   std::vector<noether::PairModel> pair_models(const noether::Workspace& workspace) const override {
     const auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
     std::vector<noether::PairModel> out;
