@@ -4,7 +4,6 @@
 
 #include <noether/error.hpp>
 
-#include <optional>
 #include <sstream>
 
 namespace lgvi {
@@ -44,17 +43,13 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
   void start(const State& s) override {
-    if (parameter_forces_ && !parameter_forces_->fits(s.tangent))
-      throw noether::Error("lgvi: the tangent has fewer columns than the parameters it carries");
     s_ = s;
     evaluate(s_, current_);
-    if (carries_tangent()) K_ = jacobian(s_);
-    if (carries_parameters()) G_ = parameter_forces(s_);
+    tangent_.start(s_, evaluate_, work);
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    parameter_forces_.emplace(std::move(parameters));
-    return true;
+    return tangent_.carry_parameters(std::move(parameters));
   }
 
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
@@ -83,8 +78,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     s_.t += h;
     try {
       evaluate(s_, next_);  // the only potential evaluation of the step
-      if (carries_tangent()) K_next_ = jacobian(s_);
-      if (carries_parameters()) G_next_ = parameter_forces(s_);
+      tangent_.at_next(s_, evaluate_, work);
     } catch (...) {
       s_.x = x_prev_;
       s_.R = R_prev_;
@@ -100,16 +94,7 @@ class InertialHamiltonian final : public DiscreteFlow {
                      0.5 * h * next_.M.col(k);
     }
     std::swap(current_, next_);
-    if (carries_tangent()) {
-      ParameterStep parameters;
-      if (carries_parameters()) {
-        displacement_ = s_.x - x_prev_;
-        parameters = {&parameter_forces_->derivatives(), &G_, &G_next_, &displacement_};
-      }
-      s_.tangent = advance_tangent(system_, h, F_, w_, K_, K_next_, s_.tangent, parameters);
-      std::swap(K_, K_next_);
-      std::swap(G_, G_next_);
-    }
+    if (carries_tangent()) tangent_.advance(system_, h, F_, w_, s_.x - x_prev_, s_.tangent);
     ++work.steps;
   }
 
@@ -121,19 +106,6 @@ class InertialHamiltonian final : public DiscreteFlow {
 
  private:
   bool carries_tangent() const { return s_.tangent.size() > 0; }
-  bool carries_parameters() const { return carries_tangent() && parameter_forces_; }
-  // ∂(f, M)/∂p (22.1), its evaluations counted as work.
-  Eigen::MatrixXd parameter_forces(const State& s) {
-    work.potential_evaluations += parameter_forces_->evaluations_per_call();
-    return (*parameter_forces_)(s);
-  }
-  // The force Jacobian for the tangent map; a differenced one's evaluations count as work.
-  Eigen::MatrixXd jacobian(const State& s) {
-    bool analytic = true;
-    Eigen::MatrixXd K = evaluate_.force_jacobian(s, &analytic);
-    if (!analytic) work.potential_evaluations += 2 * K.rows();
-    return K;
-  }
   void evaluate(const State& s, Forces& f) {
     evaluate_(s, f);
     ++work.potential_evaluations;
@@ -147,13 +119,9 @@ class InertialHamiltonian final : public DiscreteFlow {
   std::vector<Mat3> F_;
   Eigen::Matrix3Xd x_prev_;
   std::vector<Mat3> R_prev_;
-  // The tangent map's: the force Jacobians at z_k and z_{k+1}, and the step's w_k (F_k is F_).
-  Eigen::MatrixXd K_, K_next_;
+  // The tangent map's: the step's w_k (F_k is F_), and the Jacobians at both ends.
   Eigen::Matrix3Xd w_;
-  // Sensitivities to parameters of the dynamics: ∂(f, M)/∂p at z_k and z_{k+1}, x_{k+1} − x_k.
-  std::optional<noether::ParameterForces> parameter_forces_;
-  Eigen::MatrixXd G_, G_next_;
-  Eigen::Matrix3Xd displacement_;
+  TangentCarrier tangent_;
 };
 
 }  // namespace

@@ -10,7 +10,11 @@
 // D_0 = (h/m) γ_0 + (h²/2m) ∂U_0/∂x, L_0 = h Π_0 − (h²/2) M_0 make the first step give
 // x_1, R_1 of (94)–(95). Momenta for output (discrete Legendre transform):
 //   γ_k = m D_k/h − (h/2) ∂U_k/∂x,   Π_k = L_k/h + (h/2) M_k.
+// Through that transform the map z_k → z_{k+1} on (x, R, γ, Π) is the Hamiltonian form's (94)–(97),
+// with w_k = Π_k + (h/2) M_k = L_k/h + h M_k, so it carries the same tangent map (docs/equations.md
+// §21).
 #include "discrete_flow.hpp"
+#include "tangent_map.hpp"
 
 #include <noether/error.hpp>
 
@@ -31,6 +35,11 @@ class InertialLagrangian final : public DiscreteFlow {
     evaluate_(s_, forces_);
     ++work.potential_evaluations;
     h_ = 0;
+    tangent_.start(s_, evaluate_, work);
+  }
+
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    return tangent_.carry_parameters(std::move(parameters));
   }
 
   // h and the previous step's D = x_k − x_{k−1} and L (h = 0 before the first step); the State
@@ -74,10 +83,13 @@ class InertialLagrangian final : public DiscreteFlow {
     if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
     // (79): F_k from S(L_k + h² M_k) = F_k Jd − Jd F_kᵀ
     std::vector<noether::DiscreteAttitude> F;
+    const bool tangent = s_.tangent.size() > 0;
+    if (tangent) F_.resize(nr), w_.resize(3, static_cast<Eigen::Index>(nr));
     for (std::size_t r = 0; r < nr; ++r) {
       const auto& b = system_.body(system_.body_of_rigid(r));
       const Vec3 g = L_[r] + h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
       F.push_back(solve_attitude(g, b.inertia, b.inertia_inverse, settings_, b.name, s_.t, h, g / h, work));
+      if (tangent) F_[r] = F.back().F, w_.col(static_cast<Eigen::Index>(r)) = g / h;  // w_k = L_k/h + h M_k
     }
     // (78): D_{k+1} = D_k + (h²/m) f_k,  x_{k+1} = x_k + D_{k+1}
     for (std::size_t i = 0; i < n; ++i) {
@@ -93,6 +105,10 @@ class InertialLagrangian final : public DiscreteFlow {
     evaluate_(s_, forces_);
     ++work.potential_evaluations;
     ++work.steps;
+    if (tangent) {
+      tangent_.at_next(s_, evaluate_, work);
+      tangent_.advance(system_, h, F_, w_, D_, s_.tangent);  // D_ = x_{k+1} − x_k
+    }
     // The discrete Legendre transform at k+1.
     for (std::size_t i = 0; i < n; ++i) {
       const auto c = static_cast<Eigen::Index>(i);
@@ -117,6 +133,10 @@ class InertialLagrangian final : public DiscreteFlow {
   Forces forces_;
   Eigen::Matrix3Xd D_;    // x_k − x_{k−1}
   std::vector<Vec3> L_;   // vee(Jd F_{k−1} − F_{k−1}ᵀ Jd)
+  // The tangent map's: the step's F_k and w_k, and the Jacobians at both ends.
+  std::vector<Mat3> F_;
+  Eigen::Matrix3Xd w_;
+  TangentCarrier tangent_;
 };
 
 }  // namespace

@@ -50,9 +50,9 @@ class Lgvi final : public noether::Integrator {
     } else if (params.has("composition")) {
       throw SceneError(params.at("composition").here() + "lgvi: 'composition' needs order 4 or 6");
     }
-    if (frame != "inertial" || form != "hamiltonian")
-      tangent_unavailable_ = "lgvi carries the tangent map in its inertial Hamiltonian form (orders 2, 4 and 6) "
-                             "so far, not frame: " + frame + ", form: " + form;
+    if (frame != "inertial")
+      tangent_unavailable_ = "lgvi carries the tangent map in its inertial forms (Hamiltonian, orders 2, 4 and 6, "
+                             "and Lagrangian) so far, not frame: " + frame + " (its discrete map is another one)";
     if (frame == "inertial")
       flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, evaluator_, settings)
                                     : lgvi::make_inertial_lagrangian(system, evaluator_, settings);

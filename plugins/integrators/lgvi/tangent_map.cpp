@@ -1,6 +1,8 @@
 // The tangent map of the inertial Hamiltonian LGVI step (docs/equations.md §21).
 #include "tangent_map.hpp"
 
+#include <noether/error.hpp>
+
 #include <Eigen/LU>  // Matrix3d::inverse
 
 namespace lgvi {
@@ -80,6 +82,37 @@ Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const s
                                 0.5 * h * dF_next.middleRows(3 * n + 3 * r, 3);
   }
   return out;
+}
+
+void TangentCarrier::evaluate_at(const noether::State& s, noether::PotentialEvaluator& evaluate,
+                                 noether::WorkCounters& work, Eigen::MatrixXd& K, Eigen::MatrixXd& G) {
+  if (s.tangent.size() == 0) return;
+  bool analytic = true;
+  K = evaluate.force_jacobian(s, &analytic);
+  if (!analytic) work.potential_evaluations += 2 * K.rows();  // a differenced one's evaluations
+  if (carries_parameters(s)) {
+    work.potential_evaluations += parameter_forces_->evaluations_per_call();
+    G = (*parameter_forces_)(s);
+  }
+}
+
+void TangentCarrier::start(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work) {
+  if (parameter_forces_ && !parameter_forces_->fits(s.tangent))
+    throw noether::Error("lgvi: the tangent has fewer columns than the parameters it carries");
+  evaluate_at(s, evaluate, work, K_, G_);
+}
+
+void TangentCarrier::at_next(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work) {
+  evaluate_at(s, evaluate, work, K_next_, G_next_);
+}
+
+void TangentCarrier::advance(const noether::System& system, double h, const std::vector<noether::Mat3>& F,
+                             const Eigen::Matrix3Xd& w, const Eigen::Matrix3Xd& displacement, Eigen::MatrixXd& V) {
+  ParameterStep parameters;
+  if (parameter_forces_) parameters = {&parameter_forces_->derivatives(), &G_, &G_next_, &displacement};
+  V = advance_tangent(system, h, F, w, K_, K_next_, V, parameters);
+  std::swap(K_, K_next_);
+  std::swap(G_, G_next_);
 }
 
 }  // namespace lgvi

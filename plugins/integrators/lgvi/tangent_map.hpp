@@ -2,10 +2,15 @@
 // The tangent map of the inertial Hamiltonian LGVI step (93)–(97): the exact derivative of the
 // discrete map, differentiated through the implicit attitude equation (93) rather than around it
 // (docs/equations.md §21, eqs. 21.3–21.8). Compositions are products of these maps.
+#include <noether/integrator.hpp>
 #include <noether/lie.hpp>
 #include <noether/parameter_derivatives.hpp>
+#include <noether/potential.hpp>
+#include <noether/state.hpp>
 #include <noether/system.hpp>
 
+#include <memory>
+#include <optional>
 #include <vector>
 
 namespace lgvi {
@@ -27,5 +32,31 @@ struct ParameterStep {
 Eigen::MatrixXd advance_tangent(const noether::System& system, double h, const std::vector<noether::Mat3>& F,
                                 const Eigen::Matrix3Xd& w, const Eigen::MatrixXd& K_k, const Eigen::MatrixXd& K_next,
                                 const Eigen::MatrixXd& V, const ParameterStep& parameters = {});
+
+// What the inertial forms (Hamiltonian and Lagrangian: the same map z_k → z_{k+1}) hold to
+// carry the tangent: the force Jacobian (§20) and, for parameters of the dynamics, ∂(f, M)/∂p
+// (22.1) at z_k and z_{k+1}; their evaluations counted as the flow's work.
+class TangentCarrier {
+ public:
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) {
+    parameter_forces_.emplace(std::move(parameters));
+    return true;
+  }
+  // At z_k (a start): K_k, G_k when the state carries a tangent.
+  void start(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work);
+  // At z_{k+1}, after the step's evaluation there.
+  void at_next(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work);
+  // V ← (∂z_{k+1}/∂z_k) V (advance_tangent) with the step's F_k, w_k and x_{k+1} − x_k; then
+  // z_{k+1} becomes z_k.
+  void advance(const noether::System& system, double h, const std::vector<noether::Mat3>& F, const Eigen::Matrix3Xd& w,
+               const Eigen::Matrix3Xd& displacement, Eigen::MatrixXd& V);
+
+ private:
+  bool carries_parameters(const noether::State& s) const { return s.tangent.size() > 0 && parameter_forces_; }
+  void evaluate_at(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work,
+                   Eigen::MatrixXd& K, Eigen::MatrixXd& G);
+  std::optional<noether::ParameterForces> parameter_forces_;
+  Eigen::MatrixXd K_, K_next_, G_, G_next_;
+};
 
 }  // namespace lgvi
