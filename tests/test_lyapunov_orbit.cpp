@@ -30,20 +30,34 @@ Scene tiny_moon() {
       "tiny-moon.yaml");
 }
 
+// A scene's model, its relative equilibrium and the libration mode of its body "moon".
+struct Libration {
+  FullBodyModel model;
+  RelativeEquilibrium equilibrium;
+  NormalMode mode;
+};
+Libration moon_libration(const Scene& s) {
+  static PluginRegistry registry = test::bundled_plugins();
+  Libration out{FullBodyModel::from_scene(s, registry), {}, {}};
+  out.equilibrium = find_relative_equilibrium(out.model, s.initial);
+  EXPECT_TRUE(out.equilibrium.converged);
+  const EquilibriumStability stability = linear_stability(out.model, out.equilibrium);
+  const NormalMode* mode = libration_mode(stability, "moon");
+  EXPECT_NE(mode, nullptr);
+  if (mode) out.mode = *mode;
+  return out;
+}
+
 // The fixed step that puts N steps in the mode's linear period.
 double ly_step_guess(const NormalMode& mode, int N) { return 2 * M_PI / mode.frequency / N; }
 
 }  // namespace
 
 TEST(LyapunovOrbit, LibrationPeriodGrowsWithAmplitudeAsThePendulums) {
-  auto registry = test::bundled_plugins();
-  const Scene s = tiny_moon();
-  const auto model = FullBodyModel::from_scene(s, registry);
-  const auto eq = find_relative_equilibrium(model, s.initial);
-  ASSERT_TRUE(eq.converged);
-  const auto st = linear_stability(model, eq);
-  const NormalMode* libration = libration_mode(st, "moon");
-  ASSERT_NE(libration, nullptr);
+  const Libration moon = moon_libration(tiny_moon());
+  const auto& model = moon.model;
+  const auto& eq = moon.equilibrium;
+  const NormalMode* libration = &moon.mode;
   const auto flow = test::plugin_config("{plugin: rk, method: rkf78, rtol: 1e-13, atol: 1e-16}");
   double T_flow = 0;
   for (const double theta0 : {0.025, 0.05, 0.1}) {
@@ -81,14 +95,10 @@ TEST(LyapunovOrbit, LibrationPeriodGrowsWithAmplitudeAsThePendulums) {
 // tolerance 1e-6; now the tangent map's is 2.2e-8 (both rtols), the differences' 6e-8 at rtol
 // 1e-10, and the verdict is decided.
 TEST(LyapunovOrbit, TangentMapMonodromyDecidesTheSynchronousMoonsVerdict) {
-  auto registry = test::bundled_plugins();
-  const Scene s = load_scene(test::source_path("examples/equilibria/synchronous-moon.yaml"));
-  const auto model = FullBodyModel::from_scene(s, registry);
-  const auto eq = find_relative_equilibrium(model, s.initial);
-  ASSERT_TRUE(eq.converged);
-  const auto st = linear_stability(model, eq);
-  const NormalMode* libration = libration_mode(st, "moon");
-  ASSERT_NE(libration, nullptr);
+  const Libration moon = moon_libration(load_scene(test::source_path("examples/equilibria/synchronous-moon.yaml")));
+  const auto& model = moon.model;
+  const auto& eq = moon.equilibrium;
+  const NormalMode* libration = &moon.mode;
   auto off_circle = [](const OrbitMultipliers& mu) {
     double worst = 0;
     for (auto m : mu.multipliers) worst = std::max(worst, std::abs(std::abs(m) - 1));
