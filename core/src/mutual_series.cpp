@@ -63,6 +63,7 @@ MutualSeries::MutualSeries(int order) : order_(order), rotation_(order < 0 ? 0 :
   M_.resize(static_cast<std::size_t>(n));
   B_.resize(static_cast<std::size_t>(n));
   L_.resize(static_cast<std::size_t>(n));
+  l_.resize(static_cast<std::size_t>(n));
   Rj_.resize(static_cast<std::size_t>((order + 3) * count(order + 2)));
 }
 
@@ -106,25 +107,22 @@ MutualTerms MutualSeries::jacobian(double G, const InertiaIntegrals& TA, const I
     rotation_.apply(C, TB, rotated_, order_);
     B = &rotated_;
   }
-  // The terms (and, in the scratch, A_α = (−1)^{|α|} T_A^α/(α! R^{|α|}), B_β = T'^β/R^{|β|}, L_β).
-  const MutualTerms t = evaluate_rotated(G, TA, *B, Rv);
+  // The terms, with D to degree N + 2 (one higher than they need) and, in the scratch,
+  // A_α = (−1)^{|α|} T_A^α/(α! R^{|α|}), B_β = T'^β/R^{|β|}, L_β and l_β,i = Σ_α A_α D^{α+β+e_i}.
   const int N = order_;
+  const MutualTerms t = evaluate_scaled(G, TA, *B, Rv, N + 2);
   const int na = count(std::min(N, TA.order)), nb = count(std::min(N, B->order));
   const double R = Rv.norm();
-  const double* D = derivatives_at(Rv / R, N + 2);
-  // h_ij = Σ_β T'^β/β! Σ_α A_α D^{α+β+e_i+e_j} and l_β,i = Σ_α A_α D^{α+β+e_i} (scaled, (25.1)).
+  const double* D = Rj_.data();
+  // h_ij = Σ_β T'^β/β! Σ_α A_α D^{α+β+e_i+e_j} (scaled, (25.1)).
   Mat3 h = Mat3::Zero();
-  std::vector<Vec3> l(static_cast<std::size_t>(nb), Vec3::Zero());
   for (int b = 0; b < nb; ++b) {
     const double Bw = B_[static_cast<std::size_t>(b)] * inverse_factorial_[static_cast<std::size_t>(b)];
-    Vec3& lb = l[static_cast<std::size_t>(b)];
+    if (Bw == 0.0) continue;
     for (const Pair& p : pairs_[static_cast<std::size_t>(b)]) {
       if (p.alpha >= na) break;
-      const double a = A_[static_cast<std::size_t>(p.alpha)];
-      lb += a * Vec3(D[p.gamma_e[0]], D[p.gamma_e[1]], D[p.gamma_e[2]]);
-      if (Bw == 0.0) continue;
       const auto& g = exponents(p.gamma);
-      const double ab = a * Bw;
+      const double ab = A_[static_cast<std::size_t>(p.alpha)] * Bw;
       h(0, 0) += ab * D[index(g[0] + 2, g[1], g[2])];
       h(1, 1) += ab * D[index(g[0], g[1] + 2, g[2])];
       h(2, 2) += ab * D[index(g[0], g[1], g[2] + 2)];
@@ -146,7 +144,7 @@ MutualTerms MutualSeries::jacobian(double G, const InertiaIntegrals& TA, const I
       const auto k = static_cast<std::size_t>(b);
       const double w = inverse_factorial_[k];
       for (int c = 0; c < 3; ++c) {
-        for (int i = 0; i < 3; ++i) J.tauB_R(c, i) += w * l[k][i] * OB_[c][k];
+        for (int i = 0; i < 3; ++i) J.tauB_R(c, i) += w * l_[k][i] * OB_[c][k];
         for (int d = 0; d < 3; ++d) J.tauB_phi(d, c) += L_[k] * OOB_[d][c][k];
       }
     }
@@ -169,6 +167,11 @@ MutualTerms MutualSeries::evaluate(double G, const InertiaIntegrals& TA, const I
 
 MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
                                            const InertiaIntegrals& TB, const Vec3& Rv) {
+  return evaluate_scaled(G, TA, TB, Rv, order_ + 1);
+}
+
+MutualTerms MutualSeries::evaluate_scaled(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
+                                          const Vec3& Rv, int L_max) {
   const int N = order_;
   const int na = count(std::min(N, TA.order)), nb = count(std::min(N, TB.order));
   const double R = Rv.norm();
@@ -184,7 +187,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
       M_[static_cast<std::size_t>(a)] = 0.0;
     }
 
-  const double* D = derivatives_at(e, N + 1);
+  const double* D = derivatives_at(e, L_max);
 
   // L_β = Σ_α A_α D^{α+β},  G_β,i = Σ_α A_α D^{α+β+e_i}   (docs/equations.md (13.2), (13.5)),
   // and for A's torque M_α = Σ_β (T'^β/β!) D^{α+β} (∝ ∂U/∂T_A^α)
@@ -205,6 +208,7 @@ MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
       if (torque_A) M_[static_cast<std::size_t>(p.alpha)] += Bw * d;
     }
     L_[static_cast<std::size_t>(b)] = Lb * w;  // ∝ ∂U/∂T'^β
+    l_[static_cast<std::size_t>(b)] = Vec3(lx, ly, lz);  // for the jacobian (25.2)
     U += Bw * Lb;
     gx += Bw * lx, gy += Bw * ly, gz += Bw * lz;
   }

@@ -32,10 +32,4 @@ RelativeOrbit relative_orbit(const Impulse& impulse, const System& system, const
           state.p.col(b) / system.body(impulse.body).mass - state.p.col(c) / system.body(impulse.around).mass};
 }
 
-Vec3 inertial_delta_v(const Impulse& impulse, const System& system, const State& state) {
-  if (impulse.frame == Impulse::Frame::inertial) return impulse.delta_v;
-  const RelativeOrbit o = relative_orbit(impulse, system, state);
-  return rtn_frame(o.r, o.v) * impulse.delta_v;
-}
-
 }  // namespace noether::detail

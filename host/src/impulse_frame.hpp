@@ -20,7 +20,4 @@ struct RelativeOrbit {
 };
 RelativeOrbit relative_orbit(const Impulse& impulse, const System& system, const State& state);
 
-// The impulse's Δv in inertial axes at `state` (its frame's rotation applied).
-Vec3 inertial_delta_v(const Impulse& impulse, const System& system, const State& state);
-
 }  // namespace noether::detail

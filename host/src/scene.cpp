@@ -318,23 +318,33 @@ PluginConfig plugin_config(const Params& p, const std::string& what) {
   return {p.at("plugin").as_string(), p};
 }
 
+// The index of the body a key names, or SceneError naming the key (and the closest name).
+std::size_t body_named(const Params& key, const System& system) {
+  std::vector<std::string> names;
+  for (const auto& b : system.bodies()) names.push_back(b.name);
+  const std::string name = key.as_string();
+  const auto found = std::find(names.begin(), names.end(), name);
+  if (found == names.end()) {
+    const std::string near = closest_match(name, names);
+    throw SceneError(key.here() + "'" + key.path() + "': no body '" + name + "'" +
+                     (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
+  }
+  return static_cast<std::size_t>(found - names.begin());
+}
+
+// The heaviest body other than `body` (the first of equals).
+std::size_t heaviest_other(const System& system, std::size_t body) {
+  std::size_t heaviest = body == 0 ? 1 : 0;
+  for (std::size_t i = 0; i < system.size(); ++i)
+    if (i != body && system.body(i).mass > system.body(heaviest).mass) heaviest = i;
+  return heaviest;
+}
+
 // impulses: [{body, time, delta_v}], each at a time after t0 (docs/user-guide.md "Impulses").
 std::vector<Impulse> parse_impulses(const Params& list, const System& system, double t0) {
   const char* form = "'impulses' must be a list of {body: NAME, time: T, delta_v: [x, y, z]} (optionally "
                      "frame: rtn, around: NAME)";
   if (!list.is_sequence()) throw SceneError(list.here() + form);
-  std::vector<std::string> names;
-  for (const auto& b : system.bodies()) names.push_back(b.name);
-  auto body_named = [&](const Params& key) {
-    const std::string name = key.as_string();
-    const auto found = std::find(names.begin(), names.end(), name);
-    if (found == names.end()) {
-      const std::string near = closest_match(name, names);
-      throw SceneError(key.here() + "'" + key.path() + "': no body '" + name + "'" +
-                       (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
-    }
-    return static_cast<std::size_t>(found - names.begin());
-  };
   std::vector<Impulse> out;
   for (const Params& item : list.items()) {
     if (!item.is_map()) throw SceneError(item.here() + form);
@@ -342,7 +352,7 @@ std::vector<Impulse> parse_impulses(const Params& list, const System& system, do
     for (const char* key : {"body", "time", "delta_v"})
       if (!item.has(key)) throw SceneError(item.here() + "'" + item.path() + "' needs '" + key + "': " + form);
     Impulse impulse;
-    impulse.body = body_named(item.at("body"));
+    impulse.body = body_named(item.at("body"), system);
     impulse.time = item.at("time").as_double();
     if (!std::isfinite(impulse.time) || !(impulse.time > t0))
       throw SceneError(item.at("time").here() + "'" + item.at("time").path() + "' must be a time after the start (" +
@@ -355,15 +365,9 @@ std::vector<Impulse> parse_impulses(const Params& list, const System& system, do
       impulse.frame = Impulse::Frame::rtn;
       if (system.size() < 2)
         throw SceneError(item.at("frame").here() + "'" + item.path() + ".frame: rtn' needs a second body to orbit");
-      if (item.has("around")) {
-        impulse.around = body_named(item.at("around"));
-        if (impulse.around == impulse.body)
-          throw SceneError(item.at("around").here() + "'" + item.at("around").path() + "': a body cannot orbit itself");
-      } else {  // the heaviest other body
-        impulse.around = impulse.body == 0 ? 1 : 0;
-        for (std::size_t i = 0; i < system.size(); ++i)
-          if (i != impulse.body && system.body(i).mass > system.body(impulse.around).mass) impulse.around = i;
-      }
+      impulse.around = item.has("around") ? body_named(item.at("around"), system) : heaviest_other(system, impulse.body);
+      if (impulse.around == impulse.body)
+        throw SceneError(item.at("around").here() + "'" + item.at("around").path() + "': a body cannot orbit itself");
     } else if (frame != "inertial") {
       throw SceneError(item.at("frame").here() + "'" + item.at("frame").path() + "' is '" + frame +
                        "'; it must be inertial (the scene's axes, the default) or rtn (radial, along-track, normal "
@@ -383,28 +387,14 @@ Escape parse_escape(const Params& e, const System& system) {
   if (!e.is_map()) throw SceneError(e.here() + "'run.escape' must be a mapping: {body: NAME, about: NAME, distance: D, unbound: true}");
   e.check_keys({"body", "about", "distance", "unbound"}, "'run.escape'");
   if (system.size() < 2) throw SceneError(e.here() + "'run.escape' needs two bodies");
-  std::vector<std::string> names;
-  for (const auto& b : system.bodies()) names.push_back(b.name);
-  auto body = [&](const char* key, std::size_t fallback) -> std::size_t {
-    if (!e.has(key)) return fallback;
-    const std::string name = e.at(key).as_string();
-    for (std::size_t i = 0; i < names.size(); ++i)
-      if (names[i] == name) return i;
-    const std::string near = closest_match(name, names);
-    throw SceneError(e.at(key).here() + "'run.escape." + key + "': no body '" + name + "'" +
-                     (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
-  };
   std::size_t lightest = 0;
   for (std::size_t i = 1; i < system.size(); ++i)
     if (system.body(i).mass < system.body(lightest).mass) lightest = i;
   Escape out;
-  out.body = body("body", lightest);
-  std::size_t heaviest = out.body == 0 ? 1 : 0;
-  for (std::size_t i = 0; i < system.size(); ++i)
-    if (i != out.body && system.body(i).mass > system.body(heaviest).mass) heaviest = i;
-  out.about = body("about", heaviest);
+  out.body = e.has("body") ? body_named(e.at("body"), system) : lightest;
+  out.about = e.has("about") ? body_named(e.at("about"), system) : heaviest_other(system, out.body);
   if (out.about == out.body)
-    throw SceneError(e.here() + "'run.escape': body and about are both '" + names[out.body] + "'");
+    throw SceneError(e.here() + "'run.escape': body and about are both '" + system.body(out.body).name + "'");
   out.distance = e.get("distance", 0.0);
   out.unbound = e.get("unbound", false);
   if (!std::isfinite(out.distance) || out.distance < 0.0)

@@ -245,9 +245,12 @@ void apply_impulse(Simulation::Impl& m, std::size_t k) {
         // frame Δv also turns with the orbit along the flow (δr = v, δv = the relative acceleration).
         V.block<3, 1>(3 * b, j) -= dv;
         if (rtn) {
-          Forces f;
+          Forces f;  // at z⁻, by the run's own evaluator (its workspace: the orders it chose)
           f.resize(sys);
-          m.potential->evaluate(before, f, *m.potential->make_workspace());
+          if (PotentialEvaluator* evaluate = m.integrator->potential_evaluator())
+            (*evaluate)(before, f);
+          else
+            m.potential->evaluate(before, f, *m.potential->make_workspace());
           const Vec3 acceleration = f.f.col(b) / mass - f.f.col(c) / sys.body(impulse.around).mass;
           V.block<3, 1>(row, j) +=
               mass * detail::rtn_frame_derivative(orbit.r, orbit.v, orbit.v, acceleration) * impulse.delta_v;

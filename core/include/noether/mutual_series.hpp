@@ -64,6 +64,9 @@ class MutualSeries {
     int beta;
     std::array<std::array<std::pair<double, int>, 2>, 3> terms;
   };
+  // evaluate_rotated with D^γ computed to degree L_max ≥ N + 1 (the jacobian's N + 2).
+  MutualTerms evaluate_scaled(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB_in_A, const Vec3& R,
+                              int L_max);
   // D^γ(1/r) at the unit vector e for |γ| ≤ L (13.4), in Rj_ (stride count(L)).
   const double* derivatives_at(const Vec3& e, int L);
   // (O_c X)_β: the in-degree derivative (13.6) of integrals X under a rotation about axis c.
@@ -80,6 +83,7 @@ class MutualSeries {
   IntegralRotation rotation_;
   InertiaIntegrals rotated_;
   std::vector<double> Rj_, A_, S_, B_, L_, M_;
+  std::vector<Vec3> l_;                    // l_β,i = Σ_α A_α D^{α+β+e_i}, kept for the jacobian
   std::vector<double> OB_[3], OOB_[3][3];  // O_c B and O_d O_c B (jacobian)
 };
 
