@@ -132,3 +132,40 @@ TEST(RelativePeriodicOrbit, ConservedGradientsAgreeWithDifferences) {
   std::printf("conserved gradients against differences: worst relative difference %.2e\n", worst);
   EXPECT_LT(worst, 1e-8);  // the differences' own error (h² and round-off / h)
 }
+
+// The chart's derivatives in the tangent coordinates z (used by Newton on the tangent map, eq.
+// 19.6) away from the base, attitudes turned by up to 1.2 rad: D retract against differences of
+// retract (θ = log(R(δ)ᵀ R(δ + h e_j))/h), and D local · D retract = I (local ∘ retract = id).
+TEST(PhaseChart, DerivativesAgreeWithDifferencesAwayFromTheBase) {
+  auto registry = test::bundled_plugins();
+  const Scene s = parse_scene(
+      "G: 1\nbodies:\n"
+      "  - {name: a, mass: 1, position: [0.1, -0.2, 0.05], shape: {ellipsoid: {semi_axes: [0.5, 0.4, 0.3]}},\n"
+      "     angular_velocity: [0.1, -0.2, 0.3], attitude: {euler_angles: [0.3, 0.5, 0.7]}}\n"
+      "  - {name: b, mass: 0.3, position: [3, 1, -0.5], velocity: [-0.1, 0.5, 0.2],\n"
+      "     shape: {ellipsoid: {semi_axes: [0.2, 0.18, 0.15]}}, angular_velocity: [0.4, 0.1, -0.2]}\n"
+      "potential: {plugin: mutual-series, order: 2}\nintegrator: {plugin: lgvi, step: 0.1}\n"
+      "run: {t_end: 1, output_every: 1}\n",
+      "chart.yaml");
+  const auto model = FullBodyModel::from_scene(s, registry);
+  const PhaseChart chart(model.system, s.initial, 3.0, 0.3);
+  const Eigen::Index d = chart.dimension(), N = State::tangent_rows(model.system);
+  Eigen::VectorXd delta = Eigen::VectorXd::LinSpaced(d, -0.7, 0.9);  // η of body a: |η| ≈ 1.2 rad
+  const State at = chart.retract(delta);
+  const Eigen::MatrixXd A = chart.retract_derivative(delta), B = chart.local_derivative(at);
+  ASSERT_EQ(A.rows(), N);
+  ASSERT_EQ(A.cols(), d);
+  const double h = 1e-6;
+  double worst = 0;
+  for (Eigen::Index j = 0; j < d; ++j) {
+    Eigen::VectorXd up = delta, down = delta;
+    up[j] += h, down[j] -= h;
+    // z-coordinates of retract(δ ± h e_j) relative to retract(δ) (State::difference: (21.1)).
+    const Eigen::VectorXd column = State::difference(chart.retract(down), chart.retract(up)) / (2 * h);
+    worst = std::max(worst, (column - A.col(j)).norm() / std::max(1e-12, A.col(j).norm()));
+  }
+  const double identity = (B * A - Eigen::MatrixXd::Identity(d, d)).cwiseAbs().maxCoeff();
+  std::printf("D retract against differences %.1e; |D local D retract - I| %.1e\n", worst, identity);
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_LT(identity, 1e-13);
+}

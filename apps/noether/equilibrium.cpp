@@ -23,6 +23,13 @@ namespace noether::app {
 
 namespace {
 
+// Which Jacobian the shooting used (docs/equations.md eq. 19.5).
+void print_newton_jacobian(const noether::RelativePeriodicOrbit& orbit) {
+  std::printf("Newton's Jacobian: %s\n", orbit.jacobian == "tangent map"
+                                              ? "the integrator's tangent map (docs/equations.md eq. 19.6)"
+                                              : "differences of the map (this integrator has no tangent map)");
+}
+
 std::size_t body_index(const noether::System& system, const std::string& name_or_index) {
   const int i = system.index_of(name_or_index);
   if (i >= 0) return static_cast<std::size_t>(i);
@@ -123,6 +130,7 @@ int lyapunov(const OrbitOptions& o, const noether::Scene& scene, const noether::
   std::printf("Lyapunov orbit of the libration of %s, amplitude %s deg, on the map of %s: closure %.2e -> %.2e in %d "
               "Newton steps\n", sys.body(body).name.c_str(), o.lyapunov[1].c_str(), scene.integrator.plugin.c_str(),
               ly.orbit.initial_closure, ly.orbit.closure, ly.orbit.iterations);
+  print_newton_jacobian(ly.orbit);
   std::printf("period                           %.12g (linear %.12g; relative %+.3e)\n", ly.orbit.period,
               ly.linear_period, ly.orbit.period / ly.linear_period - 1);
   std::printf("turned by                        %.12g rad about k\n", ly.orbit.angle);
@@ -380,6 +388,7 @@ int orbit_rigid_refine(const OrbitOptions& o) {
   std::printf("closure %.3e -> %.3e in %d Newton steps on the map of %s (T = %.12g held, L.k held, turned by alpha = "
               "%.12g rad)\n", orbit.initial_closure, orbit.closure, orbit.iterations, scene.integrator.plugin.c_str(), T,
               orbit.angle);
+  print_newton_jacobian(orbit);
   if (!orbit.closed()) {
     std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e); nothing written: the scene's "
                  "state is not near a relative periodic orbit of period %.6g (try another --period)\n", orbit.closure, T);
@@ -406,6 +415,7 @@ int orbit_rigid_stability(const OrbitOptions& o) {
               "turned by alpha = %.12g rad about k\n",
               o.scene.c_str(), scene.integrator.plugin.c_str(), T, orbit.initial_closure, orbit.closure, orbit.iterations,
               orbit.angle);
+  print_newton_jacobian(orbit);
   if (!orbit.closed()) {
     std::fprintf(stderr, "noether: the shooting did not close the orbit (closure %.1e): the scene's state is not near a "
                  "relative periodic orbit of period %.6g; try another --period\n", orbit.closure, T);

@@ -16,13 +16,14 @@ struct ExactMutual::Side {
   std::unique_ptr<EllipsoidField> ellipsoid;
   std::map<int, SurfaceRule> rules;
 
-  FieldValue field(const Vec3& y) const {
-    if (polyhedron) return (*polyhedron)(y);
-    if (ellipsoid) return (*ellipsoid)(y);
+  FieldValue field(const Vec3& y, bool with_gradient = false) const {
+    if (polyhedron) return (*polyhedron)(y, with_gradient);
+    if (ellipsoid) return (*ellipsoid)(y, with_gradient);
     FieldValue v;  // a point mass
     const double r = y.norm();
     v.phi = -G * mass / r;
     v.g = (-G * mass / (r * r * r)) * y;
+    if (with_gradient) v.dg = (-G * mass / (r * r * r)) * (Mat3::Identity() - (3.0 / (r * r)) * y * y.transpose());
     v.inside = !(r > 0.0);
     return v;
   }
@@ -80,15 +81,24 @@ ExactMutual::ExactMutual(double G, std::shared_ptr<const Solid> A, double mass_A
   field_ = make_side(surface_is_A_ ? B : A, surface_is_A_ ? mass_B : mass_A, true);
 }
 
-// In the surface body's frame: R_s the field body's centre, C_s its frame → surface frame.
-MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& C_s) {
+// In the surface body's frame: R_s the field body's centre, C_s its frame → surface frame. With
+// J, also the derivatives with respect to R_s and a turn φ of the field body in the surface
+// body's axes (26.3–26.5); J's "A" is the surface body, its "B" the field body.
+MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& C_s, MutualJacobian* J) {
   MutualTerms t;
   if (!surface_->solid) {  // a point mass: U = m Φ_F(y₀), y₀ = C_sᵀ(−R_s)
-    const FieldValue v = field_->field(C_s.transpose() * (-R_s));
+    const FieldValue v = field_->field(C_s.transpose() * (-R_s), J != nullptr);
     if (v.inside) throw Error("the point mass lies inside the other body");
     t.U = surface_->mass * v.phi;
     t.dU_dR = surface_->mass * (C_s * v.g);
     t.torque_B = R_s.cross(t.dU_dR);
+    if (J) {  // (26.5)
+      J->g_R = -surface_->mass * (C_s * v.dg * C_s.transpose());
+      J->g_phi = J->g_R * hat(R_s) - hat(t.dU_dR);
+      J->tauA_R.setZero(), J->tauA_phi.setZero();
+      J->tauB_R = hat(R_s) * J->g_R - hat(t.dU_dR);
+      J->tauB_phi = hat(R_s) * J->g_phi;
+    }
     return t;
   }
   const SurfaceRule& rule = surface_->rule(level);
@@ -101,6 +111,7 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
   struct Partial {
     double U = 0.0;
     Vec3 flux = Vec3::Zero(), moment = Vec3::Zero();
+    Mat3 flux_R = Mat3::Zero(), flux_phi = Mat3::Zero(), moment_R = Mat3::Zero(), moment_phi = Mat3::Zero();
     bool overlap = false;
   };
   std::vector<Partial> partial(chunks);
@@ -116,22 +127,67 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
       const Vec3 g = C_s * v.g;
       // ∇·(xΦ + ½|x|² g) = 3Φ where ∇²Φ = 0 (docs/equations.md (14.1))
       p.U += (x * v.phi + 0.5 * x.squaredNorm() * g).dot(w);
+      const Vec3 xw = x.cross(w);
       p.flux += v.phi * w;
-      p.moment += v.phi * x.cross(w);
+      p.moment += v.phi * xw;
+      if (J) {  // (26.3): ∂Φ/∂R_s = gᵀ, ∂Φ/∂φ = ((x − R_s) × g)ᵀ
+        const Vec3 g_phi = (x - R_s).cross(g);
+        p.flux_R += w * g.transpose();
+        p.flux_phi += w * g_phi.transpose();
+        p.moment_R += xw * g.transpose();
+        p.moment_phi += xw * g_phi.transpose();
+      }
     }
   }
   double U = 0.0;
   Vec3 flux = Vec3::Zero(), moment = Vec3::Zero();
+  Mat3 flux_R = Mat3::Zero(), flux_phi = Mat3::Zero(), moment_R = Mat3::Zero(), moment_phi = Mat3::Zero();
   for (const Partial& p : partial) {
     if (p.overlap) throw Error("the bodies overlap: a point of one surface lies inside the other body");
     U += p.U;
     flux += p.flux;
     moment += p.moment;
+    if (J) flux_R += p.flux_R, flux_phi += p.flux_phi, moment_R += p.moment_R, moment_phi += p.moment_phi;
   }
   t.U = rho / 3.0 * U;
   t.dU_dR = -rho * flux;            // (14.2)
   t.torque_A = -rho * moment;       // (14.3), on the surface body
   t.torque_B = R_s.cross(t.dU_dR) - t.torque_A;
+  if (J) {  // (26.4)
+    J->g_R = -rho * flux_R, J->g_phi = -rho * flux_phi;
+    J->tauA_R = -rho * moment_R, J->tauA_phi = -rho * moment_phi;
+    J->tauB_R = hat(R_s) * J->g_R - hat(t.dU_dR) - J->tauA_R;
+    J->tauB_phi = hat(R_s) * J->g_phi - J->tauA_phi;
+  }
+  return t;
+}
+
+MutualTerms ExactMutual::jacobian(const Vec3& R, const Mat3& C, MutualJacobian& J) {
+  evaluate(R, C);  // the quadrature level that meets the tolerance
+  const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
+  const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
+  MutualJacobian Js;
+  const MutualTerms s = evaluate_level(surface_->solid ? level_ : 0, R_s, C_s, &Js);
+  if (surface_is_A_) {
+    J = Js;
+    return s;
+  }
+  // (26.6): B is the surface. δR_s = −Cᵀ δR − Cᵀ S(R) φ and φ_s = −Cᵀ φ; each output is C times
+  // (or −C times) a surface-frame one, which φ turns as well.
+  const Mat3 Ct = C.transpose();
+  MutualTerms t;
+  t.U = s.U;
+  t.dU_dR = -(C * s.dU_dR);
+  t.torque_A = C * s.torque_B;
+  t.torque_B = C * s.torque_A;
+  auto by_R = [&](const Mat3& Q_R) -> Mat3 { return C * Q_R * Ct; };
+  auto by_phi = [&](const Mat3& Q_R, const Mat3& Q_phi) -> Mat3 { return C * (Q_R * Ct * hat(R) + Q_phi * Ct); };
+  J.g_R = by_R(Js.g_R);
+  J.g_phi = by_phi(Js.g_R, Js.g_phi) - hat(t.dU_dR);
+  J.tauA_R = -by_R(Js.tauB_R);
+  J.tauA_phi = -by_phi(Js.tauB_R, Js.tauB_phi) - hat(t.torque_A);
+  J.tauB_R = -by_R(Js.tauA_R);
+  J.tauB_phi = -by_phi(Js.tauA_R, Js.tauA_phi) - hat(t.torque_B);
   return t;
 }
 

@@ -40,7 +40,7 @@ PolyhedronField::PolyhedronField(const Mesh& mesh, double G_density)
   }
 }
 
-FieldValue PolyhedronField::operator()(const Vec3& r) const {
+FieldValue PolyhedronField::operator()(const Vec3& r, bool with_gradient) const {
   // Werner & Scheeres 1997 (8), (15): r_i = vertex − field point.
   const Eigen::Index nv = vertices_.cols();
   thread_local Eigen::Matrix3Xd rv;
@@ -50,12 +50,14 @@ FieldValue PolyhedronField::operator()(const Vec3& r) const {
   (void)nv;
   double edge_sum = 0.0, face_sum = 0.0, omega_sum = 0.0;
   Vec3 g_edge = Vec3::Zero(), g_face = Vec3::Zero();
+  Mat3 dg_edge = Mat3::Zero(), dg_face = Mat3::Zero();
   for (const Edge& e : edges_) {
     const double ri = len(e.i), rj = len(e.j);
     const double Le = std::log((ri + rj + e.length) / (ri + rj - e.length));
     const Vec3 Er = e.E * rv.col(e.i);
     edge_sum += rv.col(e.i).dot(Er) * Le;
     g_edge += Er * Le;
+    if (with_gradient) dg_edge += e.E * Le;
   }
   for (const Face& f : faces_) {
     const Vec3 r1 = rv.col(f.v[0]), r2 = rv.col(f.v[1]), r3 = rv.col(f.v[2]);
@@ -66,10 +68,12 @@ FieldValue PolyhedronField::operator()(const Vec3& r) const {
     face_sum += r1.dot(Fr) * omega;
     g_face += Fr * omega;
     omega_sum += omega;
+    if (with_gradient) dg_face += f.F * omega;
   }
   FieldValue v;
   v.phi = -0.5 * Grho_ * (edge_sum - face_sum);
   v.g = Grho_ * (-g_edge + g_face);
+  if (with_gradient) v.dg = Grho_ * (dg_edge - dg_face);
   v.inside = std::abs(omega_sum) > 2.0 * M_PI;  // 4π inside, 0 outside
   return v;
 }
@@ -77,7 +81,7 @@ FieldValue PolyhedronField::operator()(const Vec3& r) const {
 EllipsoidField::EllipsoidField(const Vec3& semi_axes, double G_density)
     : a2_(semi_axes.cwiseAbs2()), k_(M_PI * G_density * semi_axes.prod()) {}
 
-FieldValue EllipsoidField::operator()(const Vec3& r) const {
+FieldValue EllipsoidField::operator()(const Vec3& r, bool with_gradient) const {
   const Vec3 r2 = r.cwiseAbs2();
   FieldValue v;
   double lambda = 0.0;
@@ -104,6 +108,16 @@ FieldValue EllipsoidField::operator()(const Vec3& r) const {
                2.0 / 3.0 * ellint_rd(d[0], d[1], d[2]));
   v.phi = -k_ * (I0 - r2.dot(I));
   v.g = -2.0 * k_ * r.cwiseProduct(I);
+  if (with_gradient) {
+    // (26.1): ∂g/∂r = −2k [diag(I_i) − 2 q qᵀ / (Δ Σ_k x_k²/d_k²)], q_i = x_i/d_i, Δ = √(d₀d₁d₂):
+    // I_i(λ) moves with λ, and ∂λ/∂x_j = 2 q_j / Σ_k x_k²/d_k² (outside; λ = const inside).
+    v.dg = I.asDiagonal();
+    if (!v.inside) {
+      const Vec3 q = (r.array() / d).matrix();
+      v.dg -= (2.0 / (std::sqrt(d.prod()) * q.squaredNorm())) * q * q.transpose();
+    }
+    v.dg *= -2.0 * k_;
+  }
   return v;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Numerical helpers shared by the relative-equilibrium and relative-periodic-orbit code (not
-// installed): Jacobians by central differences, and orthonormal complements.
+// installed): Jacobians by central differences, orthonormal complements and Gauss–Newton.
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -37,21 +37,26 @@ inline Eigen::MatrixXd complement(Eigen::MatrixXd W, double rank_tolerance = 1e-
   return svd.matrixV().rightCols(W.rows() - rank);
 }
 
-// Newton on F(u) = 0 with a differenced Jacobian: minimum-norm Gauss–Newton steps (gauge
-// directions, where F is flat, stay put), each halved up to 30 times until ‖F‖ falls. Stops at
-// max |F| ≤ tolerance, after max_iterations, or when no halving helps. Returns the iterations.
+// Newton on F(u) = 0: minimum-norm Gauss–Newton steps (gauge directions, where F is flat, stay
+// put), each halved up to 30 times until ‖F‖ falls. The Jacobian is `jacobian(u)`; directions
+// whose rate is below `flat` × the largest (singular values of the Jacobian, as the complete
+// orthogonal decomposition ranks them; 0: Eigen's default, ~ε × size) count as flat too. Stops at
+// max |F| ≤ tolerance, after max_iterations, or when no halving helps.
 struct NewtonResult {
   double first = 0, last = 0;  // max |F| at the start and at the end
   int iterations = 0;
 };
-template <class F>
-NewtonResult gauss_newton(F&& f, Eigen::VectorXd& u, double tolerance, int max_iterations) {
+template <class F, class Jacobian>
+NewtonResult gauss_newton(F&& f, Jacobian&& jacobian, Eigen::VectorXd& u, double tolerance, int max_iterations,
+                          double flat = 0) {
   Eigen::VectorXd res = f(u);
   NewtonResult out;
   out.first = out.last = res.cwiseAbs().maxCoeff();
   for (; out.iterations < max_iterations && out.last > tolerance; ++out.iterations) {
-    const Eigen::MatrixXd J = jacobian_by_differences(f, u, 1e-6);
-    const Eigen::VectorXd step = J.completeOrthogonalDecomposition().solve(-res);
+    const Eigen::MatrixXd J = jacobian(u);
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
+    if (flat > 0) cod.setThreshold(flat);
+    const Eigen::VectorXd step = cod.compute(J).solve(-res);
     bool improved = false;
     double lambda = 1;
     for (int halving = 0; halving < 30 && !improved; ++halving, lambda /= 2) {
@@ -63,6 +68,13 @@ NewtonResult gauss_newton(F&& f, Eigen::VectorXd& u, double tolerance, int max_i
     if (!improved) break;
   }
   return out;
+}
+
+// The same with the Jacobian by central differences (step 1e-6 in the scaled coordinates).
+template <class F>
+NewtonResult gauss_newton(F&& f, Eigen::VectorXd& u, double tolerance, int max_iterations) {
+  return gauss_newton(f, [&](const Eigen::VectorXd& x) { return jacobian_by_differences(f, x, 1e-6); }, u, tolerance,
+                      max_iterations);
 }
 
 }  // namespace noether::detail

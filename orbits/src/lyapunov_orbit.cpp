@@ -52,7 +52,8 @@ OrbitMultipliers lyapunov_multipliers(const FullBodyModel& model, const PluginCo
 }
 
 LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& integrator, const RelativeEquilibrium& eq,
-                             const NormalMode& mode, double amplitude, double tolerance, int max_iterations) {
+                             const NormalMode& mode, double amplitude, double tolerance, int max_iterations,
+                             bool differenced) {
   if (!(mode.frequency > 0) || mode.shape.size() == 0)
     throw SceneError("Lyapunov orbit: the mode must oscillate (it has no frequency: '" + mode.kind + "')");
   if (!(amplitude > 0)) throw SceneError("Lyapunov orbit: the amplitude must be positive");
@@ -116,9 +117,27 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
     r[d + 1] = along.dot(u.head(d));
     return r;
   };
+  // The Jacobian: the closure's (δ, α) columns from the tangent map (19.5) where the integrator
+  // carries one; T's column by central differences (with a fixed step, T moves the step too).
+  const auto tangent_jacobian = [&](const VectorXd& u) {
+    const double T = T0 * (1 + u[d + 1]);
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(d + 2, d + 2);
+    J.topLeftCorner(d + 1, d + 1) = detail::closure_jacobian(model, config(T), chart, T, k, L0, u.head(d + 1));
+    J.block(d + 1, 0, 1, d) = along.transpose();
+    const double dt = 1e-6;
+    VectorXd plus = u, minus = u;
+    plus[d + 1] += dt, minus[d + 1] -= dt;
+    J.col(d + 1) = (residual(plus) - residual(minus)) / (2 * dt);
+    return J;
+  };
+  auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
+  out.orbit.jacobian = method->tangent_map_unavailable().empty() && !differenced ? "tangent map" : "differences";
   VectorXd u = VectorXd::Zero(d + 2);
   u[d] = std::remainder(eq.rate * T0, 2 * std::numbers::pi);  // the frame's turn over one period
-  const auto newton = detail::gauss_newton(residual, u, tolerance, max_iterations);
+  const auto newton = out.orbit.jacobian == "tangent map"
+                          ? detail::gauss_newton(residual, tangent_jacobian, u, tolerance, max_iterations,
+                                                 detail::kFlatDirections)
+                          : detail::gauss_newton(residual, u, tolerance, max_iterations);
   RelativePeriodicOrbit& orbit = out.orbit;
   orbit.period = T0 * (1 + u[d + 1]);
   orbit.angle = u[d];

@@ -1,6 +1,8 @@
 #include <noether/error.hpp>
 #include <noether/phase_chart.hpp>
 
+#include <cmath>
+
 namespace noether {
 
 using Eigen::Index;
@@ -49,6 +51,68 @@ VectorXd PhaseChart::local(const State& s) const {
     d.segment<3>(Pi(k)) = s.Pi.col(static_cast<Index>(k)) - base_.Pi.col(static_cast<Index>(k));
   }
   return d.cwiseQuotient(scale_);
+}
+
+namespace {
+
+// J_r(φ) = I − (1 − cos x)/x² S(φ) + (x − sin x)/x³ S(φ)², x = ‖φ‖: exp(S(φ + ε)) =
+// exp(S(φ)) exp(S(J_r(φ) ε)) to first order (series below x = 1e-2).
+Mat3 right_jacobian(const Vec3& phi) {
+  const double x = phi.norm(), x2 = x * x;
+  const double a = x < 1e-2 ? 0.5 - x2 / 24 + x2 * x2 / 720 : (1 - std::cos(x)) / x2;
+  const double b = x < 1e-2 ? 1.0 / 6 - x2 / 120 + x2 * x2 / 5040 : (x - std::sin(x)) / (x2 * x);
+  const Mat3 S = hat(phi);
+  return Mat3::Identity() - a * S + b * S * S;
+}
+
+// J_r⁻¹(φ) = I + ½ S(φ) + c S(φ)², c = 1/x² − (1 + cos x)/(2 x sin x) (series below 1e-2).
+Mat3 inverse_right_jacobian(const Vec3& phi) {
+  const double x = phi.norm();
+  const double c = x < 1e-2 ? 1.0 / 12 + x * x / 720 + std::pow(x, 4) / 30240
+                            : 1 / (x * x) - (1 + std::cos(x)) / (2 * x * std::sin(x));
+  const Mat3 S = hat(phi);
+  return Mat3::Identity() + 0.5 * S + c * S * S;
+}
+
+}  // namespace
+
+MatrixXd PhaseChart::retract_derivative(const VectorXd& delta) const {
+  // x = x⁰ + s_x δ_x, γ = γ⁰ + m s_v δ_v, R = R⁰ exp(S(s_η δ_η)), Π = Π⁰ + s_Π δ_Π.
+  const Index q = 3 * n_ + 3 * r_;
+  MatrixXd A = MatrixXd::Zero(2 * q, d_);
+  for (std::size_t i = 0; i < system_->size(); ++i) {
+    const auto j = static_cast<Index>(i);
+    for (Index a = 0; a < 3; ++a) {
+      A(3 * j + a, x(i) + a) = scale_[x(i) + a];
+      A(q + 3 * j + a, v(i) + a) = system_->body(i).mass * scale_[v(i) + a];
+    }
+  }
+  for (std::size_t k = 0; k < system_->rigid_count(); ++k) {
+    const auto r = static_cast<Index>(k);
+    const Vec3 eta_k = delta.segment<3>(eta(k)).cwiseProduct(scale_.segment<3>(eta(k)));
+    A.block<3, 3>(3 * n_ + 3 * r, eta(k)) = right_jacobian(eta_k) * scale_.segment<3>(eta(k)).asDiagonal();
+    for (Index a = 0; a < 3; ++a) A(q + 3 * n_ + 3 * r + a, Pi(k) + a) = scale_[Pi(k) + a];
+  }
+  return A;
+}
+
+MatrixXd PhaseChart::local_derivative(const State& state) const {
+  const Index q = 3 * n_ + 3 * r_;
+  MatrixXd B = MatrixXd::Zero(d_, 2 * q);
+  for (std::size_t i = 0; i < system_->size(); ++i) {
+    const auto j = static_cast<Index>(i);
+    for (Index a = 0; a < 3; ++a) {
+      B(x(i) + a, 3 * j + a) = 1.0 / scale_[x(i) + a];
+      B(v(i) + a, q + 3 * j + a) = 1.0 / (system_->body(i).mass * scale_[v(i) + a]);
+    }
+  }
+  for (std::size_t k = 0; k < system_->rigid_count(); ++k) {
+    const auto r = static_cast<Index>(k);
+    const Mat3 J = inverse_right_jacobian(log_so3(base_.R[k].transpose() * state.R[k]));
+    B.block<3, 3>(eta(k), 3 * n_ + 3 * r) = scale_.segment<3>(eta(k)).cwiseInverse().asDiagonal() * J;
+    for (Index a = 0; a < 3; ++a) B(Pi(k) + a, q + 3 * n_ + 3 * r + a) = 1.0 / scale_[Pi(k) + a];
+  }
+  return B;
 }
 
 MatrixXd PhaseChart::barycentre_free_basis() const {

@@ -3,6 +3,7 @@
 // to its barycentre's rest frame, the chart an orbit is shot in, and Φ_T(s) without an observer.
 #include <noether/full_body_model.hpp>
 #include <noether/phase_chart.hpp>
+#include <noether/scene.hpp>
 
 #include <algorithm>
 #include <numbers>
@@ -22,5 +23,18 @@ inline State barycentric(const FullBodyModel& model, State s) {
 inline PhaseChart orbit_chart(const FullBodyModel& model, const State& s, double period) {
   return PhaseChart(model.system, s, std::max(1e-300, s.x.colwise().norm().maxCoeff()), 2 * std::numbers::pi / period);
 }
+
+// Shooting with an exact Jacobian does not step along directions where the closure changes at
+// less than this fraction of its largest rate (docs/equations.md §19: a symmetry, or the discrete
+// map's near-symmetry along its orbit, whose rate is the method's error and whose exact step
+// would leave the linear regime); with the noise of a differenced Jacobian they are never seen.
+inline constexpr double kFlatDirections = 1e-10;
+
+// The Jacobian of the closure (19.1) at u = (δ, α) — the chart residual
+// local(Rot(−α k̂) Φ_T(retract(δ))) − δ and (L·k̂ − L0)/L0 — from `integrator`'s tangent map
+// (docs/equations.md eq. 19.5): (d + 1) × (d + 1), columns δ then α. Empty when the integrator
+// carries no tangent map.
+Eigen::MatrixXd closure_jacobian(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
+                                 double T, const Vec3& k, double L0, const Eigen::VectorXd& u);
 
 }  // namespace noether::detail

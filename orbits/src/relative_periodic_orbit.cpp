@@ -27,16 +27,6 @@ class NullObserver final : public Observer {
   void observe(const State&, const Forces&, bool) override {}
 };
 
-// J_r⁻¹(φ) = ∂ log(exp(S(φ)) exp(S(θ)))/∂θ at θ = 0 = I + ½ S(φ) + c S(φ)², with
-// c = 1/x² − (1 + cos x)/(2 x sin x) at x = ‖φ‖ (below 1e-2 its series 1/12 + x²/720 + x⁴/30240).
-Mat3 inverse_right_jacobian(const Vec3& phi) {
-  const double x = phi.norm();
-  const double c = x < 1e-2 ? 1.0 / 12 + x * x / 720 + std::pow(x, 4) / 30240
-                            : 1 / (x * x) - (1 + std::cos(x)) / (2 * x * std::sin(x));
-  const Mat3 S = hat(phi);
-  return Mat3::Identity() + 0.5 * S + c * S * S;
-}
-
 }  // namespace
 
 State integrator_map(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T) {
@@ -63,100 +53,111 @@ State rotated(const State& s, const Mat3& Q) {
   return out;
 }
 
-MatrixXd tangent_monodromy(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
-                           double T, const Mat3& Q) {
+namespace {
+
+// Φ_T from retract(δ) carrying the tangent ∂z/∂δ (PhaseChart::retract_derivative), turned by Q:
+// the end state, whose tangent is ∂z(T)/∂δ of Rot(Q) Φ_T(retract(δ)). Empty tangent when the
+// integrator carries none.
+State carried_map(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart, double T,
+                  const Mat3& Q, const VectorXd& delta) {
   auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
-  if (!method->tangent_map_unavailable().empty()) return {};
-  const System& sys = model.system;
-  const auto n = static_cast<Index>(sys.size()), m = static_cast<Index>(sys.rigid_count());
-  const Index N = State::tangent_rows(sys), q = 3 * n + 3 * m;
-  const VectorXd& scale = chart.scale();
-  // D retract at 0 (19.4): z's coordinates per chart coordinate. x = x_b + s_x δ_x,
-  // γ = γ_b + m s_v δ_v, R = R_b exp(S(s_η δ_η)) (θ = s_η δ_η at δ = 0), Π = Π_b + s_Π δ_Π.
-  MatrixXd A = MatrixXd::Zero(N, chart.dimension());
-  for (std::size_t i = 0; i < sys.size(); ++i) {
-    const auto j = static_cast<Index>(i);
-    for (Index a = 0; a < 3; ++a) {
-      A(3 * j + a, chart.x(i) + a) = scale[chart.x(i) + a];
-      A(q + 3 * j + a, chart.v(i) + a) = sys.body(i).mass * scale[chart.v(i) + a];
-    }
-  }
-  for (std::size_t k = 0; k < sys.rigid_count(); ++k) {
-    const auto r = static_cast<Index>(k);
-    for (Index a = 0; a < 3; ++a) {
-      A(3 * n + 3 * r + a, chart.eta(k) + a) = scale[chart.eta(k) + a];
-      A(q + 3 * n + 3 * r + a, chart.Pi(k) + a) = scale[chart.Pi(k) + a];
-    }
-  }
-  State s = chart.retract(VectorXd::Zero(chart.dimension()));
+  State s = chart.retract(delta);
   s.t = 0;
-  s.tangent = A;
+  if (method->tangent_map_unavailable().empty()) s.tangent = chart.retract_derivative(delta);
   NullObserver null;
-  advance(*method, *model.potential, sys, s, Schedule{T, T, Events{0.0, false, {}}, {}}, null);
-  const State end = rotated(s, Q);
-  // D local at the end: the inverse scales, and for an attitude ∂ log(R_bᵀ R exp(S(θ)))/∂θ = J_r⁻¹(φ)
-  // at φ = log(R_bᵀ R) (≈ I near a closed orbit).
-  MatrixXd B = MatrixXd::Zero(chart.dimension(), N);
-  for (std::size_t i = 0; i < sys.size(); ++i) {
-    const auto j = static_cast<Index>(i);
-    for (Index a = 0; a < 3; ++a) {
-      B(chart.x(i) + a, 3 * j + a) = 1.0 / scale[chart.x(i) + a];
-      B(chart.v(i) + a, q + 3 * j + a) = 1.0 / (sys.body(i).mass * scale[chart.v(i) + a]);
-    }
-  }
-  for (std::size_t k = 0; k < sys.rigid_count(); ++k) {
-    const auto r = static_cast<Index>(k);
-    const Mat3 J = inverse_right_jacobian(log_so3(chart.base().R[k].transpose() * end.R[k]));
-    for (Index a = 0; a < 3; ++a) {
-      for (Index b = 0; b < 3; ++b) B(chart.eta(k) + b, 3 * n + 3 * r + a) = J(b, a) / scale[chart.eta(k) + b];
-      B(chart.Pi(k) + a, q + 3 * n + 3 * r + a) = 1.0 / scale[chart.Pi(k) + a];
-    }
-  }
-  return B * end.tangent;
+  advance(*method, *model.potential, model.system, s, Schedule{T, T, Events{0.0, false, {}}, {}}, null);
+  return rotated(s, Q);
 }
 
-MatrixXd conserved_gradients(const FullBodyModel& model, const PhaseChart& chart, const Eigen::Matrix3Xd& axes) {
+// The gradients of E and of L·a (L about the barycentre) for each column a of `axes`, in the
+// tangent coordinates z of `s` (21.1): rows (1 + axes.cols()) × (6n + 6r).
+MatrixXd conserved_gradients_z(const FullBodyModel& model, const State& s, const Eigen::Matrix3Xd& axes) {
   const System& sys = model.system;
-  const State& s = chart.base();
-  const VectorXd& scale = chart.scale();
+  const auto n = static_cast<Index>(sys.size()), m = static_cast<Index>(sys.rigid_count());
+  const Index q = 3 * n + 3 * m;
   const Forces f = model.forces(s);
   const Vec3 c = model.barycentre(s), vc = model.barycentre_velocity(s);
-  VectorXd dE = VectorXd::Zero(chart.dimension());
-  Eigen::Matrix3Xd dL = Eigen::Matrix3Xd::Zero(3, chart.dimension());  // L about the barycentre
+  VectorXd dE = VectorXd::Zero(2 * q);
+  Eigen::Matrix3Xd dL = Eigen::Matrix3Xd::Zero(3, 2 * q);
   for (std::size_t i = 0; i < sys.size(); ++i) {
     const auto j = static_cast<Index>(i);
-    const double m = sys.body(i).mass;
+    const double mass = sys.body(i).mass;
     const Vec3 gamma = s.p.col(j);
-    // E = Σ |γ_i|²/2m_i + Σ ½ Π_kᵀ J_k⁻¹ Π_k + U: ∂E/∂x_i = −f_i, ∂E/∂γ_i = γ_i/m_i (γ_i = m_i v_i).
+    // E = Σ |γ_i|²/2m_i + Σ ½ Π_kᵀ J_k⁻¹ Π_k + U: ∂E/∂x_i = −f_i, ∂E/∂γ_i = γ_i/m_i.
     // L = Σ x_i × γ_i − M c × v_c: ∂L/∂x_i = e × (γ_i − m_i v_c), ∂L/∂γ_i = (x_i − c) × e.
     for (Index a = 0; a < 3; ++a) {
-      const Index ix = chart.x(i) + a, iv = chart.v(i) + a;
       const Vec3 e = Vec3::Unit(a);
-      dE[ix] = -f.f(a, j) * scale[ix];
-      dE[iv] = gamma[a] * scale[iv];
-      dL.col(ix) = e.cross(gamma - m * vc) * scale[ix];
-      dL.col(iv) = m * (s.x.col(j) - c).cross(e) * scale[iv];
+      dE[3 * j + a] = -f.f(a, j);
+      dE[q + 3 * j + a] = gamma[a] / mass;
+      dL.col(3 * j + a) = e.cross(gamma - mass * vc);
+      dL.col(q + 3 * j + a) = (s.x.col(j) - c).cross(e);
     }
   }
   for (std::size_t k = 0; k < sys.rigid_count(); ++k) {
     const auto r = static_cast<Index>(k);
     const Vec3 Pi = s.Pi.col(r), Omega = sys.body(sys.body_of_rigid(k)).inertia_inverse * Pi;
-    // R_k → R_k exp(S(η)): ∂U/∂η = −M_k (the body-frame moment, §2), ∂(R_k Π_k)/∂η = R_k (e × Π_k);
+    // R_k → R_k exp(S(θ)): ∂U/∂θ = −M_k (the body-frame moment, §2), ∂(R_k Π_k)/∂θ = R_k (e × Π_k);
     // ∂E/∂Π_k = Ω_k, ∂L/∂Π_k = R_k.
     for (Index a = 0; a < 3; ++a) {
-      const Index ie = chart.eta(k) + a, ip = chart.Pi(k) + a;
       const Vec3 e = Vec3::Unit(a);
-      dE[ie] = -f.M(a, r) * scale[ie];
-      dE[ip] = Omega[a] * scale[ip];
-      dL.col(ie) = s.R[k] * e.cross(Pi) * scale[ie];
-      dL.col(ip) = s.R[k] * e * scale[ip];
+      dE[3 * n + 3 * r + a] = -f.M(a, r);
+      dE[q + 3 * n + 3 * r + a] = Omega[a];
+      dL.col(3 * n + 3 * r + a) = s.R[k] * e.cross(Pi);
+      dL.col(q + 3 * n + 3 * r + a) = s.R[k] * e;
     }
   }
-  MatrixXd out(1 + axes.cols(), chart.dimension());
+  MatrixXd out(1 + axes.cols(), 2 * q);
   out.row(0) = dE.transpose();
   out.bottomRows(axes.cols()) = axes.transpose() * dL;
   return out;
 }
+
+// d/dα of Rot(−α k̂) s in the tangent coordinates of s (already turned): δx = −k̂ × x,
+// δγ = −k̂ × γ, θ = −Rᵀ k̂, δΠ = 0.
+VectorXd turn_generator(const State& s, const Vec3& k) {
+  const auto n = s.x.cols(), m = static_cast<Index>(s.R.size()), q = 3 * n + 3 * m;
+  VectorXd g = VectorXd::Zero(2 * q);
+  for (Index i = 0; i < n; ++i) {
+    g.segment<3>(3 * i) = -k.cross(Vec3(s.x.col(i)));
+    g.segment<3>(q + 3 * i) = -k.cross(Vec3(s.p.col(i)));
+  }
+  for (Index r = 0; r < m; ++r) g.segment<3>(3 * n + 3 * r) = -(s.R[static_cast<std::size_t>(r)].transpose() * k);
+  return g;
+}
+
+}  // namespace
+
+MatrixXd tangent_monodromy(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
+                           double T, const Mat3& Q) {
+  // (19.4): D local at the end × Rot(Q) D Φ_T × D retract at 0.
+  const State end = carried_map(model, integrator, chart, T, Q, VectorXd::Zero(chart.dimension()));
+  if (end.tangent.size() == 0) return {};
+  return chart.local_derivative(end) * end.tangent;
+}
+
+MatrixXd conserved_gradients(const FullBodyModel& model, const PhaseChart& chart, const Eigen::Matrix3Xd& axes) {
+  return conserved_gradients_z(model, chart.base(), axes) * chart.retract_derivative(VectorXd::Zero(chart.dimension()));
+}
+
+namespace detail {
+
+MatrixXd closure_jacobian(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
+                          double T, const Vec3& k, double L0, const VectorXd& u) {
+  const Index d = chart.dimension();
+  const State end = carried_map(model, integrator, chart, T, exp_so3(-u[d] * k), u.head(d));
+  if (end.tangent.size() == 0) return {};
+  const MatrixXd B = chart.local_derivative(end);
+  MatrixXd J(d + 1, d + 1);
+  J.topLeftCorner(d, d) = B * end.tangent - MatrixXd::Identity(d, d);
+  J.topRightCorner(d, 1) = B * turn_generator(end, k);
+  const Eigen::Matrix3Xd axis = k;
+  J.bottomLeftCorner(1, d) =
+      conserved_gradients_z(model, chart.retract(u.head(d)), axis).row(1) * chart.retract_derivative(u.head(d)) / L0;
+  J(d, d) = 0;
+  return J;
+}
+
+}  // namespace detail
 
 RelativeClosure relative_closure(const FullBodyModel& model, const PluginConfig& integrator, const State& s, double T) {
   if (model.n() < 2) throw SceneError("relative periodic orbit: needs at least two bodies (a line of centres to turn)");
@@ -179,7 +180,8 @@ RelativeClosure relative_closure(const FullBodyModel& model, const PluginConfig&
 
 RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
                                                     const State& guess, double period, double angle,
-                                                    double tolerance, int max_iterations) {
+                                                    double tolerance, int max_iterations, bool differenced) {
+
   if (!(period > 0)) throw SceneError("relative periodic orbit: the period must be positive");
   RelativePeriodicOrbit orbit;
   orbit.period = period;
@@ -200,9 +202,16 @@ RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, 
     r[d] = (model.angular_momentum(start).dot(orbit.axis) - L0) / L0;
     return r;
   };
+  const auto tangent_jacobian = [&](const VectorXd& u) {
+    return detail::closure_jacobian(model, integrator, chart, period, orbit.axis, L0, u);
+  };
+  auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
+  orbit.jacobian = method->tangent_map_unavailable().empty() && !differenced ? "tangent map" : "differences";
   VectorXd u = VectorXd::Zero(d + 1);
   u[d] = angle;
-  const auto newton = detail::gauss_newton(residual, u, tolerance, max_iterations);
+  const auto newton = orbit.jacobian == "tangent map"
+                          ? detail::gauss_newton(residual, tangent_jacobian, u, tolerance, max_iterations, detail::kFlatDirections)
+                          : detail::gauss_newton(residual, u, tolerance, max_iterations);
   orbit.initial_closure = newton.first;
   orbit.closure = newton.last;
   orbit.iterations = newton.iterations;

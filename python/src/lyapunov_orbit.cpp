@@ -47,6 +47,7 @@ py::dict lyapunov_orbit(PluginRegistry& registry, const std::string& file, const
   out["initial_closure"] = ly.orbit.initial_closure;
   out["closure"] = ly.orbit.closure;
   out["iterations"] = ly.orbit.iterations;
+  out["jacobian"] = ly.orbit.jacobian;
   out["converged"] = ly.orbit.closed();
   out["step"] = ly.step;
   out["steps"] = ly.steps;

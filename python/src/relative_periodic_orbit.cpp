@@ -39,6 +39,7 @@ py::dict relative_periodic_orbit(PluginRegistry& registry, const std::string& fi
   out["initial_closure"] = orbit.initial_closure;
   out["closure"] = orbit.closure;
   out["iterations"] = orbit.iterations;
+  out["jacobian"] = orbit.jacobian;
   out["converged"] = orbit.closed();
   out["integrator"] = scene.integrator.plugin;
   if (!orbit.closed()) return out;  // no orbit: no multipliers, no scene

@@ -15,6 +15,7 @@ namespace noether {
 struct FieldValue {
   double phi = 0.0;      // Φ, potential per unit mass
   Vec3 g = Vec3::Zero(); // −∇Φ
+  Mat3 dg = Mat3::Zero();  // ∂g/∂r = −∇∇Φ, when asked for (`with_gradient`); zero otherwise
   bool inside = false;   // the point lies inside the body (Φ is then not harmonic there)
 };
 
@@ -22,7 +23,8 @@ struct FieldValue {
 class PolyhedronField {
  public:
   PolyhedronField(const Mesh& mesh, double G_density);
-  FieldValue operator()(const Vec3& r) const;
+  // With `with_gradient`, also ∂g/∂r = Gρ (Σ_e E_e L_e − Σ_f F_f ω_f) (26.2; Werner & Scheeres 1997 Eq. 16).
+  FieldValue operator()(const Vec3& r, bool with_gradient = false) const;
 
  private:
   double Grho_;
@@ -44,7 +46,8 @@ class PolyhedronField {
 class EllipsoidField {
  public:
   EllipsoidField(const Vec3& semi_axes, double G_density);
-  FieldValue operator()(const Vec3& r) const;
+  // With `with_gradient`, also ∂g/∂r (docs/equations.md (26.1)).
+  FieldValue operator()(const Vec3& r, bool with_gradient = false) const;
 
  private:
   Vec3 a2_;

@@ -5,7 +5,9 @@
 // eigenvector by `amplitude` (its largest component in the equilibrium chart's scaled
 // coordinates: radians for a libration or a tilt) with T = 2π/ν and α = ωT; Newton then solves
 // (19.1) for (s, α, T), with L·k̂ and the displacement along the mode held. Lyapunov (1892);
-// for the full two-body problem, Scheeres (2009) §5 and Bellerose & Scheeres (2008).
+// for the full two-body problem, Scheeres (2009) §5 and Bellerose & Scheeres (2008). Newton's
+// Jacobian comes from the integrator's tangent map where it carries one (T's column differenced),
+// else (or with `differenced`) from central differences of the map.
 #include <noether/relative_equilibrium.hpp>
 #include <noether/relative_periodic_orbit.hpp>
 
@@ -22,7 +24,7 @@ struct LyapunovOrbit {
 
 LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& integrator, const RelativeEquilibrium& eq,
                              const NormalMode& mode, double amplitude, double tolerance = 1e-12,
-                             int max_iterations = 30);
+                             int max_iterations = 30, bool differenced = false);
 
 // The integrator the orbit belongs to: `integrator` with the step T/N for a fixed-step method.
 PluginConfig lyapunov_integrator(const PluginConfig& integrator, const LyapunovOrbit& orbit);

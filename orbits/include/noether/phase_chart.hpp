@@ -30,6 +30,12 @@ class PhaseChart {
 
   State retract(const Eigen::VectorXd& delta) const;
   Eigen::VectorXd local(const State& state) const;
+  // Their derivatives in the tangent coordinates z = (δx, θ, δγ, δΠ) of State::tangent
+  // (docs/equations.md eq. 21.1; θ a body-frame turn R exp(S(θ))): ∂z/∂δ at retract(δ), a
+  // (6n + 6r) × d matrix (an attitude's block is the right Jacobian J_r(η) of SO(3)), and ∂δ/∂z at
+  // `state` for local (its block J_r⁻¹(log(R⁰ᵀ R))).
+  Eigen::MatrixXd retract_derivative(const Eigen::VectorXd& delta) const;
+  Eigen::MatrixXd local_derivative(const State& state) const;
 
   // Offsets of the blocks in δ.
   Eigen::Index x(std::size_t body) const { return 3 * static_cast<Eigen::Index>(body); }

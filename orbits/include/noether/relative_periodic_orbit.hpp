@@ -49,6 +49,9 @@ struct RelativePeriodicOrbit {
   double closure = 0;  // largest scaled component of the chart residual (19.1)
   double initial_closure = 0;
   int iterations = 0;
+  // The shooting's Jacobian: "tangent map" (the integrator's, eq. 19.5) or "differences" (of the
+  // whole map, for integrators without one).
+  std::string jacobian;
   // Closed: the shooting converged (what the commands write and judge; the residual of a flow
   // with rtol 1e-13 is ~1e-11, of the LGVI's map ~1e-13).
   static constexpr double closed_tolerance = 1e-9;
@@ -56,10 +59,13 @@ struct RelativePeriodicOrbit {
 };
 
 // Newton from (guess, T, α0): minimum-norm Gauss–Newton steps on (19.1) with L·k̂ held at the
-// guess's, halved until the residual falls, Jacobian by central differences of the map.
+// guess's, halved until the residual falls; the Jacobian from the integrator's tangent map (19.5),
+// or by central differences of the map for an integrator without one (or with `differenced`, to
+// compare).
 RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
                                                     const State& guess, double period, double angle,
-                                                    double tolerance = 1e-13, int max_iterations = 20);
+                                                    double tolerance = 1e-13, int max_iterations = 20,
+                                                    bool differenced = false);
 
 struct OrbitMultipliers {
   std::vector<std::complex<double>> multipliers;  // of the reduced map (19.2), by modulus

@@ -50,9 +50,6 @@ class Lgvi final : public noether::Integrator {
     } else if (params.has("composition")) {
       throw SceneError(params.at("composition").here() + "lgvi: 'composition' needs order 4 or 6");
     }
-    if (frame != "inertial")
-      tangent_unavailable_ = "lgvi carries the tangent map in its inertial forms (Hamiltonian, orders 2, 4 and 6, "
-                             "and Lagrangian) so far, not frame: " + frame + " (its discrete map is another one)";
     if (frame == "inertial")
       flow_ = form == "hamiltonian" ? lgvi::make_inertial_hamiltonian(system, evaluator_, settings)
                                     : lgvi::make_inertial_lagrangian(system, evaluator_, settings);
@@ -64,8 +61,6 @@ class Lgvi final : public noether::Integrator {
   noether::PotentialEvaluator* potential_evaluator() override { return &evaluator_; }
 
   void start(const noether::State& state) override {
-    // The other forms would hand the tangent back unchanged: refuse it (the host asks first).
-    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
     flow_->start(state);
     t0_ = state.t;
     k_ = 0;
@@ -93,16 +88,15 @@ class Lgvi final : public noether::Integrator {
   std::vector<double> checkpoint() const override { return flow_->checkpoint(); }
   void restore(const noether::State& state, const std::vector<double>& data) override {
     if (data.empty()) return start(state);
-    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
     flow_->restore(state, data);
     t0_ = state.t;
     k_ = 0;
     t_ = state.t;
   }
   double fixed_step() const override { return h_; }
-  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
+  std::string tangent_map_unavailable() const override { return ""; }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";
   }
@@ -145,7 +139,6 @@ class Lgvi final : public noether::Integrator {
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;
-  std::string tangent_unavailable_;  // empty: the form carries the tangent map
 };
 
 const noether::ParamDoc params[] = {

@@ -70,11 +70,18 @@ void RelativeFrame::reconstruct(const Reduced& r, State& s) const {
   s.x.col(1) = r.x2;
   s.p.col(1) = r.gamma2;
   s.R[1] = r.R2;
-  s.x.col(0) = r.x2 + r.R2 * r.X;                                    // x1 = x2 + R2 X
+  s.x = positions(r);                                                // x1 = x2 + R2 X
   s.p.col(0) = m1 * (r.gamma2 / m2 + r.R2 * r.Gamma / m);            // v1 = v2 + R2 Γ/m
   s.R[0] = r.R2 * r.R;                                               // R1 = R2 R
   s.Pi.col(0) = r.R.transpose() * r.Pi;                              // Π1 = Rᵀ Π
   s.Pi.col(1) = r.Pi2;
+}
+
+Eigen::Matrix3Xd RelativeFrame::positions(const Reduced& r) {
+  Eigen::Matrix3Xd x(3, 2);
+  x.col(0) = r.x2 + r.R2 * r.X;
+  x.col(1) = r.x2;
+  return x;
 }
 
 void RelativeFrame::evaluate(const Reduced& r, ReducedForces& f) {
@@ -101,6 +108,38 @@ void RelativeFrame::inertial_forces(const Reduced& r, const ReducedForces& rf, F
   f.f.col(1) = r.R2 * rf.dU_dX;
   f.M.col(0) = r.R.transpose() * rf.M;  // M1, body-1 frame
   f.M.col(1) = rf.M2;
+}
+
+void RelativeTangent::start(const State& s, const Reduced& r, const RelativeFrame& frame,
+                            noether::PotentialEvaluator& evaluate, noether::WorkCounters& work) {
+  V_ = s.tangent;
+  if (!carried()) return;
+  frame.reconstruct(r, inertial_);
+  inertial_.tangent = V_;
+  carrier_.start(inertial_, evaluate, work);
+}
+
+void RelativeTangent::before(const Reduced& r, const ReducedForces& fk, const Mat3& F, const Mat3& F2, double h) {
+  if (!carried()) return;
+  // R1 = R2 R and R1_{k+1} = R2_k F2 R_{k+1} = R2_k F R_k (122), so F1 = R1_kᵀ R1_{k+1} = R_kᵀ F R_k.
+  F_[0] = r.R.transpose() * F * r.R;
+  F_[1] = F2;
+  // w_k = Π_k + (h/2) M_k in each body's frame: Π = R Π1 and M = R M1 for body 1.
+  w_.col(0) = r.R.transpose() * (r.Pi + 0.5 * h * fk.M);
+  w_.col(1) = r.Pi2 + 0.5 * h * fk.M2;
+}
+
+void RelativeTangent::at_next(const Reduced& next, const RelativeFrame& frame, noether::PotentialEvaluator& evaluate,
+                              noether::WorkCounters& work) {
+  if (!carried()) return;
+  frame.reconstruct(next, inertial_);
+  inertial_.tangent = V_;
+  carrier_.at_next(inertial_, evaluate, work);
+}
+
+void RelativeTangent::advance(const Reduced& r_k, const Reduced& next, const System& system, double h) {
+  if (!carried()) return;
+  carrier_.advance(system, h, F_, w_, RelativeFrame::positions(next) - RelativeFrame::positions(r_k), V_);
 }
 
 }  // namespace lgvi

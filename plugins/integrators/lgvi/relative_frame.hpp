@@ -10,6 +10,7 @@
 // is M2 = X × ∂U/∂X − M. Derivation: under R2 → R2 exp(ε S(η)), X → X − ε η × X and
 // R → exp(−ε S(η)) R, so −dU/dε = η · (X × ∂U/∂X − R M1).
 #include "discrete_flow.hpp"
+#include "tangent_map.hpp"
 
 namespace lgvi {
 
@@ -39,11 +40,15 @@ class RelativeFrame {
   RelativeFrame(const System& system, noether::PotentialEvaluator& evaluate);
   Reduced reduce(const State& s) const;
   void reconstruct(const Reduced& r, State& s) const;
+  // x1 = x2 + R2 X and x2, as the columns of a 3 × 2 matrix.
+  static Eigen::Matrix3Xd positions(const Reduced& r);
   // U and its reduced derivatives at (X, R): one potential evaluation, at x1 = X, x2 = 0,
   // R1 = R, R2 = I (U depends on the relative configuration only).
   void evaluate(const Reduced& r, ReducedForces& f);
   // The inertial forces of a reduced evaluation (f rotated by R2; body-frame M unchanged).
   void inertial_forces(const Reduced& r, const ReducedForces& rf, Forces& f) const;
+
+  const System& system() const { return system_; }
 
   double m1, m2, m;         // masses and reduced mass
   Mat3 J1, J2, Jd2;         // body inertia (J1 in body 1's frame)
@@ -53,6 +58,39 @@ class RelativeFrame {
   System system_;
   noether::PotentialEvaluator& evaluate_;
   State canonical_;  // scratch
+};
+
+// The tangent map of a relative-frame step. The relative forms reduce the inertial map by its
+// symmetry and reproduce it for the same h (docs/equations.md §5), so the map z_k → z_{k+1} of
+// the reconstructed inertial states is the inertial Hamiltonian form's, and so is its derivative:
+// the tangent, in the inertial coordinates (21.1), is carried by (21.2)–(21.8) with that step's
+// inertial F_k (body 1: R_kᵀ F R_k; body 2: F2_k), w_k and force Jacobians at the reconstructed
+// states.
+class RelativeTangent {
+ public:
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) {
+    return carrier_.carry_parameters(std::move(parameters));
+  }
+  bool carried() const { return V_.size() > 0; }
+  const Eigen::MatrixXd& tangent() const { return V_; }
+  // At a start (or a restore): the tangent `s` carries, and K (and G) at the reduced state.
+  void start(const State& s, const Reduced& r, const RelativeFrame& frame, noether::PotentialEvaluator& evaluate,
+             noether::WorkCounters& work);
+  // Before the step from r_k (forces fk) with the step's relative F (body 1) and F2: F_k and w_k.
+  void before(const Reduced& r, const ReducedForces& fk, const Mat3& F, const Mat3& F2, double h);
+  // At r_{k+1}, after the step's evaluation there: K (and G) at the reconstructed state. May
+  // throw; nothing is then changed but scratch.
+  void at_next(const Reduced& next, const RelativeFrame& frame, noether::PotentialEvaluator& evaluate,
+               noether::WorkCounters& work);
+  // V ← (∂z_{k+1}/∂z_k) V, once the step from r_k to r_{k+1} is taken.
+  void advance(const Reduced& r_k, const Reduced& next, const System& system, double h);
+
+ private:
+  TangentCarrier carrier_;
+  Eigen::MatrixXd V_;
+  State inertial_;  // scratch: a reconstructed state carrying V (the carrier evaluates only when it has one)
+  std::vector<Mat3> F_{2};
+  Eigen::Matrix3Xd w_ = Eigen::Matrix3Xd::Zero(3, 2);
 };
 
 }  // namespace lgvi

@@ -13,7 +13,8 @@
 //   x2_{k+1} = x2_k + (h/m2) γ2_k + (h²/2m2) R2_k ∂U_k/∂X                            (125)
 //   γ2_{k+1} = γ2_k + (h/2) (R2_k ∂U_k/∂X + R2_{k+1} ∂U_{k+1}/∂X)                     (126)
 //   R2_{k+1} = R2_k F2_k                                                             (127)
-// F_k = R_k F1_k R_kᵀ is body 1's F seen from body 2; (123) is (128) with J → R J1 Rᵀ.
+// F_k = R_k F1_k R_kᵀ is body 1's F seen from body 2; (123) is (128) with J → R J1 Rᵀ. The same
+// map as the inertial form's, so it carries the same tangent map (RelativeTangent, §21).
 #include "relative_frame.hpp"
 
 namespace lgvi {
@@ -24,11 +25,16 @@ class RelativeHamiltonian final : public DiscreteFlow {
  public:
   RelativeHamiltonian(const System& system, noether::PotentialEvaluator& evaluate,
                       const Settings& settings)
-      : frame_(system, evaluate), settings_(settings) {}
+      : frame_(system, evaluate), evaluate_(evaluate), settings_(settings) {}
 
   void start(const State& s) override {
     r_ = frame_.reduce(s);
     evaluate(r_, current_);
+    tangent_.start(s, r_, frame_, evaluate_, work);
+  }
+
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    return tangent_.carry_parameters(std::move(parameters));
   }
 
   void advance(double h) override {
@@ -40,6 +46,7 @@ class RelativeHamiltonian final : public DiscreteFlow {
     const Mat3 JR_inverse = JR.inverse();
     const Mat3 F = solve_attitude(h * (r_.Pi + 0.5 * h * fk.M), JR, JR_inverse, settings_, frame_.name1, r_.t, h,
                                   r_.Pi, work).F;                            // (123)
+    tangent_.before(r_, fk, F, F2, h);
     Reduced next = r_;
     next.t = r_.t + h;
     next.X = F2.transpose() * (r_.X + (h / frame_.m) * r_.Gamma - (0.5 * h * h / frame_.m) * fk.dU_dX);  // (118)
@@ -47,11 +54,13 @@ class RelativeHamiltonian final : public DiscreteFlow {
     next.x2 = r_.x2 + (h / frame_.m2) * r_.gamma2 + (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX);  // (125)
     next.R2 = r_.R2 * F2;                                                                 // (127)
     evaluate(next, next_);  // on failure r_ is untouched
+    tangent_.at_next(next, frame_, evaluate_, work);
     const ReducedForces& f1 = next_;
     next.Gamma = F2.transpose() * (r_.Gamma - 0.5 * h * fk.dU_dX) - 0.5 * h * f1.dU_dX;   // (119)
     next.Pi = F2.transpose() * (r_.Pi + 0.5 * h * fk.M) + 0.5 * h * f1.M;                 // (120)
     next.Pi2 = F2.transpose() * (r_.Pi2 + 0.5 * h * fk.M2) + 0.5 * h * f1.M2;             // (121)
     next.gamma2 = r_.gamma2 + 0.5 * h * (r_.R2 * fk.dU_dX + next.R2 * f1.dU_dX);          // (126)
+    tangent_.advance(r_, next, frame_.system(), h);
     r_ = next;
     std::swap(current_, next_);
     ++work.steps;
@@ -59,6 +68,7 @@ class RelativeHamiltonian final : public DiscreteFlow {
 
   void current(State& s, Forces& f) const override {
     frame_.reconstruct(r_, s);
+    s.tangent = tangent_.tangent();
     frame_.inertial_forces(r_, current_, f);
   }
   double time() const override { return r_.t; }
@@ -68,9 +78,10 @@ class RelativeHamiltonian final : public DiscreteFlow {
     pack(r_, out);
     return out;
   }
-  void restore(const State&, const std::vector<double>& data) override {
+  void restore(const State& s, const std::vector<double>& data) override {
     r_ = unpack(data);
     evaluate(r_, current_);
+    tangent_.start(s, r_, frame_, evaluate_, work);
   }
 
  private:
@@ -80,9 +91,11 @@ class RelativeHamiltonian final : public DiscreteFlow {
   }
 
   RelativeFrame frame_;
+  noether::PotentialEvaluator& evaluate_;
   Settings settings_;
   Reduced r_;
   ReducedForces current_, next_;
+  RelativeTangent tangent_;
 };
 
 }  // namespace

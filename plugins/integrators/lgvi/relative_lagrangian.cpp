@@ -18,6 +18,8 @@
 // L2_0 = h Π2_0 − (h²/2) M2_0, Δ_0 = (h/m2) γ2_0 − (h²/2m2) R2_0 ∂U_0/∂X. Momenta for output:
 //   Γ_k = m D_k/h − (h/2) ∂U_k/∂X,  Π_k = A_k/h + (h/2) M_k,  Π2_k = L2_k/h + (h/2) M2_k,
 //   γ2_k = m2 Δ_k/h + (h/2) R2_k ∂U_k/∂X.
+// The same map as the Hamiltonian forms' through that transform: it carries the same tangent map
+// (RelativeTangent, §21).
 #include "relative_frame.hpp"
 
 #include <noether/error.hpp>
@@ -30,13 +32,18 @@ class RelativeLagrangian final : public DiscreteFlow {
  public:
   RelativeLagrangian(const System& system, noether::PotentialEvaluator& evaluate,
                      const Settings& settings)
-      : frame_(system, evaluate), settings_(settings) {}
+      : frame_(system, evaluate), evaluate_(evaluate), settings_(settings) {}
 
   void start(const State& s) override {
     r_ = frame_.reduce(s);
     frame_.evaluate(r_, forces_);
     ++work.potential_evaluations;
     h_ = 0;
+    tangent_.start(s, r_, frame_, evaluate_, work);
+  }
+
+  bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    return tangent_.carry_parameters(std::move(parameters));
   }
 
   // The reduced variables, then h and the previous step's D, A, L2, Δ (h = 0 before the first).
@@ -47,7 +54,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     for (const Vec3* v : {&D_, &A_, &L2_, &Delta_}) out.insert(out.end(), v->data(), v->data() + 3);
     return out;
   }
-  void restore(const State&, const std::vector<double>& data) override {
+  void restore(const State& s, const std::vector<double>& data) override {
     if (data.size() != kReducedSize + 13) throw noether::Error("lgvi: a relative Lagrangian checkpoint of the wrong size");
     r_ = unpack(data);
     frame_.evaluate(r_, forces_);
@@ -58,6 +65,7 @@ class RelativeLagrangian final : public DiscreteFlow {
       *v = Vec3(p[0], p[1], p[2]);
       p += 3;
     }
+    tangent_.start(s, r_, frame_, evaluate_, work);
   }
 
   void advance(double h) override {
@@ -77,6 +85,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     const Mat3 JR_inverse = JR.inverse();
     const Vec3 g = A_ + h * h * fk.M;                                                     // (113)
     const auto F = solve_attitude(g, JR, JR_inverse, settings_, frame_.name1, r_.t, h, g / h, work);
+    tangent_.before(r_, fk, F.F, F2.F, h);  // Π_k = A_k/h + (h/2) M_k, so g = h (Π_k + (h/2) M_k)
     const Mat3 F2t = F2.F.transpose();
     const Vec3 D = F2t * (D_ - (h * h / frame_.m) * fk.dU_dX);                            // (112)
     const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX);                  // (117)
@@ -89,6 +98,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     ReducedForces f1;
     frame_.evaluate(next, f1);  // on failure nothing has changed
     ++work.potential_evaluations;
+    tangent_.at_next(next, frame_, evaluate_, work);
     const Vec3 A = F2t * noether::discrete_attitude_residual_map(F.f, JR);  // F2ᵀ vee(F JdR − JdR Fᵀ)
     const Vec3 L2 = lagrangian_momentum(F2.f, frame_.J2);
     // The discrete Legendre transform at k+1.
@@ -96,6 +106,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     next.Pi = A / h + 0.5 * h * f1.M;
     next.Pi2 = L2 / h + 0.5 * h * f1.M2;
     next.gamma2 = (frame_.m2 / h) * Delta + 0.5 * h * (next.R2 * f1.dU_dX);
+    tangent_.advance(r_, next, frame_.system(), h);
     r_ = next;
     forces_ = std::move(f1);
     D_ = D;
@@ -107,17 +118,20 @@ class RelativeLagrangian final : public DiscreteFlow {
 
   void current(State& s, Forces& f) const override {
     frame_.reconstruct(r_, s);
+    s.tangent = tangent_.tangent();
     frame_.inertial_forces(r_, forces_, f);
   }
   double time() const override { return r_.t; }
 
  private:
   RelativeFrame frame_;
+  noether::PotentialEvaluator& evaluate_;
   Settings settings_;
   double h_ = 0;
   Reduced r_;
   ReducedForces forces_;
   Vec3 D_, A_, L2_, Delta_;
+  RelativeTangent tangent_;
 };
 
 }  // namespace

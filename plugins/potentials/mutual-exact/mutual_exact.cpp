@@ -1,7 +1,7 @@
 // mutual-exact: the exact mutual potential, force and torques of every pair of bodies: one
 // body's exact exterior field (Werner–Scheeres polyhedron, MacMillan ellipsoid, or a point
 // mass) integrated over the other's surface, refined until two quadrature levels agree to
-// `tolerance` (docs/equations.md §14). Slow; the oracle of the series, and a model for close
+// `tolerance` (docs/equations.md §14), and its force Jacobian from the same quadrature (§26). Slow; the oracle of the series, and a model for close
 // encounters of coarse shapes. Bodies must not overlap.
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
@@ -70,19 +70,39 @@ class MutualExactPotential final : public noether::Potential {
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
       const Pair& p = pairs_[k];
       const noether::PairFrame frame = noether::pair_frame(s, p);
-      try {
-        noether::add_mutual_terms(p, frame, exact[k].evaluate(frame.R, frame.C), out);
-      } catch (const noether::Error& e) {
-        std::ostringstream msg;
-        msg << "mutual-exact: bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at t = " << s.t
-            << ", separation " << frame.R.norm() << ": " << e.what();
-        throw noether::IntegrationError(msg.str(), s.t);
-      }
+      noether::add_mutual_terms(p, frame, guarded(p, frame, s.t, [&] { return exact[k].evaluate(frame.R, frame.C); }), out);
     }
   }
 
+  // K = ∂(f, M)/∂(x, θ) pair by pair from the same surface quadrature, differentiated
+  // (docs/equations.md §26): the field's gradient where the other body is a surface, its
+  // gradient tensor where the other body is a point mass.
+  bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace& workspace) const override {
+    auto& exact = noether::workspace_as<Evaluators>(workspace, "mutual-exact").of_pair;
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const Pair& p = pairs_[k];
+      const noether::PairFrame frame = noether::pair_frame(s, p);
+      noether::MutualJacobian J;
+      const noether::MutualTerms t = guarded(p, frame, s.t, [&] { return exact[k].jacobian(frame.R, frame.C, J); });
+      noether::add_mutual_jacobian(p, frame, t, J, mass_.size(), K);
+    }
+    return true;
+  }
 
  private:
+  // The evaluation of one pair, its errors named by the pair, the time and the separation.
+  template <class Evaluate>
+  noether::MutualTerms guarded(const Pair& p, const noether::PairFrame& frame, double t, Evaluate&& evaluate) const {
+    try {
+      return evaluate();
+    } catch (const noether::Error& e) {
+      std::ostringstream msg;
+      msg << "mutual-exact: bodies '" << names_[p.a] << "' and '" << names_[p.b] << "' at t = " << t
+          << ", separation " << frame.R.norm() << ": " << e.what();
+      throw noether::IntegrationError(msg.str(), t);
+    }
+  }
+
   std::vector<std::string> names_;
   std::vector<Pair> pairs_;
   double G_ = 1.0;
