@@ -140,6 +140,19 @@ TEST(Impulses, InTheRtnFrameAreTheOrbitsAxesAtTheirTime) {
                    registry());
   along.integrate(2.0);
   EXPECT_GT(along.finish().impulse_energy, 0.0);
+  // On a radial orbit (velocity along the position) the along-track direction is undefined: the
+  // run stops with an error that names the impulse, its body, what it orbits and its time.
+  Simulation radial(test::kepler_scene({integrator, "bodies.planet.velocity=[0.5, 0, 0]",
+                                        "impulses=[{body: planet, time: 0.25, delta_v: [0, 0.01, 0], frame: rtn}]"}),
+                    registry());
+  try {
+    radial.integrate(2.0);
+    FAIL() << "an RTN impulse on a radial orbit was applied";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("impulses.0 (body 'planet' about 'sun', t = 0.25)"), std::string::npos) << what;
+    EXPECT_NE(what.find("needs an orbit"), std::string::npos) << what;
+  }
 }
 
 // The tangent's jump in the RTN frame turns with the orbit (24.6), and the sensitivity to the

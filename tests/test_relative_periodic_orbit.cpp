@@ -40,6 +40,22 @@ double multiplier_error(const std::vector<std::complex<double>>& continuous, con
   return worst;
 }
 
+// Two ellipsoids, tilted, spinning, off the barycentre (every term of the forces, moments and
+// momenta nonzero).
+Scene tilted_pair() {
+  return parse_scene(
+      "G: 1\nbodies:\n"
+      "  - {name: a, mass: 1, position: [0.1, -0.2, 0.05], velocity: [0.01, 0.02, -0.03],\n"
+      "     shape: {ellipsoid: {semi_axes: [0.5, 0.4, 0.3]}}, angular_velocity: [0.1, -0.2, 0.3],\n"
+      "     attitude: {euler_angles: [0.3, 0.5, 0.7]}}\n"
+      "  - name: b\n    mass: 0.3\n    shape: {ellipsoid: {semi_axes: [0.2, 0.18, 0.15]}}\n"
+      "    position: [3, 1, -0.5]\n    velocity: [-0.1, 0.5, 0.2]\n"
+      "    attitude: {euler_angles: [1.1, -0.4, 0.2]}\n    angular_velocity: [0.4, 0.1, -0.2]\n"
+      "potential: {plugin: mutual-series, order: 4}\nintegrator: {plugin: lgvi, step: 0.1}\n"
+      "run: {t_end: 1, output_every: 1}\n",
+      "tilted.yaml");
+}
+
 }  // namespace
 
 TEST(RelativePeriodicOrbit, DiscreteLgviOrbitClosesAndItsMultipliersConvergeAtTheMethodsOrder) {
@@ -97,17 +113,7 @@ TEST(RelativePeriodicOrbit, DiscreteLgviOrbitClosesAndItsMultipliersConvergeAtTh
 // the barycentre (every term of the forces, moments and momenta nonzero).
 TEST(RelativePeriodicOrbit, ConservedGradientsAgreeWithDifferences) {
   auto registry = test::bundled_plugins();
-  const Scene s = parse_scene(
-      "G: 1\nbodies:\n"
-      "  - {name: a, mass: 1, position: [0.1, -0.2, 0.05], velocity: [0.01, 0.02, -0.03],\n"
-      "     shape: {ellipsoid: {semi_axes: [0.5, 0.4, 0.3]}}, angular_velocity: [0.1, -0.2, 0.3],\n"
-      "     attitude: {euler_angles: [0.3, 0.5, 0.7]}}\n"
-      "  - name: b\n    mass: 0.3\n    shape: {ellipsoid: {semi_axes: [0.2, 0.18, 0.15]}}\n"
-      "    position: [3, 1, -0.5]\n    velocity: [-0.1, 0.5, 0.2]\n"
-      "    attitude: {euler_angles: [1.1, -0.4, 0.2]}\n    angular_velocity: [0.4, 0.1, -0.2]\n"
-      "potential: {plugin: mutual-series, order: 4}\nintegrator: {plugin: lgvi, step: 0.1}\n"
-      "run: {t_end: 1, output_every: 1}\n",
-      "tilted.yaml");
+  const Scene s = tilted_pair();
   const auto model = FullBodyModel::from_scene(s, registry);
   const PhaseChart chart(model.system, s.initial, 3.0, 0.3);
   Eigen::Matrix3Xd axes(3, 2);
@@ -138,15 +144,7 @@ TEST(RelativePeriodicOrbit, ConservedGradientsAgreeWithDifferences) {
 // retract (θ = log(R(δ)ᵀ R(δ + h e_j))/h), and D local · D retract = I (local ∘ retract = id).
 TEST(PhaseChart, DerivativesAgreeWithDifferencesAwayFromTheBase) {
   auto registry = test::bundled_plugins();
-  const Scene s = parse_scene(
-      "G: 1\nbodies:\n"
-      "  - {name: a, mass: 1, position: [0.1, -0.2, 0.05], shape: {ellipsoid: {semi_axes: [0.5, 0.4, 0.3]}},\n"
-      "     angular_velocity: [0.1, -0.2, 0.3], attitude: {euler_angles: [0.3, 0.5, 0.7]}}\n"
-      "  - {name: b, mass: 0.3, position: [3, 1, -0.5], velocity: [-0.1, 0.5, 0.2],\n"
-      "     shape: {ellipsoid: {semi_axes: [0.2, 0.18, 0.15]}}, angular_velocity: [0.4, 0.1, -0.2]}\n"
-      "potential: {plugin: mutual-series, order: 2}\nintegrator: {plugin: lgvi, step: 0.1}\n"
-      "run: {t_end: 1, output_every: 1}\n",
-      "chart.yaml");
+  const Scene s = tilted_pair();
   const auto model = FullBodyModel::from_scene(s, registry);
   const PhaseChart chart(model.system, s.initial, 3.0, 0.3);
   const Eigen::Index d = chart.dimension(), N = State::tangent_rows(model.system);

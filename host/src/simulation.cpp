@@ -211,7 +211,18 @@ void apply_impulse(Simulation::Impl& m, std::size_t k) {
   const State before = m.state;
   const bool rtn = impulse.frame == Impulse::Frame::rtn;
   const detail::RelativeOrbit orbit = rtn ? detail::relative_orbit(impulse, sys, before) : detail::RelativeOrbit{};
-  const Mat3 Q = rtn ? detail::rtn_frame(orbit.r, orbit.v) : Mat3::Identity();
+  Mat3 Q = Mat3::Identity();
+  if (rtn) {
+    try {
+      Q = detail::rtn_frame(orbit.r, orbit.v);
+    } catch (const Error& e) {  // named: which impulse, whose orbit, when
+      std::ostringstream where;
+      where.precision(10);
+      where << "impulses." << k << " (body '" << sys.body(impulse.body).name << "' about '"
+            << sys.body(impulse.around).name << "', t = " << impulse.time << "): " << e.what();
+      throw Error(where.str());
+    }
+  }
   const Vec3 dv = Q * impulse.delta_v;
   m.state.p.col(b) += mass * dv;  // (24.1)
   Eigen::MatrixXd& V = m.state.tangent;

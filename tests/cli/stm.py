@@ -81,7 +81,7 @@ resume = subprocess.run([noether, "run", "--resume", "stm.h5", "--t-end", "1", "
 assert resume.returncode != 0 and "not supported yet" in resume.stderr, (resume.returncode, resume.stderr)
 if os.path.exists("refused.h5"):
     os.remove("refused.h5")  # from an earlier run of this test
-refused = subprocess.run([noether, "run", scene, "--stm", "-o", "refused.h5", *base, "--set", "integrator={plugin: rk, frame: relative}"],
+refused = subprocess.run([noether, "run", scene, "--stm", "-o", "refused.h5", *base, "--set", "integrator={plugin: cvode, frame: relative}"],
                          capture_output=True, text=True)
 assert refused.returncode == 2 and "cannot carry the state-transition matrix" in refused.stderr, refused.stderr
 assert not os.path.exists("refused.h5")

@@ -329,7 +329,7 @@ def test_stm_restarts_at_a_new_state_and_is_absent_unless_asked(dumbbells):
     assert not np.allclose(sim.stm, np.eye(24))
     sim.positions = sim.positions  # a new segment
     assert np.array_equal(sim.stm, np.eye(24))
-    dumbbells["integrator"] = {"plugin": "rk", "frame": "relative"}
+    dumbbells["integrator"] = {"plugin": "cvode", "frame": "relative"}
     with pytest.raises(noether.SceneError, match="cannot carry the state-transition matrix"):
         noether.Simulation(dumbbells, stm=True)
 

@@ -79,10 +79,10 @@ class Rk final : public noether::Integrator {
     rkf78_ = Rkf78(checker());
     if (step_ < 0 || rtol_ <= 0 || atol_ < 0 || max_steps_ < 0)
       throw SceneError(p.here() + "rk: step and rtol must be positive, atol and max_steps non-negative");
-    if (p.at("frame").as_string() != "inertial" || p.at("form").as_string() != "hamiltonian")
-      tangent_unavailable_ = "rk carries the state-transition matrix in its inertial Hamiltonian form only, not frame: " +
-                             p.at("frame").as_string() + ", form: " + p.at("form").as_string();
-    else if (method_ != "rk4" && atol_ == 0.0)
+    // The tangent is the flow's, in the inertial coordinates (21.1), whatever variables carry the
+    // state (the relative frame, the Lagrangian form): V' = A(z) V with z the stage's state made
+    // inertial (ContinuousEquations::unpack).
+    if (method_ != "rk4" && atol_ == 0.0)
       tangent_unavailable_ = "with atol: 0 the error of the state-transition matrix, whose entries start at 0, cannot be "
                              "controlled; give rk a positive atol";
   }
