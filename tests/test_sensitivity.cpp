@@ -45,8 +45,8 @@ std::string number(double v) {
 
 // The state at t_end of the scene `text` with `overrides`, or of its initial state changed by `edit`.
 State final_state(const std::string& text, const std::vector<std::string>& overrides,
-                  const std::function<void(State&)>& edit = {}) {
-  Scene scene = parse_scene(text, "test", overrides);
+                  const std::function<void(State&)>& edit = {}, const std::string& file = "test") {
+  Scene scene = parse_scene(text, file, overrides);
   if (edit) edit(scene.initial);
   Simulation sim(scene, registry());
   sim.integrate(scene.run.t_end);
@@ -74,11 +74,12 @@ double relative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a 
 // Every column of the run's sensitivities against differences of runs with the key (a scalar
 // key, or a component: "bodies.star.velocity.1") moved from `values` (its value in the scene),
 // by fractions of max(1, |value|), or of |value| itself with `own_scale` (a mass of 1e11 kg);
-// `fractions` as differenced's.
+// `fractions` as differenced's; `file`: where the text was read from (its relative paths).
 double worst_column(const std::string& text, const std::vector<std::string>& overrides,
                     const std::map<std::string, double>& values, bool own_scale = false,
-                    const std::vector<double>& fractions = {1e-3, 1e-4, 1e-5, 1e-6}) {
-  Scene scene = parse_scene(text, "test", overrides);
+                    const std::vector<double>& fractions = {1e-3, 1e-4, 1e-5, 1e-6},
+                    const std::string& file = "test") {
+  Scene scene = parse_scene(text, file, overrides);
   Simulation sim(scene, registry());
   sim.integrate(scene.run.t_end);
   const Eigen::MatrixXd S = sim.state().tangent;
@@ -97,7 +98,7 @@ double worst_column(const std::string& text, const std::vector<std::string>& ove
           std::vector<std::string> moved = overrides;  // the same integrator; the key moved
           moved.push_back("run.sensitivities=~");
           moved.push_back(names[c] + "=" + number(v + h));
-          return final_state(text, moved);
+          return final_state(text, moved, {}, file);
         },
         own_scale ? std::abs(v) : std::max(1.0, std::abs(v)), fractions);
     const double d = relative(S.col(static_cast<Eigen::Index>(c)), fd);
@@ -209,6 +210,44 @@ TEST(Sensitivity, ShapesAndMassesOfKw4AgreeWithDifferencesOfWholeRuns) {
   EXPECT_LT(worst_column(text, rk4, values, true), 1e-6);
 }
 
+// A polyhedron's shape: Hou et al.'s octahedra (SI units, order 6), B stretched along its body
+// axes by scale: [1.1, 0.95, 1] (at fixed density: mass, inertia and the series' inertia
+// integrals move together), 120 LGVI steps of 300 s; each scale factor of B, one of A, and B's
+// density, against differences of whole runs with the factor moved. The stretched shape itself:
+// its volume is the product of the factors times the mesh's, its inertia the stretched moments.
+TEST(Sensitivity, APolyhedronsScaleAgreesWithDifferencesOfWholeRuns) {
+  const std::string text = [] {
+    std::ifstream in(test::source_path("examples/octahedra-hou.yaml"));
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  // The scene's shape paths are relative to its folder: the text is parsed as that file.
+  const std::vector<std::string> overrides = {
+      "run.t_end=36000", "run.output_every=18000", "bodies.B.shape.polyhedron.scale=[1.1, 0.95, 1]",
+      "bodies.A.shape.polyhedron.scale=[1, 1, 1]",
+      "run.sensitivities=[bodies.B.shape.polyhedron.scale, bodies.A.shape.polyhedron.scale.2, bodies.B.density]"};
+  const std::map<std::string, double> values = {{"bodies.B.shape.polyhedron.scale.0", 1.1},
+                                                {"bodies.B.shape.polyhedron.scale.1", 0.95},
+                                                {"bodies.B.shape.polyhedron.scale.2", 1.0},
+                                                {"bodies.A.shape.polyhedron.scale.2", 1.0},
+                                                {"bodies.B.density", 2000}};
+  const double worst = worst_column(text, overrides, values, true, {1e-3, 1e-4, 1e-5, 1e-6}, test::source_path("examples/octahedra-hou.yaml"));
+  std::printf("octahedra, polyhedron scale and density: worst column %.2e\n", worst);
+  EXPECT_LT(worst, 1e-6);
+  const Scene plain = load_scene(test::source_path("examples/octahedra-hou.yaml"));
+  const Scene stretched = load_scene(test::source_path("examples/octahedra-hou.yaml"),
+                                     {"bodies.B.shape.polyhedron.scale=[1.1, 0.95, 1]"});
+  const Solid& b0 = *plain.system.body(1).solid;
+  const Solid& b1 = *stretched.system.body(1).solid;
+  EXPECT_NEAR(b1.volume, 1.1 * 0.95 * b0.volume, 1e-12 * b0.volume);
+  // Second moments ∫x_i x_j dm scale by s_i s_j (and the mass by s_x s_y s_z): J = tr(S) I − S.
+  const Vec3 f(1.1, 0.95, 1.0);
+  const Mat3 S0 = 0.5 * b0.inertia.trace() * Mat3::Identity() - b0.inertia;
+  const Mat3 S1 = (f.prod() * f.asDiagonal() * S0 * f.asDiagonal()).eval();
+  const Mat3 J1 = S1.trace() * Mat3::Identity() - S1;
+  EXPECT_LT((b1.inertia - J1).cwiseAbs().maxCoeff(), 1e-12 * J1.cwiseAbs().maxCoeff());
+  EXPECT_EQ(b1.stretch, f);
+}
+
 // The LGVI paper's dumbbells (sphere clusters) before their close approach, 5000 steps: alpha's
 // transverse principal moments (the kinetic part alone: the clusters do not depend on them),
 // beta's mass (clusters and kinetic part) and G; with the LGVI's tangent map and rk4's
@@ -289,6 +328,7 @@ TEST(Sensitivity, RefusesWhatItCannotDerive) {
   };
   EXPECT_NE(refusal("[bodies.planet.density]").find("gives its mass, not a density"), std::string::npos);
   EXPECT_NE(refusal("[bodies.planet.shape.ellipsoid.semi_axes]").find("has no ellipsoid shape"), std::string::npos);
+  EXPECT_NE(refusal("[bodies.planet.shape.polyhedron.scale]").find("has no polyhedron shape"), std::string::npos);
   EXPECT_NE(refusal("[bodies.planet.inertia]").find("is a point mass: it has no inertia"), std::string::npos);
   EXPECT_NE(refusal("[integrator.step]").find("not a key sensitivities are available to"), std::string::npos);
   try {

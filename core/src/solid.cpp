@@ -116,4 +116,19 @@ std::shared_ptr<const Solid> make_polyhedron(Mesh mesh, double density, bool pri
   return s;
 }
 
+std::shared_ptr<const Solid> stretched_polyhedron(const Solid& polyhedron, const Vec3& scale) {
+  if (polyhedron.kind != Solid::Kind::Polyhedron) throw Error("stretched_polyhedron: not a polyhedron");
+  if (!scale.allFinite() || scale.minCoeff() <= 0.0)
+    throw SceneError(polyhedron.mesh.source + ": the scale factors must be positive");
+  Mesh mesh = polyhedron.mesh;  // body frame: centred, on the body axes
+  mesh.vertices = scale.asDiagonal() * mesh.vertices;
+  // Stretching along the body axes keeps the centre of mass at the origin and the products of
+  // inertia zero where they were: the axes are kept (principal_axes false), not searched again.
+  auto s = std::const_pointer_cast<Solid>(make_polyhedron(std::move(mesh), polyhedron.density, false));
+  s->offset = polyhedron.offset + polyhedron.rotation * s->offset.cwiseQuotient(scale.cwiseProduct(polyhedron.stretch));
+  s->rotation = polyhedron.rotation;
+  s->stretch = polyhedron.stretch.cwiseProduct(scale);
+  return s;
+}
+
 }  // namespace noether

@@ -132,6 +132,8 @@ void H5Writer::create_layout(const Scene& scene) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) rotation.push_back(b.solid->rotation(r, c));
     numeric_attribute<double>(g, "rotation", H5T_NATIVE_DOUBLE, rotation);  // row-major
+    numeric_attribute<double>(g, "stretch", H5T_NATIVE_DOUBLE,
+                              {b.solid->stretch.x(), b.solid->stretch.y(), b.solid->stretch.z()});
   }
 
   const io::H5Handle particles(make_group(m.file, "particles"));

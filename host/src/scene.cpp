@@ -97,7 +97,7 @@ std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string&
     return make_ellipsoid(axes, 1.0);
   }
   const Params& p = shape.at("polyhedron");
-  p.check_keys({"file", "vertices", "facets", "units", "frame"}, "the polyhedron of " + who);
+  p.check_keys({"file", "vertices", "facets", "units", "frame", "scale"}, "the polyhedron of " + who);
   if (!p.has("units"))
     throw SceneError(p.here() + who + ": the polyhedron needs 'units: m' or 'units: km' (a "
                      "shape file does not say its units)");
@@ -132,12 +132,20 @@ std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string&
                      "'facets' (CSV pair)");
   const std::filesystem::path first = resolve(p.at(p.has("file") ? "file" : "vertices"));
   const std::filesystem::path facets = p.has("file") ? std::filesystem::path() : resolve(p.at("facets"));
+  std::shared_ptr<const Solid> solid;
   try {
     mesh = p.has("file") ? read_obj(first, scale) : read_vertex_facet_csv(first, facets, scale);
-    return make_polyhedron(std::move(mesh), 1.0, frame == "principal");
+    solid = make_polyhedron(std::move(mesh), 1.0, frame == "principal");
   } catch (const SceneError& e) {
     throw SceneError(p.here() + who + ": " + e.what());
   }
+  if (!p.has("scale")) return solid;
+  // scale: [sx, sy, sz], the mesh stretched along the body axes about its centre of mass (a
+  // shape model's extents as parameters: fitted, or differentiated by run.sensitivities).
+  const Vec3 stretch = vec3(p.at("scale"));
+  if (!stretch.allFinite() || stretch.minCoeff() <= 0.0)
+    throw SceneError(p.at("scale").here() + who + ": the polyhedron's scale factors must be positive");
+  return stretched_polyhedron(*solid, stretch);
 }
 
 // The solid at the body's density (from `density` or `mass`), checked against `mass` and

@@ -19,13 +19,14 @@ const std::vector<std::string> kVectorFields = {"position", "velocity", "angular
 const std::vector<std::string> kElements = {"a", "e", "i", "Omega", "omega", "nu", "M"};
 
 const std::string kSemiAxes = "shape.ellipsoid.semi_axes";
+const std::string kScale = "shape.polyhedron.scale";  // [1, 1, 1] where the scene leaves it out
 
 std::string accepted() {
   return "a body's position, velocity, angular_velocity, angular_momentum (each whole or one component: "
          "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
          "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
-         "density, its inertia (three principal moments, or one: inertia.2) and shape.ellipsoid.semi_axes "
-         "(whole or one of them); and an impulse's impulses.K.delta_v (whole or one component) or impulses.K.time";
+         "density, its inertia (three principal moments, or one: inertia.2), shape.ellipsoid.semi_axes "
+         "and shape.polyhedron.scale (whole or one of them); and an impulse's impulses.K.delta_v (whole or one component) or impulses.K.time";
 }
 
 // impulses.K.delta_v[.a] or impulses.K.time: the impulse's index and component (−1: all three
@@ -109,11 +110,12 @@ Key parse_key(const Scene& scene, const std::string& text) {
   const bool vector = std::find(kVectorFields.begin(), kVectorFields.end(), rest) != kVectorFields.end();
   const bool element = rest.compare(0, 6, "orbit.") == 0 &&
                        std::find(kElements.begin(), kElements.end(), rest.substr(6)) != kElements.end();
-  key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes || rest == "inertia";
+  key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes || rest == kScale ||
+                 rest == "inertia";
   if (!(vector || rest == "attitude" || (element && key.component < 0) || key.dynamics))
     throw SceneError(where + "'" + rest + "' is not a key sensitivities are available to" +
                      (rest == "shape" || rest.compare(0, 6, "shape.") == 0
-                          ? " (of a shape, only an ellipsoid's semi-axes so far)"
+                          ? " (of a shape: an ellipsoid's semi-axes, a polyhedron's scale)"
                           : "") +
                      "; they are: " + accepted());
   const Params& item = scene.root.at("bodies").items()[key.body];
@@ -125,6 +127,8 @@ Key parse_key(const Scene& scene, const std::string& text) {
     throw SceneError(where + body + " gives its mass, not a density: take " + key.body_key + ".mass");
   if (rest == kSemiAxes && !(item.has("shape") && item.at("shape").has("ellipsoid")))
     throw SceneError(where + body + " has no ellipsoid shape");
+  if (rest == kScale && !(item.has("shape") && item.at("shape").has("polyhedron")))
+    throw SceneError(where + body + " has no polyhedron shape");
   if (rest == "inertia" && !item.has("inertia"))
     throw SceneError(where + body + (rigid ? "'s inertia follows from its shape" : " is a point mass: it has no inertia"));
   if (rest == "inertia" && !(item.at("inertia").is_sequence() && item.at("inertia").size() == 3 &&
@@ -157,6 +161,10 @@ std::vector<double> value_of(const Scene& scene, const Key& key) {
   if (key.field == "mass" || key.field == "density") return {item.at(key.field).as_double()};
   if (key.field == "inertia") return item.at("inertia").as_doubles();
   if (key.field == kSemiAxes) return item.at("shape").at("ellipsoid").at("semi_axes").as_doubles();
+  if (key.field == kScale) {
+    const Params& polyhedron = item.at("shape").at("polyhedron");
+    return polyhedron.has("scale") ? polyhedron.at("scale").as_doubles() : std::vector<double>{1.0, 1.0, 1.0};
+  }
   if (key.field.compare(0, 6, "orbit.") == 0) {
     const Params& orbit = item.at("orbit");
     const std::string name = key.field.substr(6);

@@ -73,7 +73,7 @@ sens_error = np.abs(column - expected).max() / np.abs(expected).max()
 assert sens_error < 1e-6, (sens_error, column, expected)
 length = subprocess.run([noether, "run", scene, "--sensitivity", "bodies.beta.shape.dumbbell.length", "-o",
                          "length.h5", *base], capture_output=True, text=True)
-assert length.returncode == 2 and "only an ellipsoid's semi-axes so far" in length.stderr, length.stderr
+assert length.returncode == 2 and "of a shape: an ellipsoid's semi-axes, a polyhedron's scale" in length.stderr, length.stderr
 assert not os.path.exists("length.h5")
 
 resume = subprocess.run([noether, "run", "--resume", "stm.h5", "--t-end", "1", "--no-progress"],

@@ -24,9 +24,11 @@ struct Solid {
   double radius = 0.0;            // largest distance of the surface from the centre of mass
   Vec3 semi_axes = Vec3::Zero();  // ellipsoid: along body x, y, z
   Mesh mesh;                      // polyhedron: vertices in the body frame
-  // Placement of a mesh: x_file = offset + rotation · x_body (identity for an ellipsoid).
+  // Placement of a mesh: x_file = offset + rotation · diag(stretch)⁻¹ · x_body (identity for an
+  // ellipsoid; stretch: the factors a scene's `scale` stretched the mesh by along the body axes).
   Vec3 offset = Vec3::Zero();
   Mat3 rotation = Mat3::Identity();
+  Vec3 stretch = Vec3::Ones();
 
   // T^{lmn} to total degree `order` (ellipsoid closed form; polyhedron exact).
   InertiaIntegrals integrals(int order) const;
@@ -34,6 +36,11 @@ struct Solid {
 };
 
 std::shared_ptr<const Solid> make_ellipsoid(const Vec3& semi_axes, double density);
+
+// A polyhedron stretched by the factors `scale` along its body axes, about its centre of mass:
+// the same axes (principal axes stay principal), the mass properties of the stretched mesh, the
+// placement in the file kept (`stretch` records the factors).
+std::shared_ptr<const Solid> stretched_polyhedron(const Solid& polyhedron, const Vec3& scale);
 
 // Validates the mesh, moves it to its centre of mass and — if `principal_axes` — rotates it
 // onto its principal axes (taken in the order and sense closest to the file's axes; left
