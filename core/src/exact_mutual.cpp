@@ -162,12 +162,59 @@ MutualTerms ExactMutual::evaluate_level(int level, const Vec3& R_s, const Mat3& 
   return t;
 }
 
+MutualTerms ExactMutual::refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J) {
+  if (!surface_->solid) {
+    last_error_ = 0.0;
+    return evaluate_level(0, R_s, C_s, J);
+  }
+  auto difference = [&](const MutualTerms& a, const MutualTerms& b) {
+    const double F = std::max(b.dU_dR.norm(), 1e-300);
+    const double T = F * R_s.norm();
+    return std::max({std::abs(a.U - b.U) / std::abs(b.U), (a.dU_dR - b.dU_dR).norm() / F,
+                     (a.torque_A - b.torque_A).norm() / T, (a.torque_B - b.torque_B).norm() / T});
+  };
+  // With J, each level's derivatives come with its terms (a few products per point beside the
+  // field's evaluation there); those of the level that meets the tolerance are kept.
+  int level = std::max(0, level_ - 1);
+  MutualTerms coarse = evaluate_level(level, R_s, C_s, J);
+  for (;;) {
+    if (level + 1 > options_.max_level) {
+      std::ostringstream msg;
+      msg << "mutual-exact: the surface quadrature did not reach the tolerance "
+          << options_.tolerance << " (reached " << last_error_ << " at level " << level
+          << "); the bodies are too close for the quadrature: raise max_level or the tolerance";
+      throw Error(msg.str());
+    }
+    MutualTerms fine = evaluate_level(level + 1, R_s, C_s, J);
+    last_error_ = difference(coarse, fine);
+    if (last_error_ <= options_.tolerance) {
+      level_ = level + 1;
+      return fine;
+    }
+    coarse = fine;
+    ++level;
+  }
+}
+
+MutualTerms ExactMutual::evaluate(const Vec3& R, const Mat3& C) {
+  // Into the surface body's frame, and back: R_s = −Cᵀ R ⇒ ∂U/∂R = −C ∂U/∂R_s, roles swapped.
+  const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
+  const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
+  const MutualTerms s = refine(R_s, C_s, nullptr);
+  if (surface_is_A_) return s;
+  MutualTerms t;
+  t.U = s.U;
+  t.dU_dR = -(C * s.dU_dR);
+  t.torque_A = C * s.torque_B;
+  t.torque_B = C * s.torque_A;
+  return t;
+}
+
 MutualTerms ExactMutual::jacobian(const Vec3& R, const Mat3& C, MutualJacobian& J) {
-  evaluate(R, C);  // the quadrature level that meets the tolerance
   const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
   const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
   MutualJacobian Js;
-  const MutualTerms s = evaluate_level(surface_->solid ? level_ : 0, R_s, C_s, &Js);
+  const MutualTerms s = refine(R_s, C_s, &Js);
   if (surface_is_A_) {
     J = Js;
     return s;
@@ -189,50 +236,6 @@ MutualTerms ExactMutual::jacobian(const Vec3& R, const Mat3& C, MutualJacobian& 
   J.tauB_R = -by_R(Js.tauA_R);
   J.tauB_phi = -by_phi(Js.tauA_R, Js.tauA_phi) - hat(t.torque_B);
   return t;
-}
-
-MutualTerms ExactMutual::evaluate(const Vec3& R, const Mat3& C) {
-  // Into the surface body's frame.
-  const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
-  const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
-  auto back = [&](const MutualTerms& s) {
-    if (surface_is_A_) return s;
-    MutualTerms t;  // swap roles and rotate into A's frame; R_s = −Cᵀ R ⇒ ∂U/∂R = −C ∂U/∂R_s
-    t.U = s.U;
-    t.dU_dR = -(C * s.dU_dR);
-    t.torque_A = C * s.torque_B;
-    t.torque_B = C * s.torque_A;
-    return t;
-  };
-  if (!surface_->solid) {
-    last_error_ = 0.0;
-    return back(evaluate_level(0, R_s, C_s));
-  }
-  auto difference = [&](const MutualTerms& a, const MutualTerms& b) {
-    const double F = std::max(b.dU_dR.norm(), 1e-300);
-    const double T = F * R.norm();
-    return std::max({std::abs(a.U - b.U) / std::abs(b.U), (a.dU_dR - b.dU_dR).norm() / F,
-                     (a.torque_A - b.torque_A).norm() / T, (a.torque_B - b.torque_B).norm() / T});
-  };
-  int level = std::max(0, level_ - 1);
-  MutualTerms coarse = evaluate_level(level, R_s, C_s);
-  for (;;) {
-    if (level + 1 > options_.max_level) {
-      std::ostringstream msg;
-      msg << "mutual-exact: the surface quadrature did not reach the tolerance "
-          << options_.tolerance << " (reached " << last_error_ << " at level " << level
-          << "); the bodies are too close for the quadrature: raise max_level or the tolerance";
-      throw Error(msg.str());
-    }
-    MutualTerms fine = evaluate_level(level + 1, R_s, C_s);
-    last_error_ = difference(coarse, fine);
-    if (last_error_ <= options_.tolerance) {
-      level_ = level + 1;
-      return back(fine);
-    }
-    coarse = fine;
-    ++level;
-  }
 }
 
 }  // namespace noether

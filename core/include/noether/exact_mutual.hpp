@@ -30,8 +30,8 @@ class ExactMutual {
   // R: B's centre of mass minus A's, in A's frame; C: B's frame → A's frame. Throws Error if
   // the bodies overlap or the quadrature does not reach the tolerance.
   MutualTerms evaluate(const Vec3& R, const Mat3& C);
-  // The terms and their derivatives J (MutualJacobian's frames; docs/equations.md §26), by the
-  // same quadrature at the level `evaluate` reaches for them.
+  // The terms and their derivatives J (MutualJacobian's frames; docs/equations.md §26), from the
+  // same quadrature, at the level at which the terms meet the tolerance.
   MutualTerms jacobian(const Vec3& R, const Mat3& C, MutualJacobian& J);
   double last_error_estimate() const { return last_error_; }
   int last_level() const { return level_; }
@@ -40,6 +40,8 @@ class ExactMutual {
  private:
   struct Side;
   MutualTerms evaluate_level(int level, const Vec3& R_s, const Mat3& C_s, MutualJacobian* J = nullptr);
+  // Levels from the last one reached until two agree to the tolerance, in the surface's frame.
+  MutualTerms refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J);
   std::unique_ptr<Side> surface_, field_;
   bool surface_is_A_ = true;
   ExactMutualOptions options_;
