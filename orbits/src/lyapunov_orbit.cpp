@@ -117,7 +117,7 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
     r[d + 1] = along.dot(u.head(d));
     return r;
   };
-  // The Jacobian: the closure's (δ, α) columns from the tangent map (19.5) where the integrator
+  // The Jacobian: the closure's (δ, α) columns from the tangent map (19.6) where the integrator
   // carries one; T's column by central differences (with a fixed step, T moves the step too).
   const auto tangent_jacobian = [&](const VectorXd& u) {
     const double T = T0 * (1 + u[d + 1]);
@@ -130,8 +130,7 @@ LyapunovOrbit lyapunov_orbit(const FullBodyModel& model, const PluginConfig& int
     J.col(d + 1) = (residual(plus) - residual(minus)) / (2 * dt);
     return J;
   };
-  auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
-  out.orbit.jacobian = method->tangent_map_unavailable().empty() && !differenced ? "tangent map" : "differences";
+  out.orbit.jacobian = detail::newton_jacobian(model, integrator, differenced);
   VectorXd u = VectorXd::Zero(d + 2);
   u[d] = std::remainder(eq.rate * T0, 2 * std::numbers::pi);  // the frame's turn over one period
   const auto newton = out.orbit.jacobian == "tangent map"

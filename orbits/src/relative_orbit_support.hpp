@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <numbers>
+#include <string>
 
 namespace noether::detail {
 
@@ -32,9 +33,17 @@ inline constexpr double kFlatDirections = 1e-10;
 
 // The Jacobian of the closure (19.1) at u = (δ, α) — the chart residual
 // local(Rot(−α k̂) Φ_T(retract(δ))) − δ and (L·k̂ − L0)/L0 — from `integrator`'s tangent map
-// (docs/equations.md eq. 19.5): (d + 1) × (d + 1), columns δ then α. Empty when the integrator
+// (docs/equations.md eq. 19.6): (d + 1) × (d + 1), columns δ then α. Empty when the integrator
 // carries no tangent map.
 Eigen::MatrixXd closure_jacobian(const FullBodyModel& model, const PluginConfig& integrator, const PhaseChart& chart,
                                  double T, const Vec3& k, double L0, const Eigen::VectorXd& u);
+
+// The shooting's Jacobian for `integrator`: "tangent map" when it carries one (and the caller did
+// not ask for `differenced`), else "differences" (RelativePeriodicOrbit::jacobian).
+inline std::string newton_jacobian(const FullBodyModel& model, const PluginConfig& integrator, bool differenced) {
+  if (differenced) return "differences";
+  auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
+  return method->tangent_map_unavailable().empty() ? "tangent map" : "differences";
+}
 
 }  // namespace noether::detail

@@ -181,7 +181,6 @@ RelativeClosure relative_closure(const FullBodyModel& model, const PluginConfig&
 RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
                                                     const State& guess, double period, double angle,
                                                     double tolerance, int max_iterations, bool differenced) {
-
   if (!(period > 0)) throw SceneError("relative periodic orbit: the period must be positive");
   RelativePeriodicOrbit orbit;
   orbit.period = period;
@@ -205,12 +204,12 @@ RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, 
   const auto tangent_jacobian = [&](const VectorXd& u) {
     return detail::closure_jacobian(model, integrator, chart, period, orbit.axis, L0, u);
   };
-  auto method = model.registry->make_integrator(integrator.plugin, model.system, model.potential, integrator.params);
-  orbit.jacobian = method->tangent_map_unavailable().empty() && !differenced ? "tangent map" : "differences";
+  orbit.jacobian = detail::newton_jacobian(model, integrator, differenced);
   VectorXd u = VectorXd::Zero(d + 1);
   u[d] = angle;
   const auto newton = orbit.jacobian == "tangent map"
-                          ? detail::gauss_newton(residual, tangent_jacobian, u, tolerance, max_iterations, detail::kFlatDirections)
+                          ? detail::gauss_newton(residual, tangent_jacobian, u, tolerance, max_iterations,
+                                                 detail::kFlatDirections)
                           : detail::gauss_newton(residual, u, tolerance, max_iterations);
   orbit.initial_closure = newton.first;
   orbit.closure = newton.last;

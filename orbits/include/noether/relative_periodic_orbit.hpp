@@ -49,7 +49,7 @@ struct RelativePeriodicOrbit {
   double closure = 0;  // largest scaled component of the chart residual (19.1)
   double initial_closure = 0;
   int iterations = 0;
-  // The shooting's Jacobian: "tangent map" (the integrator's, eq. 19.5) or "differences" (of the
+  // The shooting's Jacobian: "tangent map" (the integrator's, eq. 19.6) or "differences" (of the
   // whole map, for integrators without one).
   std::string jacobian;
   // Closed: the shooting converged (what the commands write and judge; the residual of a flow
@@ -59,7 +59,7 @@ struct RelativePeriodicOrbit {
 };
 
 // Newton from (guess, T, α0): minimum-norm Gauss–Newton steps on (19.1) with L·k̂ held at the
-// guess's, halved until the residual falls; the Jacobian from the integrator's tangent map (19.5),
+// guess's, halved until the residual falls; the Jacobian from the integrator's tangent map (19.6),
 // or by central differences of the map for an integrator without one (or with `differenced`, to
 // compare).
 RelativePeriodicOrbit shoot_relative_periodic_orbit(const FullBodyModel& model, const PluginConfig& integrator,
