@@ -179,6 +179,36 @@ inline std::string read_string(hid_t obj, const char* name, bool dataset) {
   return out;
 }
 
+// A 1-D dataset of variable-length strings (string_list_dataset's); OutputError when it is
+// missing or of another kind.
+inline std::vector<std::string> read_string_list(hid_t parent, const char* path) {
+  const hid_t d = H5Dopen2(parent, path, H5P_DEFAULT);
+  if (d < 0) throw OutputError(std::string("the output has no ") + path);
+  const hid_t type = H5Dget_type(d), space = H5Dget_space(d);
+  hsize_t n = 0;
+  const bool ok = H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0 &&
+                  H5Sget_simple_extent_ndims(space) == 1 && H5Sget_simple_extent_dims(space, &n, nullptr) == 1;
+  std::vector<char*> raw(ok ? n : 0, nullptr);
+  herr_t status = -1;
+  if (ok) {
+    const hid_t mem = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mem, H5T_VARIABLE);
+    H5Tset_cset(mem, H5Tget_cset(type));
+    status = n ? H5Dread(d, mem, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) : 0;
+    H5Tclose(mem);
+  }
+  std::vector<std::string> out;
+  for (char* s : raw) {
+    out.emplace_back(s ? s : "");
+    if (s) H5free_memory(s);
+  }
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Dclose(d);
+  if (!ok || status < 0) throw OutputError(std::string("the output's ") + path + " is not a list of strings");
+  return out;
+}
+
 // The first `frames` frames of a [frame][...] dataset, as `mem_type`.
 template <class T>
 std::vector<T> read_frames(hid_t file, const char* path, hid_t mem_type, hsize_t frames) {

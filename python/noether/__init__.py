@@ -29,9 +29,20 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "relative_equilibrium",
+__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
+
+
+def observe(run, observable, times=None, line_of_sight=None):
+    """An observable of a run's output file (docs/fitting.md): `observable` is
+    "NAME:TARGET:CENTER" (position.x, position.y, position.z, sky.east, sky.north, range,
+    range_rate; bodies by name), at every frame or at `times` (interpolated between frames,
+    docs/equations.md eq. 16.2); the sky observables need `line_of_sight` (x, y, z: from the
+    observer towards the bodies). Returns (t, value), two NumPy arrays, in the scene's units.
+    The frames are verified against their checksums; a time outside the run is a SceneError."""
+    los = [] if line_of_sight is None else [float(c) for c in line_of_sight]
+    return _noether.observe(os.fspath(run), observable, None if times is None else [float(t) for t in times], los)
 
 
 def output_series():

@@ -10,6 +10,7 @@
 #include <noether/diagnostics.hpp>
 #include <noether/force_jacobian.hpp>
 #include <noether/error.hpp>
+#include <noether/observations.hpp>
 #include <noether/output_schema.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
@@ -444,6 +445,27 @@ PYBIND11_MODULE(_noether, m) {
   m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
   m.def("output_series", &output_series, "every series of an output file: name, path, shape, unit, description");
   m.def("compare", &compare);
+  // noether.observe (docs/fitting.md): an observable of a run's file at its frames or at given times.
+  m.def("observe", [](const std::filesystem::path& run, const std::string& spec, std::optional<std::vector<double>> times,
+                      const std::vector<double>& line_of_sight) {
+    const noether::Trajectory trajectory = noether::read_trajectory(run);
+    noether::Observation o;
+    o.observable = noether::observable_from_spec(spec, trajectory.names, line_of_sight);
+    std::vector<double> t;
+    if (times) {
+      t = *times;
+    } else {  // every frame; an impulse's two frames once (the value after it)
+      for (double tk : trajectory.times())
+        if (t.empty() || tk != t.back()) t.push_back(tk);
+    }
+    std::vector<double> values;
+    for (double tk : t) {
+      o.t = tk;
+      values.push_back(noether::observe(trajectory, o).value);
+    }
+    return py::make_tuple(py::array_t<double>(static_cast<py::ssize_t>(t.size()), t.data()),
+                          py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data()));
+  });
   m.def("relative_equilibrium",
         [](const std::string& file, const std::string& text, const std::string& name,
            const std::vector<std::string>& overrides, const std::string& fix, std::optional<double> value,

@@ -167,6 +167,28 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   read_summary();
 }
 
+std::vector<std::string> RunRecord::body_names() const {
+  std::vector<std::string> names;
+  try {
+    names = h5::read_string_list(h5_, "/particles/bodies/name");
+  } catch (const OutputError& e) {
+    damaged(e.what());
+  }
+  if (names.size() != bodies) damaged("/particles/bodies/name does not name " + std::to_string(bodies) + " bodies");
+  return names;
+}
+
+std::vector<double> RunRecord::body_masses() const {
+  const H5Handle d = open_dataset(h5_, "/particles/bodies/mass");
+  if (!d.valid()) damaged("/particles/bodies/mass is missing or does not open");
+  const std::vector<hsize_t> dims = extent(d);
+  std::vector<double> masses(bodies);
+  if (dims.size() != 1 || dims[0] != bodies ||
+      (bodies > 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, masses.data()) < 0))
+    damaged("/particles/bodies/mass is not [" + std::to_string(bodies) + "] numbers");
+  return masses;
+}
+
 void RunRecord::read_summary() {
   const htri_t exists = H5Lexists(h5_, "/checkpoint/summary", H5P_DEFAULT);
   if (exists < 0) damaged("/checkpoint does not read");

@@ -47,6 +47,9 @@ class RunRecord {
   bool read(std::size_t first, std::size_t count,
             const std::function<void(std::size_t, const RecordedFrame&)>& visit,
             const volatile std::sig_atomic_t* interrupt = nullptr, std::size_t block = 4096) const;
+  // The bodies' names and masses (/particles/bodies/name, mass), in scene order.
+  std::vector<std::string> body_names() const;
+  std::vector<double> body_masses() const;
   // The integrator's per-step records (/integrator/<name>), a block of rows at a time.
   void read_step_records(const std::function<void(const StepSeries&)>& visit) const;
 

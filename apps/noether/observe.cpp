@@ -1,0 +1,110 @@
+// noether observe: observables computed from a run's output file, as an observation file
+// (docs/fitting.md, "Observables"): at every frame, or at the rows of a given file; with
+// Gaussian noise of each row's sigma for synthetic data.
+#include "commands.hpp"
+
+#include <noether/error.hpp>
+#include <noether/observations.hpp>
+#include <noether/trajectory.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <random>
+#include <sstream>
+
+namespace noether::app {
+
+struct ObserveOptions {
+  std::string run, at, output;
+  std::vector<std::string> observables;
+  std::vector<double> line_of_sight;
+  std::size_t every = 1;
+  double sigma = 0.0;
+  bool noise = false, force = false;
+  std::uint64_t seed = 1;
+};
+
+int observe(const ObserveOptions& o) {
+  if (!o.output.empty() && !o.force && std::filesystem::exists(o.output))
+    throw OutputError(o.output + " exists; noether does not overwrite output unless asked: pass --force");
+  if (o.sigma < 0) throw SceneError("--sigma must be positive");
+  if (o.every < 1) throw SceneError("--every must be at least 1");
+  const Trajectory run = read_trajectory(o.run);
+  std::vector<Observation> rows;
+  if (!o.at.empty()) {
+    rows = read_observations(o.at, run.names, ObservationsNeed::times_only);
+  } else {
+    std::vector<Observable> wanted;
+    for (const auto& spec : o.observables) wanted.push_back(observable_from_spec(spec, run.names, o.line_of_sight));
+    const auto& t = run.times();
+    for (std::size_t k = 0; k < t.size(); k += o.every) {
+      if (k > 0 && t[k] == t[k - 1]) continue;  // an impulse's two frames: the value after it
+      for (const auto& w : wanted) {
+        Observation row;
+        row.t = t[k];
+        row.observable = w;
+        rows.push_back(row);
+      }
+    }
+  }
+  std::mt19937_64 random(o.seed);
+  std::normal_distribution<double> gauss;
+  for (auto& row : rows) {
+    if (o.sigma > 0 && !(row.sigma > 0)) row.sigma = o.sigma;
+    const std::string where = row.line ? o.at + ":" + std::to_string(row.line) : std::string();
+    row.value = observe(run, row, where).value;
+    if (o.noise) {
+      if (!(row.sigma > 0))
+        throw SceneError((where.empty() ? std::string("--noise") : where) +
+                         ": noise needs a sigma (the row's, or --sigma)");
+      row.value += row.sigma * gauss(random);
+    }
+  }
+  std::ostringstream text;
+  text << "# noether observe " << o.run << (o.noise ? " with Gaussian noise of each row's sigma, seed " +
+                                                          std::to_string(o.seed) : std::string()) << "\n";
+  write_observations(text, rows, run.names);
+  if (o.output.empty()) {
+    std::cout << text.str();
+  } else {
+    std::ofstream out(o.output);
+    out << text.str();
+    out.close();
+    if (!out) throw OutputError(o.output + ": cannot write");
+    std::cerr << rows.size() << " observations written to " << o.output << "\n";
+  }
+  return 0;
+}
+
+void add_observe_command(CLI::App& app, Command& chosen) {
+  auto o = std::make_shared<ObserveOptions>();
+  auto* cmd = app.add_subcommand("observe",
+                                 "observables computed from a run's output: at every frame (--observable), or at the "
+                                 "rows of an observation file (--at); as an observation file (docs/fitting.md)");
+  cmd->add_option("run", o->run, "a run's output file (HDF5)")->required();
+  auto* given = cmd->add_option("--observable", o->observables,
+                                "NAME:TARGET:CENTER at every frame; NAME one of position.x, position.y, position.z, "
+                                "sky.east, sky.north, range, range_rate")
+                    ->take_all();
+  auto* at = cmd->add_option("--at", o->at, "an observation file: its rows' values computed (value and sigma may be empty)");
+  given->excludes(at);
+  cmd->add_option("--line-of-sight", o->line_of_sight, "X,Y,Z: from the observer to the bodies (sky.east, sky.north)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--every", o->every, "with --observable: every K-th frame")->capture_default_str();
+  cmd->add_option("--sigma", o->sigma, "1σ written for rows that give none (the observable's unit)");
+  cmd->add_flag("--noise", o->noise, "add Gaussian noise of each row's sigma (synthetic data)");
+  cmd->add_option("--seed", o->seed, "the noise's random seed")->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "the observation file to write (default: standard output)");
+  cmd->add_flag("--force", o->force, "replace an existing output file");
+  cmd->callback([o, given, at, &chosen] {
+    if (given->count() == 0 && at->count() == 0) throw CLI::ValidationError("observe", "give --observable or --at");
+    chosen = [o] { return observe(*o); };
+  });
+}
+
+}  // namespace noether::app

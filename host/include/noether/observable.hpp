@@ -1,0 +1,59 @@
+#pragma once
+// An observable: one number a run predicts at a time, as an observation file states it
+// (docs/fitting.md, "Observables"; docs/equations.md §27). Each depends on a target body seen
+// from a center body only through their relative position r = x_target − x_center and velocity
+// u = v_target − v_center, so its value and its gradients ∂/∂r, ∂/∂u say everything a fit needs
+// (the target's rows +, the center's −).
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct Observable {
+  enum class Kind {
+    position_x,  // r · x̂ of the scene's axes (27.1)
+    position_y,
+    position_z,
+    sky_east,    // r · ê and r · n̂ on the sky plane of a line of sight ℓ (27.2)
+    sky_north,
+    range,       // |r| (27.3)
+    range_rate,  // r · u / |r| (27.4)
+  };
+  Kind kind = Kind::position_x;
+  std::size_t target = 0, center = 0;
+  Eigen::Vector3d line_of_sight = Eigen::Vector3d::Zero();  // sky_*: unit, from the observer to the bodies
+
+  // Whether it needs a line of sight; whether it reads the velocities.
+  bool needs_line_of_sight() const { return kind == Kind::sky_east || kind == Kind::sky_north; }
+  bool needs_velocity() const { return kind == Kind::range_rate; }
+};
+
+// The names the observation files use ("position.x", …, "sky.east", "sky.north", "range",
+// "range_rate"), in the order of Observable::Kind.
+const std::vector<std::string>& observable_names();
+const std::string& observable_name(Observable::Kind kind);
+// The kind of a name; SceneError listing the names when it is none of them.
+Observable::Kind observable_kind(const std::string& name);
+
+// The sky plane of a line of sight ℓ (27.2): north n̂ is the scene's +z projected on the plane
+// (+y when ℓ is along z), east ê = n̂ × ℓ — on the sky, east is to the left of north, as an
+// observer looking along ℓ sees it. SceneError when ℓ is zero or not finite.
+struct SkyPlane {
+  Eigen::Vector3d line_of_sight, east, north;
+};
+SkyPlane sky_plane(const Eigen::Vector3d& line_of_sight);
+
+struct ObservableValue {
+  double value = 0.0;
+  Eigen::Vector3d d_r = Eigen::Vector3d::Zero();  // ∂value/∂r
+  Eigen::Vector3d d_u = Eigen::Vector3d::Zero();  // ∂value/∂u (0 unless needs_velocity())
+};
+
+// The value at relative position r and velocity u, with its gradients (27.1)–(27.4).
+// A range_rate at r = 0 is NaN (the direction is undefined).
+ObservableValue evaluate(const Observable& o, const Eigen::Vector3d& r, const Eigen::Vector3d& u);
+
+}  // namespace noether

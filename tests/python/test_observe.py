@@ -1,0 +1,44 @@
+"""noether.observe (docs/fitting.md): the same numbers as `noether observe` and as the file's own
+positions, interpolated between frames, refused by name."""
+import subprocess
+
+import numpy as np
+import pytest
+
+import noether
+
+
+def test_observe_agrees_with_the_command_and_the_file(source, noether_exe, tmp_path):
+    run = tmp_path / "d.h5"
+    subprocess.run([noether_exe, "run", str(source / "examples/didymos.yaml"), "--no-progress", "--set",
+                    "run.t_end=7200", "--set", "run.output_every=600", "-o", str(run)], check=True,
+                   stdout=subprocess.DEVNULL)
+    t, rho = noether.observe(run, "range:dimorphos:didymos")
+    out = noether.read(run)
+    r = out["positions"][:, 1] - out["positions"][:, 0]
+    assert np.array_equal(t, out["time"])
+    assert np.max(np.abs(rho - np.linalg.norm(r, axis=1))) < 1e-12 * 1200
+    # The command writes the same numbers (to 17 digits).
+    text = subprocess.run([noether_exe, "observe", str(run), "--observable", "range:dimorphos:didymos"],
+                          check=True, capture_output=True, text=True).stdout
+    values = [float(line.split(",")[4]) for line in text.splitlines()[2:]]
+    assert values == list(rho)
+    # Between frames: the interpolant (eq. 16.2) against a run with a frame there, within the
+    # estimate r ω⁴ Δ⁴ / 384 = 1.9e-4 m for frames 600 s apart (docs/fitting.md); at a frame's
+    # time, the frame's value.
+    fine = tmp_path / "fine.h5"
+    subprocess.run([noether_exe, "run", str(source / "examples/didymos.yaml"), "--no-progress", "--set",
+                    "run.t_end=7200", "--set", "run.output_every=300", "-o", str(fine)], check=True,
+                   stdout=subprocess.DEVNULL)
+    _, between = noether.observe(run, "range:dimorphos:didymos", times=[600.0, 900.0, 4500.0])
+    _, on_frames = noether.observe(fine, "range:dimorphos:didymos", times=[600.0, 900.0, 4500.0])
+    assert between[0] == rho[1]
+    assert 1e-7 < np.max(np.abs(between - on_frames)) < 2.5e-4
+    _, east = noether.observe(run, "sky.east:dimorphos:didymos", line_of_sight=[1, 0, 0])
+    assert np.max(np.abs(east - r[:, 1])) < 1e-12 * 1200  # looking along +x, east is +y
+    with pytest.raises(noether.SceneError, match="outside the run"):
+        noether.observe(run, "range:dimorphos:didymos", times=[7300.0])
+    with pytest.raises(noether.SceneError, match="no body 'dimorphus'.*did you mean dimorphos"):
+        noether.observe(run, "range:dimorphus:didymos")
+    with pytest.raises(noether.SceneError, match="needs a line of sight"):
+        noether.observe(run, "sky.north:dimorphos:didymos")
