@@ -1,4 +1,4 @@
-// noether: the driver. `noether run | plugins | compare | ensemble | orbit | check-potential | observe`,
+// noether: the driver. `noether run | plugins | compare | ensemble | orbit | check-potential | observe | fit`,
 // `--version`. Each command lives in its own file, which registers its options (commands.hpp).
 #include "commands.hpp"
 
@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   add_orbit_command(app, chosen);
   add_check_potential_command(app, chosen);
   add_observe_command(app, chosen);
+  add_fit_command(app, chosen);
 
   if (argc == 1) {  // bare `noether`: the help
     std::cout << app.help();

@@ -176,6 +176,28 @@ std::vector<double> value_of(const Scene& scene, const Key& key) {
   return v;
 }
 
+}  // namespace
+
+double sensitivity_key_value(const Scene& scene, const std::string& column) {
+  if (column.compare(0, 9, "impulses.") == 0) {
+    const auto [index, component] = parse_impulse_key(scene, column);
+    if (component < 0)
+      throw SceneError("'" + column + "': give one component of the impulse's delta_v (" + column + ".0, .1 or .2)");
+    const Params& impulse = scene.root.at("impulses").items()[index];
+    return component == 3 ? impulse.at("time").as_double()
+                          : impulse.at("delta_v").as_doubles().at(static_cast<std::size_t>(component));
+  }
+  const Key key = parse_key(scene, column);
+  if (key.field == "attitude")
+    throw SceneError("'" + column + "' is a rotation of the body's attitude, not a value the scene writes");
+  const std::vector<double> values = value_of(scene, key);
+  if (values.size() > 1 && key.component < 0)
+    throw SceneError("'" + column + "' has " + std::to_string(values.size()) + " components: give one (" + column + ".0, …)");
+  return values.at(key.component < 0 ? 0 : static_cast<std::size_t>(key.component));
+}
+
+namespace {
+
 // The pair models (what a tolerance chose) of a model, for comparison with a perturbed one's.
 std::vector<std::string> choices(const Potential& potential) {
   std::vector<std::string> out;

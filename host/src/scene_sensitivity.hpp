@@ -44,4 +44,10 @@ using PotentialMaker = std::function<std::shared_ptr<const Potential>(const Scen
 SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys, const Potential& model,
                                    const PotentialMaker& make_potential);
 
+// The value in the scene, as written, of one column's key (as SceneSensitivity::names writes
+// it: "bodies.beta.mass", "bodies.alpha.velocity.1", "bodies.moon.orbit.e", "impulses.0.delta_v.1",
+// "impulses.0.time", "G"): what `--set COLUMN=value` replaces. SceneError naming the column when
+// it has no single value (an attitude's rotation) or is not a key sensitivities take.
+double sensitivity_key_value(const Scene& scene, const std::string& column);
+
 }  // namespace noether

@@ -280,13 +280,15 @@ void apply_impulse(Simulation::Impl& m, std::size_t k) {
 
 }  // namespace
 
-StopInfo Simulation::integrate(double t_end) {
+StopInfo Simulation::integrate(double t_end, bool impulse_at_t) {
   Impl& m = *impl_;
   if (m.finished) throw Error("the simulation is finished (finish() was called); make a new one");
   if (!m.failure.empty())
     throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
                 "); set a state to continue from");
-  if (!(t_end > m.state.t)) {
+  const bool pending_now = m.next_impulse < m.impulse_order.size() &&
+                           m.scene.impulses[m.impulse_order[m.next_impulse]].time == m.state.t;
+  if (!(t_end > m.state.t) && !(t_end == m.state.t && pending_now && impulse_at_t)) {
     std::ostringstream why;
     why.precision(17);
     why << "integrate(t): t = " << t_end << " is not after the current time " << m.state.t;
@@ -296,7 +298,7 @@ StopInfo Simulation::integrate(double t_end) {
   while (m.next_impulse < m.impulse_order.size()) {
     const std::size_t k = m.impulse_order[m.next_impulse];
     const double t_impulse = m.scene.impulses[k].time;
-    if (t_impulse > t_end) break;
+    if (t_impulse > t_end || (t_impulse == t_end && !impulse_at_t)) break;
     if (t_impulse > m.state.t) {
       const StopInfo stop = integrate_to(m, t_impulse);
       if (!stop.event.empty()) return stop;
@@ -314,9 +316,21 @@ StopInfo Simulation::integrate(double t_end) {
 }
 
 double Simulation::time() const { return impl_->state.t; }
+double Simulation::fixed_step() const { return impl_->integrator->fixed_step(); }
 const State& Simulation::state() const { return impl_->state; }
 const Scene& Simulation::scene() const { return impl_->scene; }
 const std::vector<std::string>& Simulation::sensitivity_names() const { return impl_->sensitivity_names; }
+
+Eigen::MatrixXd Simulation::mass_sensitivities() const {
+  const Impl& m = *impl_;
+  const auto columns = static_cast<Eigen::Index>(m.sensitivity_names.size());
+  Eigen::MatrixXd dm = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m.scene.system.size()), columns);
+  if (m.parameters) {  // the parameters of the dynamics are the last columns
+    const auto P = static_cast<Eigen::Index>(m.parameters->size());
+    for (Eigen::Index j = 0; j < P; ++j) dm.col(columns - P + j) = m.parameters->parameters[static_cast<std::size_t>(j)].mass;
+  }
+  return dm;
+}
 const Potential& Simulation::potential() const { return *impl_->potential; }
 
 void Simulation::set_state(const State& s) {

@@ -12,9 +12,23 @@ namespace noether {
 
 void Trajectory::append(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v) {
   if (!t_.empty() && !(t >= t_.back())) throw Error("a trajectory's frames must not go back in time");
+  if (!dx_.empty()) throw Error("a trajectory's frames all have derivatives or none has");
   t_.push_back(t);
   x_.push_back(x);
   v_.push_back(v);
+}
+
+void Trajectory::append(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::MatrixXd& dx,
+                        const Eigen::MatrixXd& dv) {
+  if (!t_.empty() && !(t >= t_.back())) throw Error("a trajectory's frames must not go back in time");
+  if (dx_.size() != t_.size()) throw Error("a trajectory's frames all have derivatives or none has");
+  if (dx.rows() != 3 * x.cols() || dv.rows() != dx.rows() || dv.cols() != dx.cols())
+    throw Error("a trajectory frame's derivatives must be 3n × P, for positions and velocities alike");
+  t_.push_back(t);
+  x_.push_back(x);
+  v_.push_back(v);
+  dx_.push_back(dx);
+  dv_.push_back(dv);
 }
 
 std::size_t Trajectory::body(const std::string& name) const {
@@ -27,7 +41,7 @@ std::size_t Trajectory::body(const std::string& name) const {
                    "; its bodies are " + known);
 }
 
-void Trajectory::sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const {
+Trajectory::Weights Trajectory::weights(double t) const {
   if (t_.empty() || !(t >= t_.front() && t <= t_.back())) {
     std::ostringstream why;
     why.precision(10);
@@ -38,20 +52,34 @@ void Trajectory::sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) cons
   // The first frame later than t; the frame before it is at or before t.
   const auto after = std::upper_bound(t_.begin(), t_.end(), t);
   const auto k1 = static_cast<std::size_t>(after - t_.begin());
+  Weights w;
   if (k1 == 0 || t_[k1 - 1] == t || k1 == t_.size()) {  // at a frame (the last of its time)
-    const std::size_t k = k1 - 1;
-    x = x_[k], v = v_[k];
-    return;
+    w.k0 = w.k1 = k1 - 1;
+    return w;
   }
-  const std::size_t k0 = k1 - 1;
-  const double dt = t_[k1] - t_[k0], s = (t - t_[k0]) / dt;
+  w.k0 = k1 - 1, w.k1 = k1;
+  const double dt = t_[k1] - t_[k1 - 1], s = (t - t_[k1 - 1]) / dt;
   // (16.2) and its time derivative
-  const double h00 = 2 * s * s * s - 3 * s * s + 1, h10 = s * s * s - 2 * s * s + s, h01 = -2 * s * s * s + 3 * s * s,
-               h11 = s * s * s - s * s;
-  const double d00 = (6 * s * s - 6 * s) / dt, d10 = 3 * s * s - 4 * s + 1, d01 = (-6 * s * s + 6 * s) / dt,
-               d11 = 3 * s * s - 2 * s;
-  x = h00 * x_[k0] + h10 * dt * v_[k0] + h01 * x_[k1] + h11 * dt * v_[k1];
-  v = d00 * x_[k0] + d10 * v_[k0] + d01 * x_[k1] + d11 * v_[k1];
+  w.a0 = 2 * s * s * s - 3 * s * s + 1, w.b0 = (s * s * s - 2 * s * s + s) * dt;
+  w.a1 = -2 * s * s * s + 3 * s * s, w.b1 = (s * s * s - s * s) * dt;
+  w.c0 = (6 * s * s - 6 * s) / dt, w.d0 = 3 * s * s - 4 * s + 1;
+  w.c1 = (-6 * s * s + 6 * s) / dt, w.d1 = 3 * s * s - 2 * s;
+  return w;
+}
+
+void Trajectory::sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const {
+  const Weights w = weights(t);
+  x = w.a0 * x_[w.k0] + w.b0 * v_[w.k0] + w.a1 * x_[w.k1] + w.b1 * v_[w.k1];
+  v = w.c0 * x_[w.k0] + w.d0 * v_[w.k0] + w.c1 * x_[w.k1] + w.d1 * v_[w.k1];
+}
+
+void Trajectory::sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v, Eigen::MatrixXd& dx,
+                        Eigen::MatrixXd& dv) const {
+  if (dx_.empty()) throw Error("this trajectory has no derivatives");
+  sample(t, x, v);
+  const Weights w = weights(t);
+  dx = w.a0 * dx_[w.k0] + w.b0 * dv_[w.k0] + w.a1 * dx_[w.k1] + w.b1 * dv_[w.k1];
+  dv = w.c0 * dx_[w.k0] + w.d0 * dv_[w.k0] + w.c1 * dx_[w.k1] + w.d1 * dv_[w.k1];
 }
 
 Trajectory read_trajectory(const std::filesystem::path& run_file) {

@@ -157,8 +157,14 @@ class Simulation {
   // and at t itself. Stops early at an event, an interrupt or the wall-time budget (the stop
   // reason says which; empty when t was reached). On an IntegrationError the state is the last
   // valid one, the output is finalized with the error, and the error propagates.
-  StopInfo integrate(double t);
+  // An impulse at t itself is applied before returning, unless `impulse_at_t` is false: then the
+  // state is the one just before it, and the impulse comes first in the next call — which may
+  // be integrate(t) again, to apply it and return (a fit samples both sides of an impulse).
+  StopInfo integrate(double t, bool impulse_at_t = true);
   double time() const;
+  // The integrator's fixed step (0 for adaptive methods): integrate(t) needs t − t0 to be a
+  // whole number of them, except at the scene's t_end.
+  double fixed_step() const;
   const State& state() const;
   // Replaces the state between calls, after checking it (shapes, finite values, attitudes in
   // SO(3) to 1e-10). The integrator starts again from it, which begins a new segment: the
@@ -168,6 +174,10 @@ class Simulation {
   // The keys of the tangent's sensitivity columns (run.sensitivities, one per component), in
   // order; they follow the state-transition matrix's columns when run.stm is on too.
   const std::vector<std::string>& sensitivity_names() const;
+  // ∂m_i/∂key for the sensitivity columns, bodies × columns: nonzero for keys that move a
+  // body's mass (its mass, its density); with the momenta's columns, ∂v/∂key = (∂γ/∂key −
+  // v ∂m/∂key) / m.
+  Eigen::MatrixXd mass_sensitivities() const;
   const Potential& potential() const;
   // The summary so far, judged against run.trust.
   RunSummary summary() const;

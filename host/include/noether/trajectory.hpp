@@ -19,6 +19,12 @@ class Trajectory {
   // Appends a frame: positions and velocities [3][body]; times must not decrease (two frames at
   // one time are an impulse's before and after).
   void append(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v);
+  // With their derivatives with respect to P parameters: ∂x/∂p and ∂v/∂p, 3n × P (rows 3j…3j+2
+  // for body j, as the positions' rows of docs/equations.md eq. 21.1). Every frame has them or
+  // none does.
+  void append(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, const Eigen::MatrixXd& dx,
+              const Eigen::MatrixXd& dv);
+  bool has_derivatives() const { return !dx_.empty(); }
   std::size_t frames() const { return t_.size(); }
   double t_first() const { return t_.front(); }
   double t_last() const { return t_.back(); }
@@ -30,10 +36,21 @@ class Trajectory {
   // time (the later of two frames at one time: after an impulse), else eq. 16.2 between the two
   // frames around t.
   void sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v) const;
+  // The same with the derivatives: eq. 16.2 is linear in the frames' x and v, so the
+  // interpolant's derivative is the interpolant of theirs (Error when the frames have none).
+  void sample(double t, Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v, Eigen::MatrixXd& dx, Eigen::MatrixXd& dv) const;
 
  private:
+  // The frames and weights of (16.2) at t: x = a0 x_k0 + b0 v_k0 + a1 x_k1 + b1 v_k1 and
+  // v = c0 x_k0 + d0 v_k0 + c1 x_k1 + d1 v_k1 (k0 = k1 and weights (1, 0, 0, 0) at a frame).
+  struct Weights {
+    std::size_t k0 = 0, k1 = 0;
+    double a0 = 1, b0 = 0, a1 = 0, b1 = 0, c0 = 0, d0 = 1, c1 = 0, d1 = 0;
+  };
+  Weights weights(double t) const;
   std::vector<double> t_;
   std::vector<Eigen::Matrix3Xd> x_, v_;
+  std::vector<Eigen::MatrixXd> dx_, dv_;
 };
 
 // The trajectory recorded in a run's output file: its complete frames, each verified against
