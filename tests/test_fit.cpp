@@ -3,6 +3,7 @@
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
+#include <noether/ensemble.hpp>
 #include <noether/fit.hpp>
 
 #include <gtest/gtest.h>
@@ -166,6 +167,49 @@ TEST(Fit, RefusesWhatItCannotDetermine) {
   EXPECT_NE(refusal(rows, {"bodies.planet.colour"}).find("--free 'bodies.planet.colour'"), std::string::npos);
   EXPECT_EQ(refusal(early, {"bodies.planet.velocity"}),
             "--free: 3 parameters from 2 observations: a fit needs at least as many observations as parameters");
+}
+
+}  // namespace
+
+namespace {
+
+// An ensemble from a fit (docs/ensembles.md, "From a fit"): 20000 samples of a fit's keys have
+// the fit's estimate as their mean and its covariance as theirs, within 5 of their standard
+// errors; a covariance that is not positive definite is refused.
+TEST(Fit, AnEnsembleDrawsFromTheFitsCovariance) {
+  FitResult r;
+  r.names = {"bodies.b.velocity.1", "bodies.b.mass", "impulses.0.delta_v.1"};
+  r.bodies = {"a", "b"};
+  r.estimate = Eigen::Vector3d(0.17, 4.3e9, -2.7e-3);
+  r.initial = r.estimate;
+  r.sigma = Eigen::Vector3d(3e-5, 6e7, 2e-6);
+  Eigen::Matrix3d rho;
+  rho << 1, 0.95, -0.3, 0.95, 1, -0.2, -0.3, -0.2, 1;
+  r.correlation = rho;
+  r.covariance = r.sigma.asDiagonal() * rho * r.sigma.asDiagonal();
+  const TempFile json("fit.json", fit_json(r));
+  const std::vector<Variation> vary = variations_from_fit(json.path);
+  ASSERT_EQ(vary.size(), 3u);
+  EXPECT_EQ(vary[1].key, "bodies.b.mass");
+  constexpr int kSamples = 20000;
+  Eigen::MatrixXd x(3, kSamples);
+  for (int i = 0; i < kSamples; ++i) {
+    const auto v = sample_values(vary, 7, static_cast<std::size_t>(i));
+    x.col(i) = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  const Eigen::Vector3d mean = x.rowwise().mean();
+  const Eigen::MatrixXd centred = x.colwise() - mean;
+  const Eigen::Matrix3d cov = centred * centred.transpose() / (kSamples - 1);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(mean[j], r.estimate[j], 5 * r.sigma[j] / std::sqrt(kSamples)) << j;
+    for (int k = 0; k < 3; ++k) {  // a sample covariance's standard error: √((C_jj C_kk + C_jk²)/N)
+      const double se = std::sqrt((r.covariance(j, j) * r.covariance(k, k) + r.covariance(j, k) * r.covariance(j, k)) / kSamples);
+      EXPECT_NEAR(cov(j, k), r.covariance(j, k), 5 * se) << j << "," << k;
+    }
+  }
+  r.covariance(0, 1) = r.covariance(1, 0) = 2 * r.sigma[0] * r.sigma[1];  // a correlation of 2
+  const TempFile bad("bad-fit.json", fit_json(r));
+  EXPECT_THROW(variations_from_fit(bad.path), SceneError);
 }
 
 }  // namespace

@@ -60,6 +60,7 @@ struct EnsembleCommand {
   std::string pair;
   std::size_t trajectories = 0;
   bool resume = false, force = false;
+  std::string from_fit;  // a fit's JSON: its keys drawn jointly from its estimate and covariance
 };
 int ensemble(const std::string& scene_file, const std::vector<std::string>& overrides,
              const std::vector<std::string>& vary, const EnsembleCommand& command);

@@ -51,6 +51,13 @@ int ensemble(const std::string& scene_file, const std::vector<std::string>& over
              const std::vector<std::string>& vary, const EnsembleCommand& command) {
   noether::EnsembleOptions options;
   for (const auto& v : vary) options.vary.push_back(noether::parse_variation(v));
+  if (!command.from_fit.empty())
+    for (auto& v : noether::variations_from_fit(command.from_fit)) {
+      for (const auto& other : options.vary)
+        if (other.key == v.key)
+          throw noether::SceneError("--vary " + other.key + ": the fit " + command.from_fit + " varies it already");
+      options.vary.push_back(std::move(v));
+    }
   options.samples = command.samples;
   options.seed = command.seed;
   options.threads = command.threads;
@@ -93,9 +100,10 @@ void add_ensemble_command(CLI::App& app, Command& chosen) {
   cmd->add_option("scene", o->scene, "scene file (YAML)")->required();
   cmd->add_option("--vary", o->vary,
                   "KEY=DIST: normal(mean, sd), uniform(a, b), log-uniform(a, b), list(v1, ...), grid(a, b, n) "
-                  "(repeatable; KEY as for --set)")
-      ->required();
+                  "(repeatable; KEY as for --set)");
   EnsembleCommand& e = o->ensemble;
+  cmd->add_option("--from-fit", e.from_fit,
+                  "FIT.json (noether fit -o): its keys drawn jointly from the estimate and its covariance");
   cmd->add_option("--samples", e.samples, "number of samples (default: the grids' points)");
   cmd->add_option("--seed", e.seed, "random seed: sample i draws from (seed, i)")->capture_default_str();
   cmd->add_option("--threads", e.threads, "worker threads (default: one per core)");
@@ -105,7 +113,11 @@ void add_ensemble_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--set", o->overrides, "override a scene key for every sample")->take_all();
   cmd->add_flag("--resume", e.resume, "continue the ensemble in the output file: run only missing samples");
   cmd->add_flag("--force", e.force, "replace an existing output file");
-  cmd->callback([o, &chosen] { chosen = [o] { return ensemble(o->scene, o->overrides, o->vary, o->ensemble); }; });
+  cmd->callback([o, &chosen] {
+    if (o->vary.empty() && o->ensemble.from_fit.empty())
+      throw CLI::ValidationError("ensemble", "give --vary KEY=DIST (repeatable) or --from-fit FIT.json");
+    chosen = [o] { return ensemble(o->scene, o->overrides, o->vary, o->ensemble); };
+  });
 }
 
 }  // namespace noether::app

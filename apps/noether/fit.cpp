@@ -19,15 +19,19 @@ namespace noether::app {
 namespace {
 
 struct FitCommand {
-  std::string scene, observations, output;
+  std::string scene, observations, output, plot;
   std::vector<std::string> overrides, free;
   FitOptions options;
   bool force = false;
 };
 
 int run_fit(const FitCommand& c) {
-  if (!c.output.empty() && !c.force && std::filesystem::exists(c.output))
-    throw OutputError(c.output + " exists; noether does not overwrite output unless asked: pass --force");
+  // The JSON: -o's, or the plot's data beside it (FIT.png → FIT.json).
+  std::string json = c.output;
+  if (json.empty() && !c.plot.empty()) json = std::filesystem::path(c.plot).replace_extension(".json").string();
+  for (const std::string& file : {json, c.plot})
+    if (!file.empty() && !c.force && std::filesystem::exists(file))
+      throw OutputError(file + " exists; noether does not overwrite output unless asked: pass --force");
   FitOptions options = c.options;
   for (const auto& list : c.free) {  // --free a,b and --free a --free b alike
     std::stringstream in(list);
@@ -37,13 +41,14 @@ int run_fit(const FitCommand& c) {
   PluginRegistry registry;
   const FitResult result = fit(c.scene, c.overrides, c.observations, options, registry);
   std::cout << format_fit(result);
-  if (!c.output.empty()) {
-    std::ofstream out(c.output);
+  if (!json.empty()) {
+    std::ofstream out(json);
     out << fit_json(result);
     out.close();
-    if (!out) throw OutputError(c.output + ": cannot write");
-    std::cout << "output                " << c.output << "\n";
+    if (!out) throw OutputError(json + ": cannot write");
+    std::cout << "output                " << json << "\n";
   }
+  if (!c.plot.empty()) draw_plot("plot_fit.py", {json, c.plot}, c.plot, json);
   return result.converged ? 0 : 1;
 }
 
@@ -64,7 +69,8 @@ void add_fit_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--tolerance", c->options.tolerance, "converged when every step is below this fraction of its 1σ")
       ->capture_default_str();
   cmd->add_option("-o,--output", c->output, "the fit as JSON: estimates, 1σ, covariance, correlation, χ², residuals");
-  cmd->add_flag("--force", c->force, "replace an existing output file");
+  cmd->add_option("--plot", c->plot, "FIT.png: the residuals over their sigma against time (its data: the JSON)");
+  cmd->add_flag("--force", c->force, "replace existing output files");
   cmd->callback([c, &chosen] { chosen = [c] { return run_fit(*c); }; });
 }
 

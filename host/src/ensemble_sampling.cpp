@@ -2,10 +2,15 @@
 // from (seed, i) alone, so that any sample can be run, or run again, by itself.
 #include <noether/ensemble.hpp>
 #include <noether/error.hpp>
+#include <noether/params.hpp>
+#include <noether/scene.hpp>
+
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -116,8 +121,55 @@ std::size_t grid_size(const std::vector<Variation>& vary) {
   return n;
 }
 
+std::vector<Variation> variations_from_fit(const std::filesystem::path& fit_json) {
+  std::ifstream in(fit_json);
+  if (!in) throw SceneError(fit_json.string() + ": cannot read the fit");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string file = fit_json.string();
+  const Params fit = parse_params(text.str(), file);  // JSON is YAML
+  if (!fit.is_map() || !fit.has("parameters") || !fit.has("covariance") || !fit.at("parameters").is_sequence())
+    throw SceneError(file + ": not a fit's JSON (noether fit -o FILE.json): it needs parameters and covariance");
+  const auto& parameters = fit.at("parameters").items();
+  const auto P = static_cast<Eigen::Index>(parameters.size());
+  Eigen::MatrixXd C(P, P);
+  const auto& rows = fit.at("covariance").items();
+  if (static_cast<Eigen::Index>(rows.size()) != P)
+    throw SceneError(file + ": its covariance has " + std::to_string(rows.size()) + " rows for " + std::to_string(P) +
+                     " parameters");
+  for (Eigen::Index i = 0; i < P; ++i) {
+    const std::vector<double> row = rows[static_cast<std::size_t>(i)].as_doubles();
+    if (static_cast<Eigen::Index>(row.size()) != P) throw SceneError(file + ": its covariance is not square");
+    for (Eigen::Index j = 0; j < P; ++j) C(i, j) = row[static_cast<std::size_t>(j)];
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (C + C.transpose()));
+  if (llt.info() != Eigen::Success || !C.allFinite())
+    throw SceneError(file + ": its covariance is not positive definite; it cannot be sampled");
+  const Eigen::MatrixXd L = llt.matrixL();
+  std::vector<Variation> out;
+  for (Eigen::Index j = 0; j < P; ++j) {
+    const Params& p = parameters[static_cast<std::size_t>(j)];
+    Variation v;
+    v.kind = Variation::Kind::Fitted;
+    v.key = p.at("name").as_string();
+    v.args.push_back(p.at("estimate").as_double());
+    for (Eigen::Index k = 0; k <= j; ++k) v.args.push_back(L(j, k));
+    // What /inputs/<key> records as its distribution (and --resume compares): all of it.
+    std::ostringstream text;
+    text.precision(17);
+    text << v.key << "=fit(" << file << "; mean " << v.args[0] << ", Cholesky row";
+    for (std::size_t k = 1; k < v.args.size(); ++k) text << " " << v.args[k];
+    text << ")";
+    v.text = text.str();
+    out.push_back(v);
+  }
+  if (out.empty()) throw SceneError(file + ": the fit has no parameters");
+  return out;
+}
+
 std::vector<double> sample_values(const std::vector<Variation>& vary, std::uint64_t seed, std::size_t index) {
   std::vector<double> out;
+  std::vector<double> z;  // the standard normals of the Fitted variations so far
   // Grids: the index in mixed radix, the first grid the slowest digit.
   std::size_t stride = grid_size(vary);
   for (std::size_t k = 0; k < vary.size(); ++k) {
@@ -137,6 +189,13 @@ std::vector<double> sample_values(const std::vector<Variation>& vary, std::uint6
       case Variation::Kind::List:
         out.push_back(v.args[std::min(v.args.size() - 1, static_cast<std::size_t>(u1 * static_cast<double>(v.args.size())))]);
         break;
+      case Variation::Kind::Fitted: {  // x_j = μ_j + Σ_{k ≤ j} L_jk z_k
+        z.push_back(std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2));
+        double x = v.args[0];
+        for (std::size_t m = 0; m < z.size() && m + 1 < v.args.size(); ++m) x += v.args[m + 1] * z[m];
+        out.push_back(x);
+        break;
+      }
       case Variation::Kind::Grid: {
         const auto n = static_cast<std::size_t>(v.args[2]);
         stride /= n;

@@ -29,7 +29,7 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "relative_equilibrium",
+__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "fit", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
@@ -43,6 +43,25 @@ def observe(run, observable, times=None, line_of_sight=None):
     The frames are verified against their checksums; a time outside the run is a SceneError."""
     los = [] if line_of_sight is None else [float(c) for c in line_of_sight]
     return _noether.observe(os.fspath(run), observable, None if times is None else [float(t) for t in times], los)
+
+
+def fit(scene, observations, free, set=None, max_iterations=30, tolerance=1e-3):
+    """`noether fit` (docs/fitting.md): the scene's keys `free` (a list, as --sensitivity takes
+    them) estimated from an observation file by weighted least squares on the run's own
+    sensitivities. Returns the fit as a dict — the fields of `noether fit -o FIT.json`, with
+    "names", "estimate", "sigma" and "initial" (NumPy arrays, one entry per parameter component)
+    and "covariance", "correlation" as NumPy matrices. Bad input raises SceneError, as the
+    command exits 2; a fit that did not converge has "converged": False and says why in "stop"."""
+    free = [free] if isinstance(free, str) else list(free)
+    text = _noether.fit(os.fspath(scene), os.fspath(observations), free, list(set or []), int(max_iterations),
+                        float(tolerance))
+    result = json.loads(text)
+    for key in ("estimate", "sigma", "initial"):
+        result[key] = _np.array([p[key] for p in result["parameters"]])
+    result["names"] = [p["name"] for p in result["parameters"]]
+    for key in ("covariance", "correlation"):
+        result[key] = _np.array(result[key])
+    return result
 
 
 def output_series():

@@ -10,6 +10,7 @@
 #include <noether/diagnostics.hpp>
 #include <noether/force_jacobian.hpp>
 #include <noether/error.hpp>
+#include <noether/fit.hpp>
 #include <noether/observations.hpp>
 #include <noether/output_schema.hpp>
 #include <noether/registry.hpp>
@@ -445,6 +446,20 @@ PYBIND11_MODULE(_noether, m) {
   m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
   m.def("output_series", &output_series, "every series of an output file: name, path, shape, unit, description");
   m.def("compare", &compare);
+  // noether.fit (docs/fitting.md): the fit as its JSON text (the package parses it).
+  m.def("fit", [](const std::string& scene, const std::string& observations, const std::vector<std::string>& free,
+                  const std::vector<std::string>& overrides, int max_iterations, double tolerance) {
+    noether::FitOptions options;
+    options.free = free;
+    options.max_iterations = max_iterations;
+    options.tolerance = tolerance;
+    noether::FitResult result;
+    {
+      py::gil_scoped_release release;  // runs of the scene: other Python threads may go on
+      result = noether::fit(scene, overrides, observations, options, registry());
+    }
+    return noether::fit_json(result);
+  });
   // noether.observe (docs/fitting.md): an observable of a run's file at its frames or at given times.
   m.def("observe", [](const std::filesystem::path& run, const std::string& spec, std::optional<std::vector<double>> times,
                       const std::vector<double>& line_of_sight) {

@@ -27,8 +27,9 @@ def noether_run(*args, check=True):
 noether_run("run", scene, "--no-progress", "--force", "--set", f"impulses.0.delta_v.1={truth}", "-o", "truth.h5")
 noether_run("observe", "truth.h5", "--at", epochs, "--noise", "--seed", "11", "-o", "observed.csv", "--force")
 out = noether_run("fit", scene, "--observations", "observed.csv", "--free", "impulses.0.delta_v.1",
-                  "--free", "bodies.dimorphos.density", "-o", "fit.json", "--force").stdout
+                  "--free", "bodies.dimorphos.density", "-o", "fit.json", "--plot", "residuals.png", "--force").stdout
 print(out)
+assert "plot: residuals.png" in out and os.path.getsize("residuals.png") > 10000, out
 fit = json.load(open("fit.json"))
 assert fit["converged"] and fit["observations"] == 72 and fit["degrees_of_freedom"] == 70, fit["stop"]
 p = {x["name"]: x for x in fit["parameters"]}
@@ -49,10 +50,32 @@ print(f"Δv = {dv['estimate'] * 1e3:.4f} ± {dv['sigma'] * 1e3:.4f} mm/s (truth 
 # The estimate's overrides remake the scene at the estimate: a run with them observed at the
 # epochs gives the fit's computed values.
 sets = [a for o in fit["overrides"] for a in ("--set", o)]
-noether_run("run", scene, "--no-progress", "--force", *sets, "--set", "run.output_every=30", "-o", "estimate.h5")
+noether_run("run", scene, "--no-progress", "--force", *sets, "--set", "run.output_every=600", "-o", "estimate.h5")
 again = noether_run("observe", "estimate.h5", "--at", epochs).stdout.splitlines()
 computed = [float(line.split(",")[4]) for line in again if line and line[0].isdigit()]
 assert max(abs(a - r["computed"]) for a, r in zip(computed, res)) < 1e-6, "the overrides do not remake the fit"
+
+
+# The residual plot alone: its JSON beside it (a fit refused before it runs: an existing file).
+refused_plot = noether_run("fit", scene, "--observations", "observed.csv", "--free", "impulses.0.delta_v.1",
+                           "--plot", "fit.png", check=False)
+assert refused_plot.returncode == 2 and "fit.json exists" in refused_plot.stderr, refused_plot.stderr
+
+# An ensemble from the fit: its keys drawn jointly from the estimate and covariance.
+import h5py  # noqa: E402
+
+noether_run("ensemble", scene, "--from-fit", "fit.json", "--samples", "6", "--threads", "2", "-o", "ens.h5", "--force")
+with h5py.File("ens.h5", "r") as f:
+    drawn = f["inputs/impulses.0.delta_v.1"][:]
+    density = f["inputs/bodies.dimorphos.density"][:]
+    assert "fit(fit.json; mean" in f["inputs/impulses.0.delta_v.1"].attrs["distribution"]
+    assert list(f["outcome"][:]) == [0] * 6
+z = (drawn - dv["estimate"]) / dv["sigma"]
+assert np.all(np.abs(z) < 5) and np.std(z) > 0.2, z
+# The draws carry the fit's correlation (0.95): the density's deviations follow Δv's.
+assert np.corrcoef(drawn, density)[0, 1] > 0.5, np.corrcoef(drawn, density)
+print(f"ensemble from the fit: 6 samples, Δv within {np.max(np.abs(z)):.1f}σ of the estimate, "
+      f"correlation with the density {np.corrcoef(drawn, density)[0, 1]:.2f}")
 
 
 def refused(expect, *args):

@@ -42,3 +42,25 @@ def test_observe_agrees_with_the_command_and_the_file(source, noether_exe, tmp_p
         noether.observe(run, "range:dimorphus:didymos")
     with pytest.raises(noether.SceneError, match="needs a line of sight"):
         noether.observe(run, "sky.north:dimorphos:didymos")
+
+
+def test_fit_is_the_commands(source, noether_exe, tmp_path):
+    """noether.fit gives the command's fit (the same numbers in its JSON), arrays by name."""
+    import json
+    scene = str(source / "examples/didymos-dart.yaml")
+    subprocess.run([noether_exe, "run", scene, "--no-progress", "--set", "impulses.0.delta_v.1=-0.0027",
+                    "-o", str(tmp_path / "truth.h5")], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([noether_exe, "observe", str(tmp_path / "truth.h5"), "--at",
+                    str(source / "examples/observations/dart-epochs.csv"), "--noise", "--seed", "3", "-o",
+                    str(tmp_path / "obs.csv")], check=True, capture_output=True)
+    subprocess.run([noether_exe, "fit", scene, "--observations", str(tmp_path / "obs.csv"), "--free",
+                    "impulses.0.delta_v.1", "-o", str(tmp_path / "fit.json")], check=True, stdout=subprocess.DEVNULL)
+    command = json.load(open(tmp_path / "fit.json"))
+    fit = noether.fit(scene, tmp_path / "obs.csv", ["impulses.0.delta_v.1"])
+    assert fit["names"] == ["impulses.0.delta_v.1"] and fit["converged"]
+    assert fit["estimate"][0] == command["parameters"][0]["estimate"]
+    assert fit["sigma"][0] == command["parameters"][0]["sigma"]
+    assert fit["covariance"].shape == (1, 1) and fit["chi2"] == command["chi2"]
+    assert abs(fit["estimate"][0] + 0.0027) < 3 * fit["sigma"][0]
+    with pytest.raises(noether.SceneError, match="--free 'bodies.dimorphos.colour'"):
+        noether.fit(scene, tmp_path / "obs.csv", "bodies.dimorphos.colour")

@@ -21,16 +21,24 @@ namespace noether {
 // A distribution of one scene key: normal(μ, σ), uniform(a, b), log-uniform(a, b) (a, b > 0),
 // list(v1, v2, ...) (one of the values, each equally likely), grid(a, b, n) (n values from a to
 // b; several grids form their product, the first varying slowest).
+// A fit's estimate (noether fit -o FIT.json) varies its keys jointly: a multivariate normal of the
+// fit's covariance C = L Lᵀ, each key one Variation of kind Fitted, consecutive and in order.
 struct Variation {
-  enum class Kind { Normal, Uniform, LogUniform, List, Grid };
+  enum class Kind { Normal, Uniform, LogUniform, List, Grid, Fitted };
   std::string key;    // as for --set: bodies.dimorphos.velocity.1
   std::string text;   // the specification as given
   Kind kind = Kind::Normal;
-  std::vector<double> args;  // the parameters, or the list's values
+  std::vector<double> args;  // the parameters, or the list's values; Fitted: μ_j, L_j0 … L_jj
 };
 
 // "KEY=normal(0.1, 0.01)" → a Variation; SceneError naming the problem otherwise.
 Variation parse_variation(const std::string& text);
+
+// The variations of a fit's estimate, read from its JSON (`noether fit -o`): one Fitted per
+// parameter, x = μ + L z with L the Cholesky factor of the fit's covariance and z standard
+// normal (docs/ensembles.md, "From a fit"). SceneError naming the file when it is not a fit's,
+// or its covariance is not positive definite.
+std::vector<Variation> variations_from_fit(const std::filesystem::path& fit_json);
 
 // The values of sample `index` (in the order of `vary`): a function of (seed, index) only.
 // `samples` sizes the grids' product.
