@@ -1,5 +1,6 @@
 // noether fit: weighted least squares by Levenberg–Marquardt on the run's sensitivities, and the
 // covariance of the estimate (docs/equations.md §28; docs/fitting.md).
+#include "json_text.hpp"
 #include "scene_sensitivity.hpp"
 
 #include <noether/error.hpp>
@@ -20,18 +21,15 @@ namespace {
 
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
+using detail::json_number;
+using detail::json_string;
+using detail::exact_text;
 
 // The scene's overrides with each parameter set to its value.
 std::vector<std::string> with_values(const std::vector<std::string>& overrides, const std::vector<std::string>& names,
                                      const VectorXd& values) {
   std::vector<std::string> out = overrides;
-  for (std::size_t j = 0; j < names.size(); ++j) out.push_back(names[j] + "=" + number(values[static_cast<Eigen::Index>(j)]));
+  for (std::size_t j = 0; j < names.size(); ++j) out.push_back(names[j] + "=" + exact_text(values[static_cast<Eigen::Index>(j)]));
   return out;
 }
 
@@ -160,7 +158,7 @@ FitResult fit(const std::string& scene_file, const std::vector<std::string>& ove
         lambda = lambda / 10 < 1e-6 ? 0.0 : lambda / 10;
         if ((delta.cwiseAbs().array() < options.tolerance * sigma.array()).all()) {
           result.converged = true;
-          result.stop = "every parameter moved by less than " + number(options.tolerance) + " of its 1σ";
+          result.stop = "every parameter moved by less than " + exact_text(options.tolerance) + " of its 1σ";
         }
       } else {
         lambda = lambda == 0.0 ? 1e-3 : 10 * lambda;
@@ -229,21 +227,6 @@ std::string format_fit(const FitResult& r) {
 }
 
 namespace {
-
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char u[8];
-      std::snprintf(u, sizeof u, "\\u%04x", c);
-      out += u;
-    } else out += c;
-  }
-  return out + "\"";
-}
-
-std::string json_number(double v) { return std::isfinite(v) ? number(v) : "null"; }
 
 std::string json_matrix(const MatrixXd& m) {
   std::string out = "[";

@@ -1,5 +1,6 @@
 // The model a fit compares with observations: one run of the scene with its sensitivities to the
 // free keys, sampled where the observations need it (docs/equations.md §28).
+#include "json_text.hpp"
 #include "scene_sensitivity.hpp"
 
 #include <noether/error.hpp>
@@ -17,12 +18,6 @@
 namespace noether {
 
 namespace {
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
 
 // "file:line" of an observation, for messages.
 std::string where_of(const std::string& file, const Observation& o) {
@@ -60,16 +55,16 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
   double t_last = t0;
   for (const auto& o : observations) {
     if (!(o.t >= t0))
-      throw SceneError(where_of(observations_file, o) + ": t = " + number(o.t) + " is before the run starts (t0 = " +
-                       number(t0) + ")");
+      throw SceneError(where_of(observations_file, o) + ": t = " + detail::exact_text(o.t) + " is before the run starts (t0 = " +
+                       detail::exact_text(t0) + ")");
     t_last = std::max(t_last, o.t);
   }
-  if (!(t_last > t0)) throw SceneError("a fit needs an observation after the run's start (t0 = " + number(t0) + ")");
+  if (!(t_last > t0)) throw SceneError("a fit needs an observation after the run's start (t0 = " + detail::exact_text(t0) + ")");
   // The scene runs to the last observation, with the sensitivities to the free keys only.
   std::string keys;
   for (const auto& k : free) keys += (keys.empty() ? "" : ", ") + k;
   std::vector<std::string> as_run = overrides;
-  for (const std::string& o : {"run.t_end=" + number(t_last), std::string("run.stm=false"),
+  for (const std::string& o : {"run.t_end=" + detail::exact_text(t_last), std::string("run.stm=false"),
                                std::string("run.chaos=false"), "run.sensitivities=[" + keys + "]"})
     as_run.push_back(o);
   std::unique_ptr<Simulation> sim;

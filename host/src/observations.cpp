@@ -159,13 +159,11 @@ Observable observable_from_spec(const std::string& spec, const std::vector<std::
   for (std::string p; std::getline(in, p, ':');) parts.push_back(p);
   if (parts.size() != 3)
     throw SceneError("observable '" + spec + "': give NAME:TARGET:CENTER (e.g. position.x:dimorphos:didymos)");
-  Trajectory bodies;  // its body() names the bodies in its errors
-  bodies.names = names;
   Observable o;
   try {
     o.kind = observable_kind(parts[0]);
-    o.target = bodies.body(parts[1]);
-    o.center = bodies.body(parts[2]);
+    o.target = body_index(names, parts[1]);
+    o.center = body_index(names, parts[2]);
   } catch (const SceneError& e) {
     throw SceneError("observable '" + spec + "': " + e.what());
   }

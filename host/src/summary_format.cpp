@@ -1,4 +1,6 @@
 // A run's summary as `noether run` prints it: text, or one JSON object (--summary json).
+#include "json_text.hpp"
+
 #include <noether/simulation.hpp>
 
 #include <cmath>
@@ -170,33 +172,8 @@ std::string format_summary(const RunSummary& s) {
   return out;
 }
 
-namespace {
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const unsigned char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-      out += escaped;
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
-}  // namespace
+using detail::json_number;
+using detail::json_string;
 
 std::string format_summary_json(const RunSummary& s) {
   std::ostringstream out;

@@ -31,7 +31,7 @@ void Trajectory::append(double t, const Eigen::Matrix3Xd& x, const Eigen::Matrix
   dv_.push_back(dv);
 }
 
-std::size_t Trajectory::body(const std::string& name) const {
+std::size_t body_index(const std::vector<std::string>& names, const std::string& name) {
   for (std::size_t j = 0; j < names.size(); ++j)
     if (names[j] == name) return j;
   std::string known;

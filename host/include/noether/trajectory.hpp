@@ -11,6 +11,10 @@
 
 namespace noether {
 
+// The index of a body in `names`; SceneError "no body 'X' in the run (did you mean …?); its
+// bodies are …" when there is none.
+std::size_t body_index(const std::vector<std::string>& names, const std::string& name);
+
 class Trajectory {
  public:
   std::vector<std::string> names;  // the bodies, in scene order
@@ -29,8 +33,8 @@ class Trajectory {
   double t_first() const { return t_.front(); }
   double t_last() const { return t_.back(); }
   const std::vector<double>& times() const { return t_; }
-  // The body index of a name; SceneError naming the bodies when there is none.
-  std::size_t body(const std::string& name) const;
+  // The body index of a name (body_index).
+  std::size_t body(const std::string& name) const { return body_index(names, name); }
 
   // Positions and velocities at t ∈ [t_first, t_last] (SceneError outside): a frame's own at its
   // time (the later of two frames at one time: after an impulse), else eq. 16.2 between the two
