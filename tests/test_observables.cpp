@@ -29,6 +29,10 @@ TEST(Observables, GradientsAgreeWithDifferences) {
     for (const auto& name : observable_names()) {
       Observable o;
       o.kind = observable_kind(name);
+      if (o.is_lightcurve()) {  // not a function of r and u: refused by evaluate (tests/test_lightcurve.cpp)
+        EXPECT_THROW(evaluate(o, r, u), Error);
+        continue;
+      }
       o.line_of_sight = Vector3d(u01(random), u01(random), u01(random)).normalized();
       const ObservableValue at = evaluate(o, r, u);
       const double h = 1e-6;
@@ -198,6 +202,81 @@ TEST(Observations, BadRowsAreRefusedByLineAndColumn) {
             "value, sigma; docs/fitting.md)");
   EXPECT_EQ(error_of(header + "0,range,dimorphos\n"), ":2: the row has 3 cells; column 'center' is cell 4");
   EXPECT_EQ(error_of(header), ": the file holds no observation");
+  const std::string lc = "t,observable,target,center,value,sigma,los_x,los_y,los_z\n";
+  EXPECT_EQ(error_of(lc + "0,lightcurve.lambert,dimorphos,didymos,1,1,1,0,0\n"),
+            ":2: lightcurve.lambert needs the sunlight's direction: columns sun_x, sun_y, sun_z (from the Sun towards "
+            "the bodies)");
+  EXPECT_EQ(error_of("t,observable,target,center,value,sigma,los_x,los_y,los_z,sun_x,sun_y,sun_z\n"
+                     "0,lightcurve.lambert,dimorphos,didymos,1,1,1,0,0,0,0,0\n"),
+            ":2: columns sun_x, sun_y, sun_z: the sunlight's direction is zero");
+}
+
+// A lightcurve row may name one body twice (its lightcurve alone); its directions read back.
+TEST(Observations, LightcurveRowsReadAndWriteBack) {
+  const ObservationFile f(
+      "t,observable,target,center,value,sigma,los_x,los_y,los_z,sun_x,sun_y,sun_z\n"
+      "0,lightcurve.lommel_seeliger,didymos,didymos,2.5e5,100,-2,0,0,0,-1,0\n"
+      "60,position.x,dimorphos,didymos,1200,1,,,,,,\n");
+  const auto rows = read_observations(f.path, {"didymos", "dimorphos"});
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_TRUE(rows[0].observable.is_lightcurve());
+  EXPECT_EQ(rows[0].observable.line_of_sight, Vector3d(-1, 0, 0));
+  EXPECT_EQ(rows[0].observable.sunlight, Vector3d(0, -1, 0));
+  std::ostringstream out;
+  write_observations(out, rows, {"didymos", "dimorphos"});
+  const ObservationFile again(out.str());
+  const auto back = read_observations(again.path, {"didymos", "dimorphos"});
+  EXPECT_EQ(back[0].observable.sunlight, rows[0].observable.sunlight);
+  EXPECT_EQ(back[0].value, rows[0].value);
+  EXPECT_FALSE(back[1].observable.is_lightcurve());
+  EXPECT_THROW(observable_from_spec("lightcurve.lambert:didymos:didymos", {"didymos"}, {1, 0, 0}), SceneError);
+  EXPECT_THROW(observable_from_spec("range:didymos:didymos", {"didymos"}), SceneError);
+  EXPECT_NO_THROW(observable_from_spec("lightcurve.lambert:didymos:didymos", {"didymos"}, {1, 0, 0}, {1, 0, 0}));
+}
+
+// Attitudes between frames (eq. 29.4) for a body that spins about its own z while its z precesses
+// about the scene's z: R(t) = Rz(ω1 t) Rx(β) Rz(ω2 t), Ω = Rz(ω2 t)ᵀ Rx(β)ᵀ ω1 ẑ + ω2 ẑ. Exact
+// at the frames, fourth order between them (the error 16× smaller at half the spacing), and
+// frames too far apart for the spin refused.
+TEST(Observables, AttitudesBetweenFramesAreFourthOrder) {
+  const double w1 = 2e-4, w2 = 7e-4, beta = 0.4;
+  auto R_at = [&](double t) {
+    return Mat3(Eigen::AngleAxisd(w1 * t, Vector3d::UnitZ()) * Eigen::AngleAxisd(beta, Vector3d::UnitX()) *
+                Eigen::AngleAxisd(w2 * t, Vector3d::UnitZ()));
+  };
+  auto omega_at = [&](double t) {
+    const Mat3 B(Eigen::AngleAxisd(beta, Vector3d::UnitX())), C(Eigen::AngleAxisd(w2 * t, Vector3d::UnitZ()));
+    return Vector3d(C.transpose() * B.transpose() * (w1 * Vector3d::UnitZ()) + w2 * Vector3d::UnitZ());
+  };
+  auto worst_error = [&](double dt) {
+    Trajectory tr;
+    tr.names = {"moon"};
+    for (int k = 0; k <= static_cast<int>(3600 / dt); ++k) {
+      const double t = k * dt;
+      tr.append(t, Eigen::Matrix3Xd::Zero(3, 1), Eigen::Matrix3Xd::Zero(3, 1));
+      tr.append_attitudes({R_at(t)}, omega_at(t));
+    }
+    EXPECT_LT((tr.attitudes(dt)[0] - R_at(dt)).norm(), 1e-15);
+    double worst = 0;
+    for (double t = 0.37 * dt; t < 3600; t += dt)
+      worst = std::max(worst, log_so3(R_at(t).transpose() * tr.attitudes(t)[0]).norm());
+    return worst;
+  };
+  const double e300 = worst_error(300), e150 = worst_error(150);
+  EXPECT_LT(e300, 1e-5);
+  EXPECT_NEAR(e300 / e150, 16.0, 2.0);
+  Trajectory fast;
+  fast.names = {"moon"};
+  for (double t : {0.0, 4000.0}) {
+    fast.append(t, Eigen::Matrix3Xd::Zero(3, 1), Eigen::Matrix3Xd::Zero(3, 1));
+    fast.append_attitudes({R_at(t)}, omega_at(t));
+  }
+  try {
+    fast.attitudes(2000);
+    ADD_FAILURE() << "frames 4000 s apart for a spin of 9e-4 rad/s were interpolated";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("'moon' turns by"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

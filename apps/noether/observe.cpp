@@ -21,7 +21,8 @@ namespace noether::app {
 struct ObserveOptions {
   std::string run, at, output;
   std::vector<std::string> observables;
-  std::vector<double> line_of_sight;
+  std::vector<double> line_of_sight, sunlight;
+  int tessellation = 4;
   std::size_t every = 1;
   double sigma = 0.0;
   bool noise = false, force = false;
@@ -33,13 +34,22 @@ int observe(const ObserveOptions& o) {
     throw OutputError(o.output + " exists; noether does not overwrite output unless asked: pass --force");
   if (o.sigma < 0) throw SceneError("--sigma must be positive");
   if (o.every < 1) throw SceneError("--every must be at least 1");
-  const Trajectory run = read_trajectory(o.run);
+  if (o.tessellation < 0 || o.tessellation > 8) throw SceneError("--tessellation must be in [0, 8]");
+  // The names first (a cheap read), then the whole trajectory — with shapes when a row is a lightcurve.
+  const std::vector<std::string> names = read_trajectory_names(o.run);
   std::vector<Observation> rows;
+  std::vector<Observable> wanted;
   if (!o.at.empty()) {
-    rows = read_observations(o.at, run.names, ObservationsNeed::times_only);
+    rows = read_observations(o.at, names, ObservationsNeed::times_only);
   } else {
-    std::vector<Observable> wanted;
-    for (const auto& spec : o.observables) wanted.push_back(observable_from_spec(spec, run.names, o.line_of_sight));
+    for (const auto& spec : o.observables)
+      wanted.push_back(observable_from_spec(spec, names, o.line_of_sight, o.sunlight));
+  }
+  bool lightcurve = false;
+  for (const auto& row : rows) lightcurve = lightcurve || row.observable.is_lightcurve();
+  for (const auto& w : wanted) lightcurve = lightcurve || w.is_lightcurve();
+  const Trajectory run = read_trajectory(o.run, TrajectoryShapes{lightcurve, o.tessellation});
+  if (o.at.empty()) {
     const auto& t = run.times();
     for (std::size_t k = 0; k < t.size(); k += o.every) {
       if (k > 0 && t[k] == t[k - 1]) continue;  // an impulse's two frames: the value after it
@@ -88,13 +98,21 @@ void add_observe_command(CLI::App& app, Command& chosen) {
   cmd->add_option("run", o->run, "a run's output file (HDF5)")->required();
   auto* given = cmd->add_option("--observable", o->observables,
                                 "NAME:TARGET:CENTER at every frame; NAME one of position.x, position.y, position.z, "
-                                "sky.east, sky.north, range, range_rate")
+                                "sky.east, sky.north, range, range_rate, lightcurve.lommel_seeliger, "
+                                "lightcurve.lambert")
                     ->take_all();
   auto* at = cmd->add_option("--at", o->at, "an observation file: its rows' values computed (value and sigma may be empty)");
   given->excludes(at);
-  cmd->add_option("--line-of-sight", o->line_of_sight, "X,Y,Z: from the observer to the bodies (sky.east, sky.north)")
+  cmd->add_option("--line-of-sight", o->line_of_sight,
+                  "X,Y,Z: from the observer to the bodies (sky.east, sky.north, lightcurves)")
       ->delimiter(',')
       ->expected(3);
+  cmd->add_option("--sunlight", o->sunlight, "X,Y,Z: the direction sunlight travels, from the Sun to the bodies (lightcurves)")
+      ->delimiter(',')
+      ->expected(3);
+  cmd->add_option("--tessellation", o->tessellation,
+                  "lightcurves: an ellipsoid's or sphere's facets, 20·4^LEVEL (docs/fitting.md, \"Lightcurves\")")
+      ->capture_default_str();
   cmd->add_option("--every", o->every, "with --observable: every K-th frame")->capture_default_str();
   cmd->add_option("--sigma", o->sigma, "1σ written for rows that give none (the observable's unit)");
   cmd->add_flag("--noise", o->noise, "add Gaussian noise of each row's sigma (synthetic data)");

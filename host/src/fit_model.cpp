@@ -54,6 +54,10 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
   const double t0 = base.initial.t;
   double t_last = t0;
   for (const auto& o : observations) {
+    if (o.observable.is_lightcurve())
+      throw SceneError(where_of(observations_file, o) + ": " + observable_name(o.observable.kind) +
+                       " cannot be fitted yet (its derivatives through the attitudes are not computed); fit "
+                       "positions, sky offsets, ranges or range rates");
     if (!(o.t >= t0))
       throw SceneError(where_of(observations_file, o) + ": t = " + detail::exact_text(o.t) + " is before the run starts (t0 = " +
                        detail::exact_text(t0) + ")");

@@ -14,7 +14,8 @@ using Eigen::Vector3d;
 
 const std::vector<std::string>& observable_names() {
   static const std::vector<std::string> names{"position.x", "position.y", "position.z", "sky.east",
-                                              "sky.north",  "range",      "range_rate"};
+                                              "sky.north",  "range",      "range_rate",
+                                              "lightcurve.lommel_seeliger", "lightcurve.lambert"};
   return names;
 }
 
@@ -83,6 +84,10 @@ ObservableValue evaluate(const Observable& o, const Vector3d& r, const Vector3d&
       out.d_u = rhat;
       break;
     }
+    case Observable::Kind::lightcurve_lommel_seeliger:
+    case Observable::Kind::lightcurve_lambert:
+      throw Error("a lightcurve is not a function of the relative position: it is computed from the bodies' shapes "
+                  "and attitudes (observe)");
   }
   return out;
 }

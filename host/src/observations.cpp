@@ -1,5 +1,6 @@
 // Observation files: reading with errors by file, line and column; writing (docs/fitting.md).
 #include <noether/error.hpp>
+#include <noether/lightcurve.hpp>
 #include <noether/observations.hpp>
 
 #include <cmath>
@@ -105,7 +106,7 @@ std::vector<Observation> read_observations(const std::filesystem::path& file, co
     }
     o.observable.target = body("target");
     o.observable.center = body("center");
-    if (o.observable.target == o.observable.center)
+    if (o.observable.target == o.observable.center && !o.observable.is_lightcurve())
       throw SceneError(where + ": target and center are the same body ('" + cell("target") + "')");
     o.value = number_in("value", strict).value_or(std::nan(""));
     const std::optional<double> sigma = number_in("sigma", strict);
@@ -124,6 +125,15 @@ std::vector<Observation> read_observations(const std::filesystem::path& file, co
         throw SceneError(where + ": columns los_x, los_y, los_z: " + e.what());
       }
     }
+    if (o.observable.needs_sunlight()) {
+      for (const char* c : {"sun_x", "sun_y", "sun_z"})
+        if (!column.count(c))
+          throw SceneError(where + ": " + cell("observable") +
+                           " needs the sunlight's direction: columns sun_x, sun_y, sun_z (from the Sun towards the bodies)");
+      const Eigen::Vector3d sun(*number_in("sun_x", true), *number_in("sun_y", true), *number_in("sun_z", true));
+      if (!(sun.norm() > 0)) throw SceneError(where + ": columns sun_x, sun_y, sun_z: the sunlight's direction is zero");
+      o.observable.sunlight = sun.normalized();
+    }
     rows.push_back(o);
   }
   if (column.empty()) throw SceneError(file.string() + ": no header (the file is empty or all comments)");
@@ -132,9 +142,10 @@ std::vector<Observation> read_observations(const std::filesystem::path& file, co
 }
 
 void write_observations(std::ostream& out, const std::vector<Observation>& rows, const std::vector<std::string>& names) {
-  bool sky = false;
-  for (const auto& o : rows) sky = sky || o.observable.needs_line_of_sight();
-  out << "t,observable,target,center,value,sigma" << (sky ? ",los_x,los_y,los_z" : "") << "\n";
+  bool sky = false, sun = false;
+  for (const auto& o : rows) sky = sky || o.observable.needs_line_of_sight(), sun = sun || o.observable.needs_sunlight();
+  out << "t,observable,target,center,value,sigma" << (sky ? ",los_x,los_y,los_z" : "") << (sun ? ",sun_x,sun_y,sun_z" : "")
+      << "\n";
   out << std::setprecision(17);
   for (const auto& o : rows) {
     out << o.t << "," << observable_name(o.observable.kind) << "," << names.at(o.observable.target) << ","
@@ -148,12 +159,19 @@ void write_observations(std::ostream& out, const std::vector<Observation>& rows,
       else
         out << ",,";
     }
+    if (sun) {
+      out << ",";
+      if (o.observable.needs_sunlight())
+        out << o.observable.sunlight.x() << "," << o.observable.sunlight.y() << "," << o.observable.sunlight.z();
+      else
+        out << ",,";
+    }
     out << "\n";
   }
 }
 
 Observable observable_from_spec(const std::string& spec, const std::vector<std::string>& names,
-                                const std::vector<double>& line_of_sight) {
+                                const std::vector<double>& line_of_sight, const std::vector<double>& sunlight) {
   std::vector<std::string> parts;
   std::stringstream in(spec);
   for (std::string p; std::getline(in, p, ':');) parts.push_back(p);
@@ -167,11 +185,20 @@ Observable observable_from_spec(const std::string& spec, const std::vector<std::
   } catch (const SceneError& e) {
     throw SceneError("observable '" + spec + "': " + e.what());
   }
-  if (o.target == o.center) throw SceneError("observable '" + spec + "': target and center are the same body");
+  if (o.target == o.center && !o.is_lightcurve())
+    throw SceneError("observable '" + spec + "': target and center are the same body");
   if (o.needs_line_of_sight()) {
     if (line_of_sight.size() != 3)
       throw SceneError("observable '" + spec + "' needs a line of sight X,Y,Z (from the observer to the bodies)");
     o.line_of_sight = sky_plane(Eigen::Vector3d(line_of_sight[0], line_of_sight[1], line_of_sight[2])).line_of_sight;
+  }
+  if (o.needs_sunlight()) {
+    if (sunlight.size() != 3)
+      throw SceneError("observable '" + spec + "' needs the sunlight's direction X,Y,Z (from the Sun to the bodies)");
+    const Eigen::Vector3d sun(sunlight[0], sunlight[1], sunlight[2]);
+    if (!(sun.norm() > 0) || !sun.allFinite())
+      throw SceneError("observable '" + spec + "': the sunlight's direction must be a finite, non-zero vector");
+    o.sunlight = sun.normalized();
   }
   return o;
 }
@@ -184,7 +211,27 @@ ObservableValue observe(const Trajectory& trajectory, const Observation& o, cons
     throw SceneError((where.empty() ? std::string() : where + ": ") + e.what());
   }
   const auto a = static_cast<Eigen::Index>(o.observable.target), b = static_cast<Eigen::Index>(o.observable.center);
-  return evaluate(o.observable, x.col(a) - x.col(b), v.col(a) - v.col(b));
+  if (!o.observable.is_lightcurve()) return evaluate(o.observable, x.col(a) - x.col(b), v.col(a) - v.col(b));
+  // (29.2): the bodies' surfaces placed at the sampled positions and attitudes.
+  if (!trajectory.has_attitudes() || trajectory.surfaces.size() != trajectory.names.size())
+    throw Error("a lightcurve needs a trajectory read with its shapes (read_trajectory)");
+  const std::vector<Mat3> R = trajectory.attitudes(o.t);
+  std::vector<Mesh> placed;
+  for (const std::size_t j : {o.observable.target, o.observable.center}) {
+    if (!placed.empty() && j == o.observable.target) break;  // one body
+    Mesh m = trajectory.surfaces[j];
+    if (m.faces.empty())
+      throw SceneError((where.empty() ? std::string() : where + ": ") + "body '" + trajectory.names[j] +
+                       "' has no surface for a lightcurve (give it an ellipsoid or polyhedron shape, or a radius)");
+    for (Eigen::Index k = 0; k < m.vertices.cols(); ++k)
+      m.vertices.col(k) = x.col(static_cast<Eigen::Index>(j)) + R[j] * m.vertices.col(k);
+    placed.push_back(std::move(m));
+  }
+  ObservableValue out;
+  out.value = disk_integrated_flux(placed, o.observable.sunlight, o.observable.line_of_sight,
+                                   o.observable.kind == Observable::Kind::lightcurve_lambert ? Scattering::lambert
+                                                                                             : Scattering::lommel_seeliger);
+  return out;
 }
 
 }  // namespace noether

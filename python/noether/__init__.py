@@ -34,15 +34,20 @@ __all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", 
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
 
-def observe(run, observable, times=None, line_of_sight=None):
+def observe(run, observable, times=None, line_of_sight=None, sunlight=None, tessellation=4):
     """An observable of a run's output file (docs/fitting.md): `observable` is
     "NAME:TARGET:CENTER" (position.x, position.y, position.z, sky.east, sky.north, range,
-    range_rate; bodies by name), at every frame or at `times` (interpolated between frames,
-    docs/equations.md eq. 16.2); the sky observables need `line_of_sight` (x, y, z: from the
-    observer towards the bodies). Returns (t, value), two NumPy arrays, in the scene's units.
-    The frames are verified against their checksums; a time outside the run is a SceneError."""
+    range_rate, lightcurve.lommel_seeliger, lightcurve.lambert; bodies by name), at every frame
+    or at `times` (interpolated between frames, docs/equations.md eqs. 16.2 and 29.4); the sky
+    observables and lightcurves need `line_of_sight` (x, y, z: from the observer towards the
+    bodies), lightcurves also `sunlight` (x, y, z: from the Sun towards the bodies) and draw an
+    ellipsoid with 20·4^tessellation facets. Returns (t, value), two NumPy arrays, in the scene's
+    units. The frames are verified against their checksums; a time outside the run is a
+    SceneError."""
     los = [] if line_of_sight is None else [float(c) for c in line_of_sight]
-    return _noether.observe(os.fspath(run), observable, None if times is None else [float(t) for t in times], los)
+    sun = [] if sunlight is None else [float(c) for c in sunlight]
+    return _noether.observe(os.fspath(run), observable, None if times is None else [float(t) for t in times], los,
+                            sun, int(tessellation))
 
 
 def fit(scene, observations, free, set=None, max_iterations=30, tolerance=1e-3):

@@ -462,10 +462,11 @@ PYBIND11_MODULE(_noether, m) {
   });
   // noether.observe (docs/fitting.md): an observable of a run's file at its frames or at given times.
   m.def("observe", [](const std::filesystem::path& run, const std::string& spec, std::optional<std::vector<double>> times,
-                      const std::vector<double>& line_of_sight) {
-    const noether::Trajectory trajectory = noether::read_trajectory(run);
+                      const std::vector<double>& line_of_sight, const std::vector<double>& sunlight, int tessellation) {
     noether::Observation o;
-    o.observable = noether::observable_from_spec(spec, trajectory.names, line_of_sight);
+    o.observable = noether::observable_from_spec(spec, noether::read_trajectory_names(run), line_of_sight, sunlight);
+    const noether::Trajectory trajectory =
+        noether::read_trajectory(run, noether::TrajectoryShapes{o.observable.is_lightcurve(), tessellation});
     std::vector<double> t;
     if (times) {
       t = *times;

@@ -42,6 +42,20 @@ def test_observe_agrees_with_the_command_and_the_file(source, noether_exe, tmp_p
         noether.observe(run, "range:dimorphus:didymos")
     with pytest.raises(noether.SceneError, match="needs a line of sight"):
         noether.observe(run, "sky.north:dimorphos:didymos")
+    # A lightcurve: the command's numbers; the pair's brightness the sum of its bodies' outside
+    # the mutual events (the line of sight along x: Dimorphos is in front of Didymos at t = 0).
+    views = dict(line_of_sight=[-1, 0, 0], sunlight=[-1, -0.3, 0])
+    t, pair = noether.observe(run, "lightcurve.lommel_seeliger:dimorphos:didymos", **views)
+    text = subprocess.run([noether_exe, "observe", str(run), "--observable",
+                           "lightcurve.lommel_seeliger:dimorphos:didymos", "--line-of-sight", "-1,0,0", "--sunlight",
+                           "-1,-0.3,0"], check=True, capture_output=True, text=True).stdout
+    assert [float(line.split(",")[4]) for line in text.splitlines()[2:]] == list(pair)
+    _, primary = noether.observe(run, "lightcurve.lommel_seeliger:didymos:didymos", **views)
+    _, secondary = noether.observe(run, "lightcurve.lommel_seeliger:dimorphos:dimorphos", **views)
+    depth = 1 - pair / (primary + secondary)
+    assert depth[0] > 0.03 and np.all(depth > -1e-12) and np.any(np.abs(depth) < 1e-12)
+    with pytest.raises(noether.SceneError, match="needs the sunlight's direction"):
+        noether.observe(run, "lightcurve.lambert:dimorphos:didymos", line_of_sight=[1, 0, 0])
 
 
 def test_fit_is_the_commands(source, noether_exe, tmp_path):

@@ -21,18 +21,26 @@ struct Observable {
     sky_north,
     range,       // |r| (27.3)
     range_rate,  // r · u / |r| (27.4)
+    // The disk-integrated brightness of target and center together (one body when they are the
+    // same), from their shapes and attitudes (§29): not a function of r and u alone.
+    lightcurve_lommel_seeliger,
+    lightcurve_lambert,
   };
   Kind kind = Kind::position_x;
   std::size_t target = 0, center = 0;
-  Eigen::Vector3d line_of_sight = Eigen::Vector3d::Zero();  // sky_*: unit, from the observer to the bodies
+  Eigen::Vector3d line_of_sight = Eigen::Vector3d::Zero();  // sky_*, lightcurve_*: unit, from the observer to the bodies
+  Eigen::Vector3d sunlight = Eigen::Vector3d::Zero();       // lightcurve_*: unit, from the Sun to the bodies
 
-  // Whether it needs a line of sight; whether it reads the velocities.
-  bool needs_line_of_sight() const { return kind == Kind::sky_east || kind == Kind::sky_north; }
+  bool is_lightcurve() const { return kind == Kind::lightcurve_lommel_seeliger || kind == Kind::lightcurve_lambert; }
+  // Whether it needs a line of sight, sunlight; whether it reads the velocities.
+  bool needs_line_of_sight() const { return kind == Kind::sky_east || kind == Kind::sky_north || is_lightcurve(); }
+  bool needs_sunlight() const { return is_lightcurve(); }
   bool needs_velocity() const { return kind == Kind::range_rate; }
 };
 
 // The names the observation files use ("position.x", …, "sky.east", "sky.north", "range",
-// "range_rate"), in the order of Observable::Kind.
+// "range_rate", "lightcurve.lommel_seeliger", "lightcurve.lambert"), in the order of
+// Observable::Kind.
 const std::vector<std::string>& observable_names();
 const std::string& observable_name(Observable::Kind kind);
 // The kind of a name; SceneError listing the names when it is none of them.
@@ -53,7 +61,8 @@ struct ObservableValue {
 };
 
 // The value at relative position r and velocity u, with its gradients (27.1)–(27.4).
-// A range_rate at r = 0 is NaN (the direction is undefined).
+// A range_rate at r = 0 is NaN (the direction is undefined). Error for a lightcurve (observe()
+// computes those from a trajectory's shapes and attitudes).
 ObservableValue evaluate(const Observable& o, const Eigen::Vector3d& r, const Eigen::Vector3d& u);
 
 }  // namespace noether

@@ -1,8 +1,9 @@
 #pragma once
 // Observation files (docs/fitting.md, "Observation files"): CSV with a header naming at least
 // the columns t, observable, target, center, value, sigma (any order; more columns are kept
-// out of the way), one scalar observation a row; the sky observables also need los_x, los_y,
-// los_z, the line of sight. Lines starting with # are comments.
+// out of the way), one scalar observation a row; the sky observables and lightcurves also need
+// los_x, los_y, los_z, the line of sight, and lightcurves sun_x, sun_y, sun_z, the sunlight's
+// direction. Lines starting with # are comments.
 #include <noether/observable.hpp>
 #include <noether/trajectory.hpp>
 
@@ -36,13 +37,15 @@ std::vector<Observation> read_observations(const std::filesystem::path& file, co
 // Writes rows in the same format (values to 17 digits; a sigma of 0 is left empty).
 void write_observations(std::ostream& out, const std::vector<Observation>& rows, const std::vector<std::string>& names);
 
-// An observable from "NAME:TARGET:CENTER" (bodies by name; the sky observables need a line of
-// sight: `line_of_sight` of size 3). SceneError naming the spec and what is wrong.
+// An observable from "NAME:TARGET:CENTER" (bodies by name; the sky observables and lightcurves
+// need a line of sight: `line_of_sight` of size 3; lightcurves also `sunlight`, and may name one
+// body twice for its lightcurve alone). SceneError naming the spec and what is wrong.
 Observable observable_from_spec(const std::string& spec, const std::vector<std::string>& names,
-                                const std::vector<double>& line_of_sight = {});
+                                const std::vector<double>& line_of_sight = {}, const std::vector<double>& sunlight = {});
 
 // The observation's value in a trajectory: sampled at its time (SceneError "FILE:LINE: t = …
-// is outside the run" through `where`).
+// is outside the run" through `where`). A lightcurve needs the trajectory's shapes and
+// attitudes (read_trajectory with shapes) and has no gradients.
 ObservableValue observe(const Trajectory& trajectory, const Observation& o, const std::string& where = {});
 
 }  // namespace noether
