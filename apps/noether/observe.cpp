@@ -3,12 +3,14 @@
 // Gaussian noise of each row's sigma for synthetic data.
 #include "commands.hpp"
 
+#include <noether/conjunction.hpp>
 #include <noether/error.hpp>
 #include <noether/observations.hpp>
 #include <noether/trajectory.hpp>
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -54,12 +56,23 @@ int observe(const ObserveOptions& o) {
     for (std::size_t k = 0; k < t.size(); k += o.every) {
       if (k > 0 && t[k] == t[k - 1]) continue;  // an impulse's two frames: the value after it
       for (const auto& w : wanted) {
+        if (w.is_event_time()) continue;
         Observation row;
         row.t = t[k];
         row.observable = w;
         rows.push_back(row);
       }
     }
+    for (const auto& w : wanted) {  // event times: every event in the run, once
+      if (!w.is_event_time()) continue;
+      for (const auto& c : conjunctions(run, w.target, w.center, w.line_of_sight)) {
+        Observation row;
+        row.t = c.t;
+        row.observable = w;
+        rows.push_back(row);
+      }
+    }
+    std::stable_sort(rows.begin(), rows.end(), [](const Observation& a, const Observation& b) { return a.t < b.t; });
   }
   std::mt19937_64 random(o.seed);
   std::normal_distribution<double> gauss;
@@ -72,6 +85,7 @@ int observe(const ObserveOptions& o) {
         throw SceneError((where.empty() ? std::string("--noise") : where) +
                          ": noise needs a sigma (the row's, or --sigma)");
       row.value += row.sigma * gauss(random);
+      if (row.observable.is_event_time() && o.at.empty()) row.t = row.value;  // observed when it is seen
     }
   }
   std::ostringstream text;
@@ -99,12 +113,12 @@ void add_observe_command(CLI::App& app, Command& chosen) {
   auto* given = cmd->add_option("--observable", o->observables,
                                 "NAME:TARGET:CENTER at every frame; NAME one of position.x, position.y, position.z, "
                                 "sky.east, sky.north, range, range_rate, lightcurve.lommel_seeliger, "
-                                "lightcurve.lambert")
+                                "lightcurve.lambert (at every frame); conjunction.time (every conjunction in the run)")
                     ->take_all();
   auto* at = cmd->add_option("--at", o->at, "an observation file: its rows' values computed (value and sigma may be empty)");
   given->excludes(at);
   cmd->add_option("--line-of-sight", o->line_of_sight,
-                  "X,Y,Z: from the observer to the bodies (sky.east, sky.north, lightcurves)")
+                  "X,Y,Z: from the observer to the bodies (sky.east, sky.north, lightcurves, conjunction.time)")
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--sunlight", o->sunlight, "X,Y,Z: the direction sunlight travels, from the Sun to the bodies (lightcurves)")

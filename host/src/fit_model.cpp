@@ -3,6 +3,7 @@
 #include "json_text.hpp"
 #include "scene_sensitivity.hpp"
 
+#include <noether/conjunction.hpp>
 #include <noether/error.hpp>
 #include <noether/fit.hpp>
 #include <noether/simulation.hpp>
@@ -61,7 +62,15 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
     if (!(o.t >= t0))
       throw SceneError(where_of(observations_file, o) + ": t = " + detail::exact_text(o.t) + " is before the run starts (t0 = " +
                        detail::exact_text(t0) + ")");
-    t_last = std::max(t_last, o.t);
+    // An event time is the model's event nearest to the row's t (30.1): the run goes on a tenth
+    // of its span past it, so that the nearest event is in the run — to an output time (a whole
+    // number of a fixed-step method's steps).
+    if (o.observable.is_event_time()) {
+      const double every = base.run.output_every, need = std::max(o.t, o.value) * 1.1 - 0.1 * t0;
+      t_last = std::max(t_last, every > 0 ? t0 + std::ceil((need - t0) / every) * every : need);
+    } else {
+      t_last = std::max(t_last, o.t);
+    }
   }
   if (!(t_last > t0)) throw SceneError("a fit needs an observation after the run's start (t0 = " + detail::exact_text(t0) + ")");
   // The scene runs to the last observation, with the sensitivities to the free keys only.
@@ -97,7 +106,7 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
       impulse_times.insert(impulse.time);
     }
   for (const auto& o : observations) {
-    if (o.t <= t0) continue;
+    if (o.t <= t0 || o.observable.is_event_time()) continue;
     if (h > 0) {
       const double steps = std::round((o.t - t0) / h);
       if (std::abs(steps * h - (o.t - t0)) > 1e-9 * (o.t - t0)) continue;  // between steps: interpolated
@@ -144,6 +153,17 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
   Eigen::MatrixXd dx, dv;
   for (Eigen::Index i = 0; i < N; ++i) {
     const Observation& o = observations[static_cast<std::size_t>(i)];
+    if (o.observable.is_event_time()) {  // (30.1), (30.2)
+      try {
+        const Conjunction c =
+            nearest_conjunction(trajectory, o.observable.target, o.observable.center, o.observable.line_of_sight, o.t);
+        out.values[i] = c.t;
+        out.jacobian.row(i) = c.dt_dp;
+      } catch (const SceneError& e) {
+        throw SceneError(where_of(observations_file, o) + ": " + e.what());
+      }
+      continue;
+    }
     try {
       trajectory.sample(o.t, x, v, dx, dv);
     } catch (const SceneError& e) {

@@ -15,7 +15,7 @@ using Eigen::Vector3d;
 const std::vector<std::string>& observable_names() {
   static const std::vector<std::string> names{"position.x", "position.y", "position.z", "sky.east",
                                               "sky.north",  "range",      "range_rate",
-                                              "lightcurve.lommel_seeliger", "lightcurve.lambert"};
+                                              "lightcurve.lommel_seeliger", "lightcurve.lambert", "conjunction.time"};
   return names;
 }
 
@@ -88,6 +88,9 @@ ObservableValue evaluate(const Observable& o, const Vector3d& r, const Vector3d&
     case Observable::Kind::lightcurve_lambert:
       throw Error("a lightcurve is not a function of the relative position: it is computed from the bodies' shapes "
                   "and attitudes (observe)");
+    case Observable::Kind::conjunction_time:
+      throw Error("an event time is not a function of the relative position at one time: it is found in a trajectory "
+                  "(observe)");
   }
   return out;
 }

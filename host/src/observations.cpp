@@ -1,4 +1,5 @@
 // Observation files: reading with errors by file, line and column; writing (docs/fitting.md).
+#include <noether/conjunction.hpp>
 #include <noether/error.hpp>
 #include <noether/lightcurve.hpp>
 #include <noether/observations.hpp>
@@ -204,6 +205,16 @@ Observable observable_from_spec(const std::string& spec, const std::vector<std::
 }
 
 ObservableValue observe(const Trajectory& trajectory, const Observation& o, const std::string& where) {
+  if (o.observable.is_event_time()) {  // (30.1)
+    ObservableValue out;
+    try {
+      out.value = nearest_conjunction(trajectory, o.observable.target, o.observable.center, o.observable.line_of_sight,
+                                      o.t).t;
+    } catch (const SceneError& e) {
+      throw SceneError((where.empty() ? std::string() : where + ": ") + e.what());
+    }
+    return out;
+  }
   Eigen::Matrix3Xd x, v;
   try {
     trajectory.sample(o.t, x, v);

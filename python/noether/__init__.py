@@ -37,9 +37,10 @@ __all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", 
 def observe(run, observable, times=None, line_of_sight=None, sunlight=None, tessellation=4):
     """An observable of a run's output file (docs/fitting.md): `observable` is
     "NAME:TARGET:CENTER" (position.x, position.y, position.z, sky.east, sky.north, range,
-    range_rate, lightcurve.lommel_seeliger, lightcurve.lambert; bodies by name), at every frame
-    or at `times` (interpolated between frames, docs/equations.md eqs. 16.2 and 29.4); the sky
-    observables and lightcurves need `line_of_sight` (x, y, z: from the observer towards the
+    range_rate, lightcurve.lommel_seeliger, lightcurve.lambert, conjunction.time; bodies by name),
+    at every frame (conjunction.time: at every conjunction in the run) or at `times`
+    (interpolated between frames, docs/equations.md eqs. 16.2 and 29.4; conjunction.time: the
+    conjunction nearest to each); the sky observables, lightcurves and conjunctions need `line_of_sight` (x, y, z: from the observer towards the
     bodies), lightcurves also `sunlight` (x, y, z: from the Sun towards the bodies) and draw an
     ellipsoid with 20·4^tessellation facets. Returns (t, value), two NumPy arrays, in the scene's
     units. The frames are verified against their checksums; a time outside the run is a

@@ -11,6 +11,7 @@
 #include <noether/force_jacobian.hpp>
 #include <noether/error.hpp>
 #include <noether/fit.hpp>
+#include <noether/conjunction.hpp>
 #include <noether/observations.hpp>
 #include <noether/output_schema.hpp>
 #include <noether/registry.hpp>
@@ -470,6 +471,10 @@ PYBIND11_MODULE(_noether, m) {
     std::vector<double> t;
     if (times) {
       t = *times;
+    } else if (o.observable.is_event_time()) {  // every event in the run
+      for (const auto& c : noether::conjunctions(trajectory, o.observable.target, o.observable.center,
+                                                 o.observable.line_of_sight))
+        t.push_back(c.t);
     } else {  // every frame; an impulse's two frames once (the value after it)
       for (double tk : trajectory.times())
         if (t.empty() || tk != t.back()) t.push_back(tk);

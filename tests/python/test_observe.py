@@ -54,6 +54,13 @@ def test_observe_agrees_with_the_command_and_the_file(source, noether_exe, tmp_p
     _, secondary = noether.observe(run, "lightcurve.lommel_seeliger:dimorphos:dimorphos", **views)
     depth = 1 - pair / (primary + secondary)
     assert depth[0] > 0.03 and np.all(depth > -1e-12) and np.any(np.abs(depth) < 1e-12)
+    # Conjunctions: every one in the run, each its own nearest; the projected separation least there.
+    t_events, events = noether.observe(run, "conjunction.time:dimorphos:didymos",
+                                       line_of_sight=[-0.8645, -0.5026, -0.1])
+    assert len(events) == 1 and np.array_equal(t_events, events) and 3000 < events[0] < 4000
+    _, again = noether.observe(run, "conjunction.time:dimorphos:didymos", times=[events[0] - 1000],
+                               line_of_sight=[-0.8645, -0.5026, -0.1])
+    assert again[0] == events[0]
     with pytest.raises(noether.SceneError, match="needs the sunlight's direction"):
         noether.observe(run, "lightcurve.lambert:dimorphos:didymos", line_of_sight=[1, 0, 0])
 

@@ -25,6 +25,9 @@ struct Observable {
     // same), from their shapes and attitudes (§29): not a function of r and u alone.
     lightcurve_lommel_seeliger,
     lightcurve_lambert,
+    // The time of the conjunction on the sky of target and center nearest to the row's time
+    // (§30): when their projected separation is least.
+    conjunction_time,
   };
   Kind kind = Kind::position_x;
   std::size_t target = 0, center = 0;
@@ -33,14 +36,17 @@ struct Observable {
 
   bool is_lightcurve() const { return kind == Kind::lightcurve_lommel_seeliger || kind == Kind::lightcurve_lambert; }
   // Whether it needs a line of sight, sunlight; whether it reads the velocities.
-  bool needs_line_of_sight() const { return kind == Kind::sky_east || kind == Kind::sky_north || is_lightcurve(); }
+  bool is_event_time() const { return kind == Kind::conjunction_time; }
+  bool needs_line_of_sight() const {
+    return kind == Kind::sky_east || kind == Kind::sky_north || is_lightcurve() || is_event_time();
+  }
   bool needs_sunlight() const { return is_lightcurve(); }
   bool needs_velocity() const { return kind == Kind::range_rate; }
 };
 
 // The names the observation files use ("position.x", …, "sky.east", "sky.north", "range",
-// "range_rate", "lightcurve.lommel_seeliger", "lightcurve.lambert"), in the order of
-// Observable::Kind.
+// "range_rate", "lightcurve.lommel_seeliger", "lightcurve.lambert", "conjunction.time"), in the
+// order of Observable::Kind.
 const std::vector<std::string>& observable_names();
 const std::string& observable_name(Observable::Kind kind);
 // The kind of a name; SceneError listing the names when it is none of them.
@@ -61,8 +67,8 @@ struct ObservableValue {
 };
 
 // The value at relative position r and velocity u, with its gradients (27.1)–(27.4).
-// A range_rate at r = 0 is NaN (the direction is undefined). Error for a lightcurve (observe()
-// computes those from a trajectory's shapes and attitudes).
+// A range_rate at r = 0 is NaN (the direction is undefined). Error for a lightcurve or an event
+// time (observe() computes those from a trajectory).
 ObservableValue evaluate(const Observable& o, const Eigen::Vector3d& r, const Eigen::Vector3d& u);
 
 }  // namespace noether

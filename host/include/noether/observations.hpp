@@ -45,7 +45,8 @@ Observable observable_from_spec(const std::string& spec, const std::vector<std::
 
 // The observation's value in a trajectory: sampled at its time (SceneError "FILE:LINE: t = …
 // is outside the run" through `where`). A lightcurve needs the trajectory's shapes and
-// attitudes (read_trajectory with shapes) and has no gradients.
+// attitudes (read_trajectory with shapes) and has no gradients. An event time is the
+// conjunction nearest to the row's t (nearest_conjunction).
 ObservableValue observe(const Trajectory& trajectory, const Observation& o, const std::string& where = {});
 
 }  // namespace noether
