@@ -49,6 +49,13 @@ int run_fit(const FitCommand& c) {
     std::cout << "output                " << json << "\n";
   }
   if (!c.plot.empty()) draw_plot("plot_fit.py", {json, c.plot}, c.plot, json);
+  if (!result.verdict.trustworthy) {
+    std::cout.flush();
+    std::cerr << "noether: UNTRUSTWORTHY FIT: the run at the estimate is not to be trusted:";
+    for (const auto& r : result.verdict.reasons) std::cerr << " " << r << ";";
+    std::cerr << " so neither are the estimate and its sigmas (a smaller step or tolerance? thresholds: run.trust in "
+                 "the scene)\n";
+  }
   return result.converged ? 0 : 1;
 }
 

@@ -39,10 +39,12 @@ struct Whitened {
   MatrixXd A;
   double chi2 = 0.0;
   VectorXd computed;
+  Verdict verdict;  // the run's
 };
 
 Whitened whiten(const Prediction& p, const std::vector<Observation>& obs) {
   Whitened w;
+  w.verdict = p.verdict;
   const auto N = static_cast<Eigen::Index>(obs.size());
   w.r.resize(N);
   w.A.resize(N, p.jacobian.cols());
@@ -180,6 +182,7 @@ FitResult fit(const std::string& scene_file, const std::vector<std::string>& ove
   result.sigma = result.covariance.diagonal().cwiseSqrt();
   result.correlation = result.sigma.cwiseInverse().asDiagonal() * result.covariance * result.sigma.cwiseInverse().asDiagonal();
   result.overrides = with_values(overrides, result.names, p);
+  result.verdict = w.verdict;
   for (std::size_t i = 0; i < obs.size(); ++i) {
     FitResidual r;
     r.observation = obs[i];
@@ -223,6 +226,14 @@ std::string format_fit(const FitResult& r) {
         << std::sqrt(2.0 / static_cast<double>(r.degrees_of_freedom));
   out << "\niterations            " << r.iterations << " (" << r.runs << " runs with sensitivities)\n";
   out << (r.converged ? "converged             " : "NOT CONVERGED         ") << r.stop << "\n";
+  out << "verdict               ";
+  if (r.verdict.trustworthy) {
+    out << "trustworthy (the run at the estimate)\n";
+  } else {
+    out << "UNTRUSTWORTHY (the run at the estimate):";
+    for (const auto& why : r.verdict.reasons) out << " " << why << ";";
+    out << "\n";
+  }
   return out.str();
 }
 
@@ -254,7 +265,10 @@ std::string fit_json(const FitResult& r) {
       << ",\n  \"chi2\": " << json_number(r.chi2) << ",\n  \"chi2_initial\": " << json_number(r.chi2_initial)
       << ",\n  \"observations\": " << r.observations << ",\n  \"degrees_of_freedom\": " << r.degrees_of_freedom
       << ",\n  \"iterations\": " << r.iterations << ",\n  \"runs\": " << r.runs << ",\n  \"converged\": "
-      << (r.converged ? "true" : "false") << ",\n  \"stop\": " << json_string(r.stop) << ",\n  \"overrides\": [";
+      << (r.converged ? "true" : "false") << ",\n  \"stop\": " << json_string(r.stop)
+      << ",\n  \"trustworthy\": " << (r.verdict.trustworthy ? "true" : "false") << ",\n  \"verdict\": [";
+  for (std::size_t j = 0; j < r.verdict.reasons.size(); ++j) out << (j ? ", " : "") << json_string(r.verdict.reasons[j]);
+  out << "],\n  \"overrides\": [";
   for (std::size_t j = 0; j < r.overrides.size(); ++j) out << (j ? ", " : "") << json_string(r.overrides[j]);
   out << "],\n  \"residuals\": [";
   for (std::size_t i = 0; i < r.residuals.size(); ++i) {

@@ -145,6 +145,7 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
 
   // Each observation: the sampled r, u and their derivatives, and the observable's gradient (28.2).
   Prediction out;
+  out.verdict = sim->finish().verdict;
   out.names = sim->sensitivity_names();
   const auto N = static_cast<Eigen::Index>(observations.size()), P = static_cast<Eigen::Index>(out.names.size());
   out.values.resize(N);

@@ -130,3 +130,14 @@ single = json.load(open("dv-fit.json"))["parameters"][0]
 # A linear least squares of one parameter: σ = σ_t / √Σ (dt/dΔv)² — from the whole runs' slopes.
 assert abs(30 / np.sqrt(np.sum(slope ** 2)) / single["sigma"] - 1) < 1e-4, (30 / np.sqrt(np.sum(slope ** 2)), single)
 print(f"Δv alone: σ {single['sigma'] * 1e3:.5f} mm/s; from whole runs' event-time slopes {30e3 / np.sqrt(np.sum(slope ** 2)):.5f}")
+
+# A fit to runs that cannot be trusted says so (stdout, stderr, JSON), though it converges: here
+# the energy threshold is set below what any run meets.
+untrusted = noether_run("fit", scene, "--observations", "events.csv", "--free", "impulses.0.delta_v.1", "--set",
+                        "run.trust.energy=1e-16", "-o", "untrusted.json", "--force")
+assert "verdict               UNTRUSTWORTHY (the run at the estimate): relative energy error" in untrusted.stdout
+assert "noether: UNTRUSTWORTHY FIT" in untrusted.stderr, untrusted.stderr
+bad = json.load(open("untrusted.json"))
+assert bad["converged"] and not bad["trustworthy"] and "relative energy error" in bad["verdict"][0], bad["verdict"]
+assert json.load(open("dv-fit.json"))["trustworthy"] is True
+print("an untrustworthy run at the estimate: said on stdout, stderr and in the JSON")

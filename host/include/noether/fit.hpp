@@ -6,6 +6,7 @@
 #include <noether/observations.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
+#include <noether/simulation.hpp>
 
 #include <Eigen/Core>
 
@@ -45,6 +46,9 @@ struct FitResult {
   std::vector<FitResidual> residuals;
   // The overrides that make the scene at the estimate (the scene's own, then one per parameter).
   std::vector<std::string> overrides;
+  // The verdict on the run at the estimate (docs/user-guide.md, "Verdict"), as `noether run`
+  // would give it: a fit to an untrustworthy run is not to be trusted either.
+  Verdict verdict;
 };
 
 // The model at the scene (with `overrides`): each observation's computed value and its
@@ -56,6 +60,7 @@ struct Prediction {
   std::vector<std::string> names;
   Eigen::VectorXd values;    // one per observation
   Eigen::MatrixXd jacobian;  // observations × names
+  Verdict verdict;           // the run's (Simulation::finish)
 };
 Prediction predict(const std::string& scene_file, const std::vector<std::string>& overrides,
                    const std::vector<Observation>& observations, const std::vector<std::string>& free,
