@@ -133,7 +133,14 @@ double lommel_seeliger_ellipsoid(const Vec3& axes, const Vec3& s, const Vec3& o)
 // smallest projected areas.
 TEST(Lightcurve, RotatingEllipsoidMatchesTheAnalyticLommelSeeligerLightcurve) {
   const Vec3 axes(1.6, 1.0, 0.7);
-  const Mesh fine = tessellated_ellipsoid(axes, 5), coarse = tessellated_ellipsoid(axes, 4);
+#ifdef NOETHER_TEST_SANITIZED
+  const int level = 4;  // measured 1.5e-3
+  const double tolerance = 2e-3;
+#else
+  const int level = 5;  // measured 3.7e-4
+  const double tolerance = 5e-4;
+#endif
+  const Mesh fine = tessellated_ellipsoid(axes, level), coarse = tessellated_ellipsoid(axes, level - 1);
   const Vec3 o = Vec3(1, 0, 0.25).normalized();  // towards the observer
   double worst_fine = 0, worst_coarse = 0;
   for (double phase : {0.0, M_PI / 6, 5 * M_PI / 12}) {
@@ -156,9 +163,9 @@ TEST(Lightcurve, RotatingEllipsoidMatchesTheAnalyticLommelSeeligerLightcurve) {
       EXPECT_NEAR(hi / lo, amplitude, 2e-4 * amplitude);
     }
   }
-  RecordProperty("worst_relative_flux_error_level5", std::to_string(worst_fine));
-  RecordProperty("worst_relative_flux_error_level4", std::to_string(worst_coarse));
-  EXPECT_LT(worst_fine, 5e-4);
+  RecordProperty("worst_relative_flux_error_fine", std::to_string(worst_fine));
+  RecordProperty("worst_relative_flux_error_coarse", std::to_string(worst_coarse));
+  EXPECT_LT(worst_fine, tolerance);
   EXPECT_GT(worst_coarse / worst_fine, 3.0);  // second order in the edge length
 }
 
