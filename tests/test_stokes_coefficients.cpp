@@ -137,24 +137,11 @@ TEST(StokesCoefficients, PolyhedronAgainstAQuadratureOfItsExactField) {
   const double R = beta->radius, rho = 2 * R, M = beta->mass;
   const StokesCoefficients cs = stokes_from_integrals(beta->integrals(6), R, 6, false);
   const PolyhedronField field(beta->mesh, 2810.0);  // G = 1: Φ = −U
-  // Gauss–Legendre nodes and weights on [−1, 1] by Newton on P_24.
+  // Gauss–Legendre nodes and weights on [−1, 1] (the core's rule on [0, 1], mapped).
   const int L = 24, K = 48;
-  std::vector<double> mu(L), w(L);
-  for (int i = 0; i < L; ++i) {
-    double z = std::cos(M_PI * (i + 0.75) / (L + 0.5)), dp = 0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int n = 2; n <= L; ++n) {
-        const double p2 = ((2 * n - 1) * z * p1 - (n - 1) * p0) / n;
-        p0 = p1, p1 = p2;
-      }
-      dp = L * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    mu[i] = z, w[i] = 2 / ((1 - z * z) * dp * dp);
-  }
+  std::vector<double> mu, w;
+  gauss_legendre01(L, mu, w);
+  for (int i = 0; i < L; ++i) mu[i] = 2 * mu[i] - 1, w[i] *= 2;
   // C_nm = (2n+1)(2−δ)/(4π) (n−m)!/(n+m)! (ρ/R)^n ρ/M ∫ U P_nm cos mλ dΩ, S likewise.
   std::vector<double> U(static_cast<std::size_t>(L * K));
   for (int i = 0; i < L; ++i)
