@@ -59,13 +59,15 @@ std::vector<Conjunction> conjunctions(const Trajectory& trajectory, std::size_t 
     Conjunction c;
     c.t = g_hi == 0 ? hi : root;
     Eigen::Matrix3Xd x, v;
-    trajectory.sample(c.t, x, v);
+    Eigen::MatrixXd dx, dv;
+    if (trajectory.has_derivatives())
+      trajectory.sample(c.t, x, v, dx, dv);
+    else
+      trajectory.sample(c.t, x, v);
     const Vector3d r = x.col(f.a) - x.col(f.b), u = v.col(f.a) - v.col(f.b);
     c.separation = (f.P * r).norm();
     c.target_in_front = r.dot(l) < 0;
     if (trajectory.has_derivatives()) {  // (30.2)
-      Eigen::MatrixXd dx, dv;
-      trajectory.sample(c.t, x, v, dx, dv);
       const Eigen::MatrixXd dr = dx.middleRows(3 * f.a, 3) - dx.middleRows(3 * f.b, 3);
       const Eigen::MatrixXd du = dv.middleRows(3 * f.a, 3) - dv.middleRows(3 * f.b, 3);
       const Eigen::RowVectorXd dg = (f.P * u).transpose() * dr + (f.P * r).transpose() * du;
@@ -81,7 +83,11 @@ std::vector<Conjunction> conjunctions(const Trajectory& trajectory, std::size_t 
 
 Conjunction nearest_conjunction(const Trajectory& trajectory, std::size_t target, std::size_t center,
                                 const Vector3d& line_of_sight, double t) {
-  const std::vector<Conjunction> all = conjunctions(trajectory, target, center, line_of_sight);
+  return nearest_conjunction(conjunctions(trajectory, target, center, line_of_sight), trajectory, target, center, t);
+}
+
+Conjunction nearest_conjunction(const std::vector<Conjunction>& all, const Trajectory& trajectory, std::size_t target,
+                                std::size_t center, double t) {
   std::ostringstream why;
   why.precision(10);
   if (all.empty()) {

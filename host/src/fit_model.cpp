@@ -152,12 +152,26 @@ Prediction predict(const std::string& scene_file, const std::vector<std::string>
   out.jacobian.resize(N, P);
   Eigen::Matrix3Xd x, v;
   Eigen::MatrixXd dx, dv;
+  // The conjunctions of each pair and line of sight the event rows name, found once (30.1).
+  struct Events {
+    std::size_t target, center;
+    Eigen::Vector3d line_of_sight;
+    std::vector<Conjunction> all;
+  };
+  std::vector<Events> events;
+  auto events_of = [&](const Observable& e) -> const std::vector<Conjunction>& {
+    for (const auto& known : events)
+      if (known.target == e.target && known.center == e.center && known.line_of_sight == e.line_of_sight)
+        return known.all;
+    events.push_back({e.target, e.center, e.line_of_sight, conjunctions(trajectory, e.target, e.center, e.line_of_sight)});
+    return events.back().all;
+  };
   for (Eigen::Index i = 0; i < N; ++i) {
     const Observation& o = observations[static_cast<std::size_t>(i)];
     if (o.observable.is_event_time()) {  // (30.1), (30.2)
       try {
         const Conjunction c =
-            nearest_conjunction(trajectory, o.observable.target, o.observable.center, o.observable.line_of_sight, o.t);
+            nearest_conjunction(events_of(o.observable), trajectory, o.observable.target, o.observable.center, o.t);
         out.values[i] = c.t;
         out.jacobian.row(i) = c.dt_dp;
       } catch (const SceneError& e) {

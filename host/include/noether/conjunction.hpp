@@ -33,5 +33,9 @@ std::vector<Conjunction> conjunctions(const Trajectory& trajectory, std::size_t 
 // starts) nearer to t than the nearest conjunction found is — one beyond the run could be nearer.
 Conjunction nearest_conjunction(const Trajectory& trajectory, std::size_t target, std::size_t center,
                                 const Eigen::Vector3d& line_of_sight, double t);
+// The same from conjunctions() already found (`all`, of target and center in that trajectory):
+// for many rows of one pair and line of sight, the search is done once.
+Conjunction nearest_conjunction(const std::vector<Conjunction>& all, const Trajectory& trajectory, std::size_t target,
+                                std::size_t center, double t);
 
 }  // namespace noether
