@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   add_check_potential_command(app, chosen);
   add_observe_command(app, chosen);
   add_fit_command(app, chosen);
+  add_shape_command(app, chosen);
 
   if (argc == 1) {  // bare `noether`: the help
     std::cout << app.help();

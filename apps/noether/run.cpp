@@ -20,7 +20,21 @@
 namespace noether::app {
 
 void print_shapes(const noether::Scene& scene, std::ostream& out) {
-  for (const auto& b : scene.system.bodies()) {
+  for (std::size_t i = 0; i < scene.system.size(); ++i) {
+    const noether::Body& b = scene.system.body(i);
+    if (b.field) {  // given by its gravity field (docs/gravity-fields.md)
+      const noether::StokesCoefficients& f = *b.field;
+      const noether::Params& g = scene.root.at("bodies").items()[i].at("gravity");
+      char line[512];
+      std::snprintf(line, sizeof line,
+                    "field %-23s %s, degree %d (%s), reference radius %.10g, GM %.10g, mass %.10g, polar moment "
+                    "C/(M R^2) %.6g\n",
+                    b.name.c_str(), g.at("stokes").as_string().c_str(), f.degree,
+                    f.normalized ? "normalized" : "unnormalized", f.reference_radius, scene.system.G() * b.mass, b.mass,
+                    b.inertia(2, 2) / (b.mass * f.reference_radius * f.reference_radius));
+      out << line;
+      continue;
+    }
     if (!b.solid) continue;
     const auto& s = *b.solid;
     char line[512];

@@ -162,4 +162,42 @@ InertiaIntegrals integrals_from_stokes(const StokesCoefficients& cs, const Inert
   return T;
 }
 
+StokesCoefficients truncated(const StokesCoefficients& cs, int degree, bool normalized) {
+  if (degree < 0 || degree > cs.degree)
+    throw Error("truncated: degree " + std::to_string(degree) + " beyond the field's " + std::to_string(cs.degree));
+  StokesCoefficients out = cs;
+  out.degree = degree;
+  out.normalized = normalized;
+  const auto size = static_cast<std::size_t>(StokesCoefficients::index(degree, degree) + 1);
+  out.C.resize(size);
+  out.S.resize(size);
+  if (normalized != cs.normalized)
+    for (int n = 0; n <= degree; ++n)
+      for (int m = 0; m <= n; ++m) {
+        const double N = stokes_normalization(n, m), f = normalized ? 1.0 / N : N;  // (31.2)
+        const auto k = static_cast<std::size_t>(StokesCoefficients::index(n, m));
+        out.C[k] *= f, out.S[k] *= f;
+      }
+  return out;
+}
+
+double second_moment_trace(const StokesCoefficients& cs, double polar_moment) {
+  if (cs.degree < 2) throw Error("second_moment_trace: the field needs degree 2");
+  // (31.4): with zero trace the degree-2 integrals are S₀, the traceless part of S; S = S₀ + (t/3) I
+  // gives J_zz = S₀_xx + S₀_yy + 2t/3.
+  InertiaIntegrals none = integrals_from_inertia(cs.mass, Mat3::Zero());
+  const Mat3 S0 = integrals_from_stokes(truncated(cs, 2, cs.normalized), none).second_moment();
+  return 1.5 * (polar_moment - S0(0, 0) - S0(1, 1));
+}
+
+InertiaIntegrals field_integrals(const StokesCoefficients& cs, double trace) {
+  // A trace source with S = (trace/3) I: integrals_from_inertia of J = tr(S) I − S = (2 trace/3) I.
+  return integrals_from_stokes(cs, integrals_from_inertia(cs.mass, (2.0 * trace / 3.0) * Mat3::Identity()));
+}
+
+Mat3 inertia_of(const InertiaIntegrals& T) {
+  const Mat3 S = T.second_moment();
+  return S.trace() * Mat3::Identity() - S;
+}
+
 }  // namespace noether

@@ -121,6 +121,9 @@ Key parse_key(const Scene& scene, const std::string& text) {
   const Params& item = scene.root.at("bodies").items()[key.body];
   const bool rigid = scene.system.body(key.body).rigid;
   const std::string body = scene.system.body(key.body).name;
+  if (rest == "mass" && !item.has("mass") && item.has("gravity"))
+    throw SceneError(where + body + "'s mass is its field's GM / G: give " + key.body_key +
+                     ".mass in the scene (it then replaces the file's GM) to take the sensitivity to it");
   if (rest == "mass" && !item.has("mass"))
     throw SceneError(where + body + "'s mass follows from its density and shape: take " + key.body_key + ".density");
   if (rest == "density" && !item.has("density"))

@@ -29,7 +29,7 @@ from . import _noether
 from .output import Output, read
 from .compare import Table, compare
 
-__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "fit", "relative_equilibrium",
+__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "fit", "stokes", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
@@ -49,6 +49,18 @@ def observe(run, observable, times=None, line_of_sight=None, sunlight=None, tess
     sun = [] if sunlight is None else [float(c) for c in sunlight]
     return _noether.observe(os.fspath(run), observable, None if times is None else [float(t) for t in times], los,
                             sun, int(tessellation))
+
+
+def stokes(scene, body, degree=8, radius=None, normalized=True, set=None):
+    """`noether shape stokes` (docs/gravity-fields.md): the Stokes coefficients of a scene's body
+    about its centre of mass in its body frame, from its shape (or its field, or its inertia), to
+    `degree`, at the reference radius `radius` (the scene's length unit; default the body's
+    radius), fully normalized (geodesy's 4π) or not. Returns a dict: "C" and "S" as
+    (degree + 1) × (degree + 1) NumPy arrays indexed [n, m] (zero above m = n), "degree",
+    "mass", "gm", "reference_radius", "normalized", "polar_moment" (C/(M R²) about body z) and
+    "source"."""
+    return _noether.stokes(os.fspath(scene), body, int(degree), 0.0 if radius is None else float(radius),
+                           bool(normalized), list(set or []))
 
 
 def fit(scene, observations, free, set=None, max_iterations=30, tolerance=1e-3):

@@ -6,6 +6,7 @@
 #include "state_arrays.hpp"
 #include "lyapunov_orbit.hpp"
 
+#include <noether/body_stokes.hpp>
 #include <noether/compare.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/force_jacobian.hpp>
@@ -460,6 +461,32 @@ PYBIND11_MODULE(_noether, m) {
       result = noether::fit(scene, overrides, observations, options, registry());
     }
     return noether::fit_json(result);
+  });
+  // noether.stokes (docs/gravity-fields.md): a body's Stokes coefficients, as noether shape stokes.
+  m.def("stokes", [](const std::string& scene, const std::string& body, int degree, double radius, bool normalized,
+                     const std::vector<std::string>& overrides) {
+    const noether::BodyStokes s = noether::body_stokes(noether::load_scene(scene, overrides), body, degree, radius, normalized);
+    const noether::StokesCoefficients& cs = s.coefficients;
+    const auto size = static_cast<py::ssize_t>(cs.degree + 1);
+    py::array_t<double> C({size, size}), S({size, size});
+    auto c = C.mutable_unchecked<2>();
+    auto sn = S.mutable_unchecked<2>();
+    for (int n = 0; n <= cs.degree; ++n)
+      for (int m = 0; m <= cs.degree; ++m) {
+        c(n, m) = m <= n ? cs.c(n, m) : 0.0;
+        sn(n, m) = m <= n ? cs.s(n, m) : 0.0;
+      }
+    py::dict out;
+    out["C"] = C;
+    out["S"] = S;
+    out["degree"] = cs.degree;
+    out["mass"] = cs.mass;
+    out["gm"] = s.gm;
+    out["reference_radius"] = cs.reference_radius;
+    out["normalized"] = cs.normalized;
+    out["polar_moment"] = s.polar_moment;
+    out["source"] = s.source;
+    return out;
   });
   // noether.observe (docs/fitting.md): an observable of a run's file at its frames or at given times.
   m.def("observe", [](const std::filesystem::path& run, const std::string& spec, std::optional<std::vector<double>> times,

@@ -21,9 +21,10 @@
 // Version 6: Integrator::checkpoint and Integrator::restore (an integrator whose
 // variables are not the State — a relative frame, a two-step form — hands them to the output
 // and takes them back, so a continued run is bit for bit the uninterrupted one).
-// Version 7 (current): Potential::force_jacobian (∂(f, M)/∂(x, θ), positions and attitudes,
+// Version 7: Potential::force_jacobian (∂(f, M)/∂(x, θ), positions and attitudes,
 // with a workspace) replaces Potential::position_hessian; State::tangent,
 // Integrator::tangent_map_unavailable and Integrator::carry_parameters (derivatives).
+// Version 8 (current): Body::field (a body given by its Stokes coefficients) added to System.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -40,7 +41,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 7u
+#define NOETHER_PLUGIN_API_VERSION 8u
 
 namespace noether {
 

@@ -54,6 +54,22 @@ StokesCoefficients stokes_from_integrals(const InertiaIntegrals& T, double refer
 // degree 2: integrals_from_inertia gives it).
 InertiaIntegrals integrals_from_stokes(const StokesCoefficients& cs, const InertiaIntegrals& trace_source);
 
+// The coefficients to `degree` ≤ cs.degree in the normalization asked for (31.2).
+StokesCoefficients truncated(const StokesCoefficients& cs, int degree, bool normalized);
+
+// A body known by its field cs (degree ≥ 2) and one more number: ∫ r² dm, the trace of its
+// second moment S = ∫ x xᵀ dm, which the field does not fix. From its moment of inertia about
+// the body z axis, J_zz = S_xx + S_yy, and the traceless part of S that C_2m give (31.4).
+double second_moment_trace(const StokesCoefficients& cs, double polar_moment);
+
+// Its integrals to cs.degree: the field's, with ∫ r² dm = `trace` at degree 2 and zero traces
+// above it (31.3; neither the exterior field nor a mutual potential depends on those).
+InertiaIntegrals field_integrals(const StokesCoefficients& cs, double trace);
+
+// J = tr(S) I − S from the degree-2 integrals S = ∫ x xᵀ dm (the converse of
+// integrals_from_inertia).
+Mat3 inertia_of(const InertiaIntegrals& T);
+
 }  // namespace noether
 
 #pragma GCC visibility pop

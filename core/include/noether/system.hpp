@@ -4,6 +4,7 @@
 #include <noether/lie.hpp>
 #include <noether/params.hpp>
 #include <noether/solid.hpp>
+#include <noether/stokes_coefficients.hpp>
 
 #include <memory>
 
@@ -26,6 +27,10 @@ struct Body {
   // The homogeneous solid (ellipsoid or polyhedron) when the shape is one; its mass and
   // inertia are the body's. Null for point masses and point clusters.
   std::shared_ptr<const Solid> solid;
+  // A body given by its gravity field (the scene's `gravity:`): its Stokes coefficients about its
+  // centre of mass in its body frame, mass = the body's. Its inertia integrals to the field's
+  // degree are field_integrals(*field, ½ tr J) (docs/equations.md (31.3)–(31.4)). Null otherwise.
+  std::shared_ptr<const StokesCoefficients> field;
   // The radius of a sphere about the centre of mass that holds the body: the solid's, or the
   // scene's `radius`; 0 when unknown. Collision events use it (docs/equations.md §16).
   double radius = 0.0;

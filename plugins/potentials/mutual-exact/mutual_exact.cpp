@@ -41,8 +41,10 @@ class MutualExactPotential final : public noether::Potential {
       if (body.rigid && !body.solid)
         throw SceneError((body.shape.is_null() ? std::string() : body.shape.here()) +
                          "mutual-exact: body '" + body.name +
-                         "' is rigid but has no ellipsoid or polyhedron shape, so its exact "
-                         "field is unknown");
+                         "' is rigid but has no ellipsoid or polyhedron shape, so its exact " +
+                         (body.field ? "interior field is unknown (its Stokes coefficients give the field outside "
+                                       "its Brillouin sphere only: use mutual-series)"
+                                     : std::string("field is unknown")));
       names_.push_back(body.name);
     }
     for (std::size_t i = 0; i < system.size(); ++i)

@@ -10,7 +10,7 @@
 // exceeded is reported (or stops the run, `on_exceed: stop`).
 //
 // Each body's integrals T^{lmn} are computed once from its shape (ellipsoid in closed form,
-// polyhedron exactly); in each pair the second body's integrals are rotated into the first's
+// polyhedron exactly) or its Stokes coefficients (a body given by its gravity field); in each pair the second body's integrals are rotated into the first's
 // frame at every evaluation (docs/equations.md (12.6)).
 #include <noether/error.hpp>
 #include <noether/mutual_pair.hpp>
@@ -63,6 +63,18 @@ class MutualSeriesPotential final : public noether::Potential {
       if (body.solid) {
         integrals_.push_back(body.solid->integrals(T_order));
         radius_.push_back(body.solid->radius);
+      } else if (body.field) {  // its coefficients' integrals (docs/equations.md (31.3))
+        if (T_order > body.field->degree)
+          throw SceneError("mutual-series: body '" + body.name + "' is given by its gravity field to degree " +
+                           std::to_string(body.field->degree) + ", so " +
+                           (tolerance_ > 0.0 ? "a tolerance, which needs its integrals to max_order + 2 = " +
+                                                   std::to_string(T_order) + ", needs max_order ≤ " +
+                                                   std::to_string(body.field->degree - 2)
+                                             : "order " + std::to_string(fixed_order_) + " cannot be evaluated; use order ≤ " +
+                                                   std::to_string(body.field->degree)));
+        integrals_.push_back(noether::field_integrals(noether::truncated(*body.field, T_order, body.field->normalized),
+                                                      0.5 * body.inertia.trace()));
+        radius_.push_back(body.radius);
       } else if (body.rigid) {
         const std::string what = tolerance_ > 0.0 ? "a tolerance needs its higher integrals"
                                                   : "order " + std::to_string(fixed_order_) + " cannot be evaluated";

@@ -1,0 +1,299 @@
+// Gravity-field files: ICGEM .gfc, PDS SHADR and plain tables (stokes_file.hpp).
+#include <noether/error.hpp>
+#include <noether/stokes_file.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <vector>
+
+namespace noether {
+
+namespace {
+
+// "file:line: " for messages.
+struct Where {
+  std::string file;
+  std::size_t line = 0;
+  std::string operator()() const { return file + ":" + std::to_string(line) + ": "; }
+};
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+// Blank- or comma-separated fields.
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::string cell;
+  for (char c : line) {
+    if (c == ',' || c == ' ' || c == '\t' || c == '\r') {
+      if (!cell.empty()) out.push_back(cell), cell.clear();
+    } else {
+      cell += c;
+    }
+  }
+  if (!cell.empty()) out.push_back(cell);
+  return out;
+}
+
+// A number, Fortran's D exponent allowed; the whole cell must be one.
+double number(std::string cell, const Where& where, const std::string& what) {
+  std::replace(cell.begin(), cell.end(), 'D', 'E');
+  std::replace(cell.begin(), cell.end(), 'd', 'e');
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(cell.c_str(), &end);
+  if (cell.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
+    throw SceneError(where() + what + " '" + cell + "' is not a finite number");
+  return v;
+}
+
+int integer(const std::string& cell, const Where& where, const std::string& what) {
+  const double v = number(cell, where, what);
+  if (v != std::floor(v) || v < 0 || v > 100000) throw SceneError(where() + what + " '" + cell + "' is not a degree or order");
+  return static_cast<int>(v);
+}
+
+// Coefficients as read, before the degree is known: (n, m) → (C, S, line).
+struct Rows {
+  std::map<std::pair<int, int>, std::pair<std::pair<double, double>, std::size_t>> values;
+
+  void add(int n, int m, double C, double S, const Where& where) {
+    if (m > n) throw SceneError(where() + "order " + std::to_string(m) + " is above degree " + std::to_string(n));
+    if (m == 0 && S != 0.0)
+      throw SceneError(where() + "S(" + std::to_string(n) + ", 0) is " + std::to_string(S) + "; a zonal term has no sine part");
+    const auto [it, fresh] = values.emplace(std::pair{n, m}, std::pair{std::pair{C, S}, where.line});
+    if (!fresh)
+      throw SceneError(where() + "the coefficients of degree " + std::to_string(n) + ", order " + std::to_string(m) +
+                       " are given twice (first on line " + std::to_string(it->second.second) + ")");
+  }
+
+  // Into StokesCoefficients to `degree` (the highest present when negative). C00 is 1 when absent;
+  // a field about another origin than the centre of mass (degree 1) is refused.
+  StokesCoefficients build(int degree, const std::string& file) const {
+    if (values.empty()) throw SceneError(file + ": no coefficients found");
+    const int highest = values.rbegin()->first.first;
+    if (degree < 0) degree = highest;
+    StokesCoefficients cs;
+    cs.degree = degree;
+    const auto size = static_cast<std::size_t>(StokesCoefficients::index(degree, degree) + 1);
+    cs.C.assign(size, 0.0);
+    cs.S.assign(size, 0.0);
+    cs.C[0] = 1.0;
+    for (const auto& [nm, value] : values) {
+      const auto [n, m] = nm;
+      if (n > degree) continue;
+      const auto k = static_cast<std::size_t>(StokesCoefficients::index(n, m));
+      cs.C[k] = value.first.first, cs.S[k] = value.first.second;
+    }
+    if (std::abs(cs.C[0] - 1.0) > 1e-9) {
+      std::ostringstream msg;
+      msg.precision(17);
+      msg << file << ": C(0, 0) is " << cs.C[0] << ", not 1: noether takes the field's mass from its GM (give the "
+          << "body's 'mass' to change it) and the coefficients relative to it";
+      throw SceneError(msg.str());
+    }
+    if (degree >= 1) {
+      const double c10 = cs.c(1, 0), c11 = cs.c(1, 1), s11 = cs.s(1, 1);
+      if (std::max({std::abs(c10), std::abs(c11), std::abs(s11)}) > 1e-12) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << file << ": the degree-1 coefficients (C10 " << c10 << ", C11 " << c11 << ", S11 " << s11
+            << ") put the field's origin away from the body's centre of mass; noether's bodies are about their "
+            << "centres of mass: use a field in a centre-of-mass frame";
+        throw SceneError(msg.str());
+      }
+      cs.C[1] = cs.C[2] = cs.S[2] = 0.0;
+    }
+    return cs;
+  }
+};
+
+StokesFile read_icgem(std::istream& in, const std::string& file) {
+  StokesFile out;
+  out.format = "icgem";
+  Where where{file, 0};
+  std::map<std::string, std::pair<std::string, std::size_t>> header;
+  std::string line;
+  bool in_data = false;
+  Rows rows;
+  while (std::getline(in, line)) {
+    ++where.line;
+    const std::vector<std::string> f = fields(line);
+    if (f.empty()) continue;
+    if (!in_data) {
+      if (f[0] == "end_of_head") {
+        in_data = true;
+      } else if (f.size() >= 2 && f[0] != "begin_of_head") {
+        header.emplace(f[0], std::pair{trim(line.substr(line.find(f[0]) + f[0].size())), where.line});
+      }
+      continue;
+    }
+    const std::string& key = f[0];
+    if (key == "gfct" || key == "trnd" || key == "dot" || key == "acos" || key == "asin")
+      throw SceneError(where() + "a time-variable term ('" + key + "'): noether reads static fields (gfc lines) only");
+    if (key != "gfc") throw SceneError(where() + "unknown line key '" + key + "' (an ICGEM field's lines are 'gfc L M C S')");
+    if (f.size() < 5) throw SceneError(where() + "a gfc line needs L M C S");
+    rows.add(integer(f[1], where, "degree"), integer(f[2], where, "order"), number(f[3], where, "C"),
+             number(f[4], where, "S"), where);
+  }
+  if (!in_data) throw SceneError(file + ": no 'end_of_head' line: not an ICGEM .gfc file");
+  auto value = [&](std::initializer_list<const char*> keys, const std::string& what) -> std::pair<std::string, std::size_t> {
+    for (const char* k : keys)
+      if (auto it = header.find(k); it != header.end()) return it->second;
+    throw SceneError(file + ": the header has no '" + *keys.begin() + "' (" + what + ")");
+  };
+  auto header_number = [&](std::initializer_list<const char*> keys, const std::string& what) {
+    const auto [text, line_no] = value(keys, what);
+    return number(fields(text)[0], Where{file, line_no}, what);
+  };
+  if (auto it = header.find("product_type"); it != header.end() && fields(it->second.first)[0] != "gravity_field")
+    throw SceneError(Where{file, it->second.second}() + "product_type '" + it->second.first +
+                     "' is not a gravity_field");
+  if (auto it = header.find("modelname"); it != header.end()) out.model = it->second.first;
+  out.gm = header_number({"earth_gravity_constant", "gravity_constant"}, "GM in m^3/s^2");
+  out.reference_radius = header_number({"radius"}, "the reference radius in m");
+  if (!(*out.gm > 0.0) || !(*out.reference_radius > 0.0))
+    throw SceneError(file + ": the header's GM and radius must be positive");
+  out.normalized = true;
+  if (auto it = header.find("norm"); it != header.end()) {
+    const std::string norm = fields(it->second.first)[0];
+    if (norm == "unnormalized")
+      out.normalized = false;
+    else if (norm != "fully_normalized")
+      throw SceneError(Where{file, it->second.second}() + "norm '" + norm + "': expected fully_normalized or unnormalized");
+  }
+  const int max_degree = static_cast<int>(header_number({"max_degree"}, "the field's degree"));
+  if (!rows.values.empty() && rows.values.rbegin()->first.first > max_degree)
+    throw SceneError(Where{file, rows.values.rbegin()->second.second}() + "degree " +
+                     std::to_string(rows.values.rbegin()->first.first) + " is above the header's max_degree " +
+                     std::to_string(max_degree));
+  out.coefficients = rows.build(max_degree, file);
+  return out;
+}
+
+StokesFile read_shadr(std::istream& in, const std::string& file) {
+  StokesFile out;
+  out.format = "shadr";
+  out.model = std::filesystem::path(file).filename().string();
+  Where where{file, 0};
+  std::string line;
+  Rows rows;
+  int degree = -1;
+  while (std::getline(in, line)) {
+    ++where.line;
+    const std::vector<std::string> f = fields(line);
+    if (f.empty()) continue;
+    if (degree < 0) {  // the header record
+      if (f.size() < 6)
+        throw SceneError(where() + "a SHADR header record needs reference radius (km), GM (km^3/s^2), its "
+                         "uncertainty, degree, order and normalization state");
+      out.reference_radius = number(f[0], where, "the reference radius (km)") * 1e3;
+      out.gm = number(f[1], where, "GM (km^3/s^2)") * 1e9;
+      degree = integer(f[3], where, "the degree");
+      const double state = number(f[5], where, "the normalization state");
+      if (state != 0.0 && state != 1.0)
+        throw SceneError(where() + "normalization state " + f[5] + ": expected 1 (normalized) or 0 (unnormalized)");
+      out.normalized = state == 1.0;
+      for (std::size_t k = 6; k < std::min<std::size_t>(f.size(), 8); ++k)
+        if (number(f[k], where, "the reference longitude/latitude") != 0.0)
+          throw SceneError(where() + "the expansion's reference longitude and latitude must be 0, not " + f[k]);
+      if (!(*out.gm > 0.0) || !(*out.reference_radius > 0.0))
+        throw SceneError(where() + "the header's GM and reference radius must be positive");
+      continue;
+    }
+    if (f.size() < 4) throw SceneError(where() + "a coefficient record needs n, m, C, S");
+    const int n = integer(f[0], where, "degree");
+    if (n > degree)
+      throw SceneError(where() + "degree " + std::to_string(n) + " is above the header's " + std::to_string(degree));
+    rows.add(n, integer(f[1], where, "order"), number(f[2], where, "C"), number(f[3], where, "S"), where);
+  }
+  if (degree < 0) throw SceneError(file + ": empty: no SHADR header record");
+  out.coefficients = rows.build(degree, file);
+  return out;
+}
+
+StokesFile read_table(std::istream& in, const std::string& file) {
+  StokesFile out;
+  out.format = "table";
+  Where where{file, 0};
+  std::string line;
+  Rows rows;
+  while (std::getline(in, line)) {
+    ++where.line;
+    const auto hash = line.find('#');
+    const std::vector<std::string> f = fields(hash == std::string::npos ? line : line.substr(0, hash));
+    if (f.empty()) continue;
+    if (f.size() != 4 && f.size() != 6) throw SceneError(where() + "a row needs n m C S (and optionally σC σS)");
+    rows.add(integer(f[0], where, "degree"), integer(f[1], where, "order"), number(f[2], where, "C"),
+             number(f[3], where, "S"), where);
+  }
+  out.coefficients = rows.build(-1, file);
+  return out;
+}
+
+void write_rows(std::ostream& out, const StokesCoefficients& cs, const char* key) {
+  char buffer[160];
+  for (int n = 0; n <= cs.degree; ++n)
+    for (int m = 0; m <= n; ++m) {
+      std::snprintf(buffer, sizeof buffer, "%s%5d %4d % .17e % .17e\n", key, n, m, cs.c(n, m), cs.s(n, m));
+      out << buffer;
+    }
+}
+
+}  // namespace
+
+std::string stokes_format_of(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".gfc") return "icgem";
+  if (ext == ".tab") return "shadr";
+  return "";
+}
+
+StokesFile read_stokes_file(const std::filesystem::path& file, const std::string& format) {
+  std::ifstream in(file);
+  if (!in) throw SceneError(file.string() + ": cannot be read");
+  if (format == "icgem") return read_icgem(in, file.string());
+  if (format == "shadr") return read_shadr(in, file.string());
+  if (format == "table") return read_table(in, file.string());
+  throw SceneError(file.string() + ": unknown gravity-field format '" + format + "' (icgem, shadr or table)");
+}
+
+void write_icgem(std::ostream& out, const StokesCoefficients& cs, double gm_si, double reference_radius_si,
+                 const std::string& model, const std::vector<std::string>& comments) {
+  for (const std::string& c : comments) out << c << "\n";
+  char buffer[160];
+  out << "begin_of_head ====================================================================\n";
+  out << "product_type              gravity_field\n";
+  out << "modelname                 " << model << "\n";
+  std::snprintf(buffer, sizeof buffer, "earth_gravity_constant    %.17e\nradius                    %.17e\n", gm_si,
+                reference_radius_si);
+  out << buffer;
+  out << "max_degree                " << cs.degree << "\n";
+  out << "errors                    no\n";
+  out << "norm                      " << (cs.normalized ? "fully_normalized" : "unnormalized") << "\n";
+  out << "tide_system               unknown\n";
+  out << "key    L    M             C                        S\n";
+  out << "end_of_head ======================================================================\n";
+  write_rows(out, cs, "gfc  ");
+}
+
+void write_stokes_table(std::ostream& out, const StokesCoefficients& cs, const std::vector<std::string>& comments) {
+  for (const std::string& c : comments) out << "# " << c << "\n";
+  char buffer[120];
+  std::snprintf(buffer, sizeof buffer, "# reference radius %.17g, %s\n# n    m    C    S\n", cs.reference_radius,
+                cs.normalized ? "fully normalized" : "unnormalized");
+  out << buffer;
+  write_rows(out, cs, "");
+}
+
+}  // namespace noether
