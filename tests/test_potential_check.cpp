@@ -21,8 +21,8 @@ integrator: {plugin: lgvi, step: 0.01}
 run: {t_end: 1, output_every: 0.1}
 )";
 
-// Solid shapes for the mutual-series and mutual-exact models: an ellipsoid, an octahedron
-// off its principal axes, and a point mass.
+// Solid shapes for the mutual-series, mutual-exact and spherical-harmonics models (the last with
+// the octahedron's field): an ellipsoid, an octahedron off its principal axes, and a point mass.
 std::string shapes_scene() {
   return R"(G: 0.7
 bodies:
@@ -39,8 +39,11 @@ run: {t_end: 1, output_every: 0.1}
 
 PotentialCheckReport check(const std::string& plugin) {
   PluginRegistry registry({NOETHER_TEST_PLUGIN_DIR, NOETHER_FIXTURE_PLUGIN_DIR});
-  if (plugin.rfind("mutual-", 0) == 0) {
-    const Scene scene = parse_scene(shapes_scene(), "check", {"potential={plugin: " + plugin + (plugin == "mutual-series" ? ", order: 6}" : "}")});
+  if (plugin.rfind("mutual-", 0) == 0 || plugin == "spherical-harmonics") {
+    const std::string parameters = plugin == "mutual-series"         ? ", order: 6}"
+                                   : plugin == "spherical-harmonics" ? ", body: beta, degree: 6}"
+                                                                     : "}";
+    const Scene scene = parse_scene(shapes_scene(), "check", {"potential={plugin: " + plugin + parameters});
     return check_potential(scene.system, *make_scene_potential(scene, registry), scene.initial);
   }
   // An external field needs its parameters and does not conserve momentum.

@@ -16,21 +16,26 @@ using namespace noether;
 
 namespace {
 
-void BM_MutualSeriesKw4(benchmark::State& st) {
-  const int N = static_cast<int>(st.range(0));
-  const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"),
-                                 {"potential.order=" + std::to_string(N)});
+// The scene's potential evaluated once per iteration, with one workspace for the loop, each time
+// at a new configuration (nothing is cached).
+void evaluate_repeatedly(benchmark::State& st, const Scene& scene) {
   auto registry = test::bundled_plugins();
-  auto potential = make_scene_potential(scene, registry);
-  noether::PotentialEvaluator evaluate(potential);  // one workspace for the loop
+  noether::PotentialEvaluator evaluate(make_scene_potential(scene, registry));
   Forces f;
   f.resize(scene.system);
   State s = scene.initial;
   for (auto _ : st) {
     evaluate(s, f);
     benchmark::DoNotOptimize(f.U);
-    s.x(0, 1) += 1e-9;  // a new configuration each time (nothing is cached)
+    s.x(0, 1) += 1e-9;
   }
+}
+
+void BM_MutualSeriesKw4(benchmark::State& st) {
+  const int N = static_cast<int>(st.range(0));
+  const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"),
+                                 {"potential.order=" + std::to_string(N)});
+  evaluate_repeatedly(st, scene);
 }
 BENCHMARK(BM_MutualSeriesKw4)->DenseRange(2, 12, 1)->Unit(benchmark::kMicrosecond);
 
@@ -91,5 +96,25 @@ BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Polyhedra, "examples/kw4-polyhedra.yaml
 BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MutualTolerance, Didymos, "examples/didymos.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MutualTolerance, OctahedraHou, "examples/octahedra-hou.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+namespace {
+
+// A spacecraft in KW4 Alpha's field (examples/kw4-alpha-orbiter.yaml): one evaluation of the
+// spherical-harmonics potential (Cunningham's recursion, O(N²)) against the same field as the
+// inertia-integral series of a point-mass pair (mutual-series), at degree/order N.
+// Run: build/release/bin/noether_benchmarks --benchmark_filter=FieldOnSpacecraft
+// (results in docs/gravity-fields.md)
+void BM_FieldOnSpacecraft(benchmark::State& st, const char* model) {
+  const int N = static_cast<int>(st.range(0));
+  const std::string potential = std::string(model) == "spherical-harmonics"
+                                    ? "potential={plugin: spherical-harmonics, body: alpha, degree: " + std::to_string(N) + "}"
+                                    : "potential={plugin: mutual-series, order: " + std::to_string(N) + "}";
+  evaluate_repeatedly(st, load_scene(test::source_path("examples/kw4-alpha-orbiter.yaml"), {potential}));
+}
+BENCHMARK_CAPTURE(BM_FieldOnSpacecraft, SphericalHarmonics, "spherical-harmonics")
+    ->Arg(4)->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(BM_FieldOnSpacecraft, MutualSeries, "mutual-series")->Arg(4)->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

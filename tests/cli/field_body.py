@@ -4,8 +4,9 @@
 examples/fields/ (so the shipped file is what the command makes), with the polar moment that
 examples/kw4-field-secondary.yaml gives; that scene, Beta given by the file, reproduces the
 ellipsoid run's mutual orbit to ≤ 1e-9 relative over 11.6 orbits at orders 4 and 8 (issue 31's
-must-show; measured 3.7e-13 and 1.7e-12); the field re-expanded from the field body equals the file; what is
-refused, exit 2, by name.
+must-show; measured 3.7e-13 and 1.7e-12); the field re-expanded from the field body equals the file;
+the spherical-harmonics potential's warning inside the Brillouin sphere; what is refused, exit 2,
+by name.
 """
 import os
 import re
@@ -95,4 +96,15 @@ refused("an ICGEM file gives GM in m^3/s^2 and its radius in m, and the scene de
         os.path.join(work, "octahedron.gfc"))
 refused("beta's mass is its field's GM / G: give bodies.beta.mass in the scene", "run", field_scene, "--no-progress",
         "--sensitivity", "bodies.beta.mass", "-o", os.path.join(work, "x.h5"))
-print("refusals: 10 checked")
+# spherical-harmonics: the Brillouin sphere's warning, and its refusals.
+orbiter = os.path.join("examples", "kw4-alpha-orbiter.yaml")
+out = run("run", orbiter, "--no-progress", "--force", "--set", "bodies.spacecraft.orbit.e=0.7", "--set", "run.t_end=3000",
+          "-o", os.path.join(work, "inside.h5"))
+assert "body 'spacecraft' is 750 from the centre of 'alpha' at t = 0, inside its Brillouin sphere (radius 783.429)" in out, out
+refused("spherical-harmonics: degree 9 is outside 0..8 (the degree of body 'beta''s field)", "run", field_scene,
+        "--no-progress", "--set", "potential={plugin: spherical-harmonics, body: beta, degree: 9}")
+refused("spherical-harmonics: body 'spacecraft' has neither a gravity field (gravity:) nor an ellipsoid or polyhedron shape",
+        "run", orbiter, "--no-progress", "--set", "potential.body=spacecraft")
+refused("potential plugin 'spherical-harmonics' needs 'degree'", "run", orbiter, "--no-progress", "--set",
+        "potential={plugin: spherical-harmonics, body: alpha}")
+print("refusals: 13 checked")
