@@ -233,7 +233,8 @@ ObservableValue observe(const Trajectory& trajectory, const Observation& o, cons
     Mesh m = trajectory.surfaces[j];
     if (m.faces.empty())
       throw SceneError((where.empty() ? std::string() : where + ": ") + "body '" + trajectory.names[j] +
-                       "' has no surface for a lightcurve (give it an ellipsoid or polyhedron shape, or a radius)");
+                       "' has no surface for a lightcurve (give it an ellipsoid or polyhedron shape, or a point mass a "
+                       "radius; a body given by its gravity field has none)");
     for (Eigen::Index k = 0; k < m.vertices.cols(); ++k)
       m.vertices.col(k) = x.col(static_cast<Eigen::Index>(j)) + R[j] * m.vertices.col(k);
     placed.push_back(std::move(m));

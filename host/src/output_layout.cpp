@@ -136,6 +136,20 @@ void H5Writer::create_layout(const Scene& scene) {
                               {b.solid->stretch.x(), b.solid->stretch.y(), b.solid->stretch.z()});
   }
 
+  // Bodies given by their gravity field: where the coefficients came from and what they are.
+  io::H5Handle fields;
+  for (std::size_t i = 0; i < sys.size(); ++i) {
+    const Body& b = sys.body(i);
+    if (!b.field) continue;
+    if (!fields.valid()) fields = io::H5Handle(make_group(parameters, "fields"));
+    const io::H5Handle g(make_group(fields, b.name.c_str()));
+    string_attribute(g, "stokes", scene.root.at("bodies").items()[i].at("gravity").at("stokes").as_string());
+    numeric_attribute<int>(g, "degree", H5T_NATIVE_INT, {b.field->degree});
+    numeric_attribute<double>(g, "reference_radius", H5T_NATIVE_DOUBLE, {b.field->reference_radius});
+    numeric_attribute<double>(g, "GM", H5T_NATIVE_DOUBLE, {sys.G() * b.mass});
+    string_attribute(g, "normalization", b.field->normalized ? "fully normalized" : "unnormalized");
+  }
+
   const io::H5Handle particles(make_group(m.file, "particles"));
   const io::H5Handle bodies(make_group(particles, "bodies"));
   std::vector<std::string> names;

@@ -142,6 +142,7 @@ Mesh body_surface(const Body& body, int ellipsoid_level) {
   if (body.solid && body.solid->kind == Solid::Kind::Polyhedron) return body.solid->mesh;
   if (body.solid) return tessellated_ellipsoid(body.solid->semi_axes, ellipsoid_level);
   if (body.shape.is_map() && body.shape.size() > 0) return {};  // a cluster of points or spheres: no surface
+  if (body.field) return {};  // known by its gravity field alone: no surface (its radius bounds it)
   if (body.radius > 0) return tessellated_ellipsoid(Vec3::Constant(body.radius), ellipsoid_level);
   return {};
 }

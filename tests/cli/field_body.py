@@ -64,6 +64,14 @@ for order in (4, 8):
 print("mutual orbit, field body against the ellipsoid, 720000 s (11.6 orbits):",
       ", ".join(f"order {k}: {v:.2e}" for k, v in worst.items()))
 
+# The output says where the field came from; a field body has no surface for a lightcurve.
+with h5py.File(os.path.join(work, "field8.h5"), "r") as f:
+    a = f["parameters/fields/beta"].attrs
+    assert a["stokes"] == "fields/kw4-beta.gfc" and a["degree"][0] == 8 and a["reference_radius"][0] == 285.0, dict(a)
+    assert abs(a["GM"][0] - 9.0099) < 1e-12 and a["normalization"] == "fully normalized", dict(a)
+refused("body 'beta' has no surface for a lightcurve", "observe", os.path.join(work, "field8.h5"), "--observable",
+        "lightcurve.lambert:beta:alpha", "--line-of-sight", "1,0,0", "--sunlight", "1,0,0")
+
 # The field body's own coefficients, re-expanded at its reference radius, are the file's.
 again = os.path.join(work, "again.gfc")
 run("shape", "stokes", field_scene, "--body", "beta", "--degree", "8", "-o", again, "--force")
