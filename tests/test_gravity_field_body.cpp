@@ -154,6 +154,15 @@ TEST(StokesFile, BadFilesAreRefusedByFileAndLine) {
   EXPECT_TRUE(contains(read_error("k.tab", "16, 4e-4, 0, 2, 2, 1, 10, 0\n", "shadr"), "reference longitude and latitude must be 0"));
   EXPECT_TRUE(contains(read_error("l.txt", "2 0 0.1\n", "table"), "l.txt:1: a row needs n m C S"));
   EXPECT_TRUE(contains(read_error("m.txt", "2 0 0.1 0.2\n", "table"), "m.txt:1: S(2, 0) is"));
+  EXPECT_TRUE(contains(read_error("n.gfc", "begin_of_head\nearth_gravity_constant 1e3\nradius 10\nmax_degree 5000\n"
+                                           "end_of_head\n", "icgem"),
+                       "n.gfc:4: max_degree 5000 is above 2400, the highest degree noether reads"));
+  try {  // a device would be read without end
+    read_stokes_file("/dev/zero", "icgem");
+    ADD_FAILURE() << "/dev/zero was read";
+  } catch (const SceneError& e) {
+    EXPECT_TRUE(contains(e.what(), "/dev/zero: the gravity-field file is not a regular file"));
+  }
 }
 
 // The inertia of a body known by its field and one more number (31.4): KW4 Alpha in its mesh's

@@ -56,9 +56,16 @@ double number(std::string cell, const Where& where, const std::string& what) {
   return v;
 }
 
+// Fields of higher degree than this are refused (EGM2008's is 2190; the coefficients of degree N
+// take N²/2 pairs of doubles).
+constexpr int kMaxFileDegree = 2400;
+
 int integer(const std::string& cell, const Where& where, const std::string& what) {
   const double v = number(cell, where, what);
-  if (v != std::floor(v) || v < 0 || v > 100000) throw SceneError(where() + what + " '" + cell + "' is not a degree or order");
+  if (v != std::floor(v) || v < 0) throw SceneError(where() + what + " '" + cell + "' is not a degree or order");
+  if (v > kMaxFileDegree)
+    throw SceneError(where() + what + " " + cell + " is above " + std::to_string(kMaxFileDegree) +
+                     ", the highest degree noether reads");
   return static_cast<int>(v);
 }
 
@@ -171,7 +178,8 @@ StokesFile read_icgem(std::istream& in, const std::string& file) {
     else if (norm != "fully_normalized")
       throw SceneError(Where{file, it->second.second}() + "norm '" + norm + "': expected fully_normalized or unnormalized");
   }
-  const int max_degree = static_cast<int>(header_number({"max_degree"}, "the field's degree"));
+  const auto [degree_text, degree_line] = value({"max_degree"}, "the field's degree");
+  const int max_degree = integer(fields(degree_text)[0], Where{file, degree_line}, "max_degree");
   if (!rows.values.empty() && rows.values.rbegin()->first.first > max_degree)
     throw SceneError(Where{file, rows.values.rbegin()->second.second}() + "degree " +
                      std::to_string(rows.values.rbegin()->first.first) + " is above the header's max_degree " +
@@ -260,6 +268,14 @@ std::string stokes_format_of(const std::filesystem::path& file) {
 }
 
 StokesFile read_stokes_file(const std::filesystem::path& file, const std::string& format) {
+  // A regular file of bounded size (a FIFO or a device such as /dev/zero would be read without end).
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw SceneError(file.string() + ": the gravity-field file is not a regular file");
+  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxBytes)
+    throw SceneError(file.string() + ": the gravity-field file has " + std::to_string(bytes) +
+                     " bytes; noether reads field files of at most 1 GiB");
   std::ifstream in(file);
   if (!in) throw SceneError(file.string() + ": cannot be read");
   if (format == "icgem") return read_icgem(in, file.string());

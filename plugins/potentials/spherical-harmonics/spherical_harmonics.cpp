@@ -12,6 +12,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -40,11 +41,13 @@ class SphericalHarmonics final : public noether::Potential {
     body_ = static_cast<std::size_t>(index);
     const noether::Body& b = system.body(body_);
     const long N = params.at("degree").as_int();
-    const int known = b.field ? b.field->degree : noether::multi_index::kMaxDegree;
+    const int top = noether::multi_index::kMaxDegree;  // the recursion's, on unnormalised coefficients
+    const int known = b.field ? std::min(b.field->degree, top) : top;
     if (N < 0 || N > known)
       throw SceneError(params.at("degree").here() + "spherical-harmonics: degree " + std::to_string(N) +
                        " is outside 0.." + std::to_string(known) +
-                       (b.field ? " (the degree of body '" + name + "''s field)" : std::string()));
+                       (b.field && b.field->degree < top ? " (the degree of body '" + name + "''s field)"
+                                                         : " (the highest this model evaluates)"));
     const int degree = static_cast<int>(N);
     if (b.field) {
       coefficients_ = noether::truncated(*b.field, degree, false);
