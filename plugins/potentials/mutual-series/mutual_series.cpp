@@ -10,8 +10,9 @@
 // exceeded is reported (or stops the run, `on_exceed: stop`).
 //
 // Each body's integrals T^{lmn} are computed once from its shape (ellipsoid in closed form,
-// polyhedron exactly) or its Stokes coefficients (a body given by its gravity field); in each pair the second body's integrals are rotated into the first's
-// frame at every evaluation (docs/equations.md (12.6)).
+// polyhedron exactly) or its Stokes coefficients (a body given by its gravity field); in each
+// pair the second body's integrals are rotated into the first's frame at every evaluation
+// (docs/equations.md (12.6)).
 #include <noether/error.hpp>
 #include <noether/mutual_pair.hpp>
 #include <noether/order_selection.hpp>
