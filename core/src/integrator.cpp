@@ -15,6 +15,9 @@ std::string Integrator::tangent_map_unavailable() const { return "this method ha
 std::string Integrator::carry_parameters(std::shared_ptr<const ParameterDerivatives>) {
   return "this method cannot carry sensitivities to parameters of the dynamics";
 }
+std::string Integrator::add_forcing(std::shared_ptr<const Forcing>) {
+  return "this method does not take forces beyond the potential";
+}
 std::vector<StepSeries> Integrator::take_step_series() { return {}; }
 PotentialEvaluator* Integrator::potential_evaluator() { return nullptr; }
 std::vector<double> Integrator::checkpoint() const { return {}; }

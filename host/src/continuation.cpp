@@ -27,13 +27,16 @@ namespace {
 
 // What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
 // tangent's frames but not the state of its integration: the chaos indicators' sums, the
-// parameters' stencils), and a scene with impulses (which of them a continuation has passed).
+// parameters' stencils), a scene with impulses (which of them a continuation has passed) and one
+// with forces (what they put in so far).
 void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
+  if (!scene.forces.empty())  // their balance (State::force_balance) is not read back yet
+    throw Error(doing + " a run whose scene has forces beyond the potential (forces:) is not supported yet" + advice);
 }
 
 // Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied

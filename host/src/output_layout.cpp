@@ -61,7 +61,7 @@ void H5Writer::create_layout(const Scene& scene) {
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
   m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size(),
-                           options.chaos);
+                           options.chaos, options.force_names.size());
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
@@ -101,6 +101,11 @@ void H5Writer::create_layout(const Scene& scene) {
   string_attribute(parameters, "potential", options.custom_potential ? "python (given in code, not the scene's)" : potentials);
   numeric_attribute<int>(parameters, "custom_potential", H5T_NATIVE_INT, {options.custom_potential ? 1 : 0});
   string_attribute(parameters, "integrator", scene.integrator.plugin);
+  if (!options.force_names.empty()) {  // the columns of /observables/force_balance, in order
+    std::string names;
+    for (const auto& n : options.force_names) names += (names.empty() ? "" : "\n") + n;
+    string_attribute(parameters, "forces", names);
+  }
   scalar_attribute(parameters, "G", sys.G());
   string_attribute(parameters, "units", scene.units.describe());
   string_attribute(parameters, "unit_length", scene.units.of_length());

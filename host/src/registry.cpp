@@ -25,6 +25,7 @@ const char* to_string(PluginKind kind) {
   switch (kind) {
     case PluginKind::Potential: return "potential";
     case PluginKind::Integrator: return "integrator";
+    case PluginKind::Force: return "force";
   }
   return "unknown";
 }
@@ -146,7 +147,8 @@ const PluginRegistry::Loaded& PluginRegistry::load(const std::string& name) {
   }
   const bool potential_ok = d.kind == PluginKind::Potential && d.make_potential;
   const bool integrator_ok = d.kind == PluginKind::Integrator && d.make_integrator;
-  if (!potential_ok && !integrator_ok)
+  const bool force_ok = d.kind == PluginKind::Force && d.make_force;
+  if (!potential_ok && !integrator_ok && !force_ok)
     throw PluginError("plugin '" + name + "' (" + path.string() +
                       ") has an invalid descriptor: unknown kind or no factory");
   if (!d.name || name != d.name)
@@ -190,8 +192,8 @@ const PluginRegistry::Loaded& PluginRegistry::load_kind(const std::string& name,
       }
     }
     std::ostringstream msg;
-    msg << "plugin '" << name << "' is " << (l.info.kind == PluginKind::Potential ? "a " : "an ")
-        << to_string(l.info.kind) << ", not " << (kind == PluginKind::Potential ? "a " : "an ")
+    msg << "plugin '" << name << "' is " << (l.info.kind == PluginKind::Integrator ? "an " : "a ")
+        << to_string(l.info.kind) << ", not " << (kind == PluginKind::Integrator ? "an " : "a ")
         << to_string(kind);
     if (!same_kind.empty()) {
       msg << "; " << to_string(kind) << " plugins loaded:";
@@ -347,6 +349,15 @@ std::shared_ptr<Integrator> PluginRegistry::make_integrator(
   auto object =
       construct(l.info, [&] { return l.descriptor->make_integrator(system, potential, filled); });
   return keep_library_alive<Integrator>(std::move(object), l.library);
+}
+
+std::shared_ptr<const ForceModel> PluginRegistry::make_force(const std::string& name, const System& system,
+                                                             const Params& params) {
+  const Loaded& l = load_kind(name, PluginKind::Force);
+  check_params(l.info, params);
+  const Params filled = with_defaults(l.info, params);
+  auto object = construct(l.info, [&] { return l.descriptor->make_force(system, filled); });
+  return keep_library_alive<ForceModel>(std::move(object), l.library);
 }
 
 }  // namespace noether

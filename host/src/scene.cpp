@@ -2,6 +2,7 @@
 // states, plugins and run settings (docs/user-guide.md, "Scenes").
 #include <noether/error.hpp>
 #include <noether/euler_angles.hpp>
+#include <noether/force_model.hpp>
 #include <noether/orbital_elements.hpp>
 #include <noether/scene.hpp>
 #include <noether/stokes_file.hpp>
@@ -555,7 +556,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (!root.is_map()) throw SceneError(file + ": a scene must be a YAML mapping (G, bodies, ...)");
   for (const auto& o : overrides) apply_override(root, o);
   root.set_path("");
-  root.check_keys({"description", "units", "G", "bodies", "potential", "integrator", "run", "barycentric", "impulses"},
+  root.check_keys({"description", "units", "G", "bodies", "potential", "forces", "integrator", "run", "barycentric", "impulses"},
                   "the scene");
   if (root.has("units")) scene.units = parse_units(root.at("units"));
   const double G = scene_gravitational_constant(root, scene.units);
@@ -679,6 +680,15 @@ Scene parse_scene(const std::string& text, const std::string& file,
   } else {
     scene.potentials.push_back(plugin_config(potential, "potential"));
   }
+  if (root.has("forces")) {  // forces beyond the potential (docs/forces.md): a list, or one mapping
+    const Params& forces = root.at("forces");
+    if (forces.is_sequence())
+      for (const auto& item : forces.items()) scene.forces.push_back(plugin_config(item, "forces"));
+    else
+      scene.forces.push_back(plugin_config(forces, "forces"));
+  }
+  if (!scene.forces.empty())  // what the forces put in since t0 (docs/equations.md eq. 33.3)
+    scene.initial.force_balance = Eigen::MatrixXd::Zero(kBalanceRows, static_cast<Eigen::Index>(scene.forces.size()));
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   if (root.has("impulses")) scene.impulses = parse_impulses(root.at("impulses"), scene.system, scene.initial.t);
   const Params& run = root.at("run");

@@ -8,6 +8,7 @@
 #include "impulse_frame.hpp"
 #include "simulation_impl.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -21,6 +22,19 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
     terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
   return terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
 }
+std::shared_ptr<const Forcing> make_scene_forcing(const Scene& scene, PluginRegistry& registry) {
+  auto forcing = std::make_shared<Forcing>();
+  for (const auto& f : scene.forces) {
+    std::string name = f.plugin;
+    if (f.params.has("body")) name += " " + f.params.at("body").as_string();
+    for (int k = 2; std::any_of(forcing->begin(), forcing->end(), [&](const ForceTerm& t) { return t.name == name; }); ++k)
+      name = f.plugin + (f.params.has("body") ? " " + f.params.at("body").as_string() : std::string()) + " " +
+             std::to_string(k);
+    forcing->push_back({name, registry.make_force(f.plugin, scene.system, f.params)});
+  }
+  return forcing;
+}
+
 Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options,
                        std::shared_ptr<const Potential> potential)
     : impl_(std::make_unique<Impl>()) {
@@ -39,11 +53,19 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.integrator = registry.make_integrator(sc.integrator.plugin, sc.system, m.potential, sc.integrator.params);
   m.summary.integrator = sc.integrator.plugin;
+  if (!sc.forces.empty()) {  // forces beyond the potential (docs/forces.md)
+    auto forcing = make_scene_forcing(sc, registry);
+    if (const std::string why = m.integrator->add_forcing(forcing); !why.empty())
+      throw SceneError(sc.root.at("forces").here() + "forces: integrator '" + sc.integrator.plugin +
+                       "' cannot take them: " + why);
+    for (const auto& term : *forcing) m.summary.forces.push_back({term.name});
+  }
   if (sc.units.declared) m.summary.units = sc.units.describe();
   m.summary.time_unit = sc.units.of_time();
   if (sc.units.declared) {
     m.summary.energy_unit = sc.units.of_energy();
     m.summary.length_unit = sc.units.of_length();
+    m.summary.angular_momentum_unit = sc.units.of_angular_momentum();
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
@@ -363,6 +385,9 @@ void Simulation::set_state(const State& s) {
     throw Error("set_state: the tangent must be " + std::to_string(N) + " × " + std::to_string(N) +
                 " (6 coordinates per body and 6 per rigid body, docs/equations.md eq. 21.1) and finite");
   m.state = s;
+  // What the forces put in starts again with the segment's references (docs/forces.md).
+  if (!m.scene.forces.empty())
+    m.state.force_balance = Eigen::MatrixXd::Zero(kBalanceRows, static_cast<Eigen::Index>(m.scene.forces.size()));
   // A new segment: the state-transition matrix starts again at the identity unless one is given,
   // the chaos indicators again from δ0.
   if (m.carries_tangent()) m.state.tangent = m.segment_tangent(s.tangent);

@@ -164,6 +164,7 @@ struct Simulation::Impl {
     output.stm_columns = scene.run.stm ? static_cast<std::size_t>(State::tangent_rows(scene.system)) : 0;
     output.sensitivity_names = sensitivity_names;
     output.chaos = scene.run.chaos;
+    for (const auto& f : summary.forces) output.force_names.push_back(f.name);
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;

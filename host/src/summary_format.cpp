@@ -70,6 +70,13 @@ std::string format_summary(const RunSummary& s) {
                   s.impulses, s.impulse_energy, with_unit(s.energy_unit).c_str());
     optional += line;
   }
+  for (const ForceSummary& f : s.forces) {  // docs/forces.md: what each force put in
+    std::snprintf(line, sizeof line, "force %-23s work %+.6g%s, angular momentum put in (%.4g, %.4g, %.4g)%s\n",
+                  f.name.c_str(), f.work, with_unit(s.energy_unit).c_str(), f.angular_momentum.x(),
+                  f.angular_momentum.y(), f.angular_momentum.z(),
+                  s.energy_unit.empty() ? "" : (" " + s.angular_momentum_unit).c_str());
+    optional += line;
+  }
   if (!s.mutual_pair.empty()) {
     if (s.mutual_revolutions > 0) {
       std::snprintf(line, sizeof line, "mutual orbit period           %.10g %s%s (%s, %d revolution%s of the trajectory)\n",
@@ -146,7 +153,7 @@ std::string format_summary(const RunSummary& s) {
       "potential                     %s\n"
       "integrator                    %s\n"
       "E0                            %.10g%s\n"
-      "max |E - E0|                  %.4e%s (relative to %s: %.2e; at the output frames%s)\n"
+      "%s%.4e%s (relative to %s: %.2e; at the output frames%s)\n"
       "%s"
       "output frames                 %zu\n"
       "steps                         %lld\n"
@@ -155,7 +162,7 @@ std::string format_summary(const RunSummary& s) {
       "rejected steps                %s\n"
       "wall time                     %.3f s\n",
       s.potential.c_str(), s.integrator.c_str(), s.initial.energy, with_unit(s.energy_unit).c_str(),
-      s.max_abs_energy_error, with_unit(s.energy_unit).c_str(), s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
+      s.forces.empty() ? "max |E - E0|                  " : "max |E - W - E0|              ", s.max_abs_energy_error, with_unit(s.energy_unit).c_str(), s.energy_scale.c_str(), s.max_rel_energy_error, where_energy.c_str(), optional.c_str(), s.frames,
       static_cast<long long>(s.work.steps), static_cast<long long>(s.work.potential_evaluations),
       static_cast<double>(s.work.newton_iterations) / steps,
       s.work.rejected_steps < 0 ? "not reported" : std::to_string(s.work.rejected_steps).c_str(),
@@ -200,6 +207,15 @@ std::string format_summary_json(const RunSummary& s) {
   field("mutual_revolutions", std::to_string(s.mutual_revolutions));
   field("impulses", std::to_string(s.impulses));
   field("impulse_energy", json_number(s.impulse_energy));
+  std::string forces = "[";
+  auto vector = [](const Vec3& v) {
+    return "[" + json_number(v.x()) + ", " + json_number(v.y()) + ", " + json_number(v.z()) + "]";
+  };
+  for (const ForceSummary& f : s.forces)
+    forces += std::string(forces.size() > 1 ? ", " : "") + "{\"name\": " + json_string(f.name) +
+              ", \"work\": " + json_number(f.work) + ", \"linear_momentum\": " + vector(f.linear_momentum) +
+              ", \"angular_momentum\": " + vector(f.angular_momentum) + "}";
+  field("forces", forces + "]");
   std::string spins = "[";
   for (const SpinState& spin : s.spin_states)
     spins += std::string(spins.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +

@@ -21,6 +21,7 @@
 //    carries those variations: current(), current_state() and interpolate() return
 //    V(t) = ∂z(t)/∂z(t_start) V(t_start), the derivative of the method's own map (not of the
 //    exact flow). Started without one, it carries none.
+#include <noether/force_model.hpp>
 #include <noether/forces.hpp>
 #include <noether/parameter_derivatives.hpp>
 #include <noether/potential.hpp>
@@ -77,6 +78,11 @@ class Integrator {
   // and each step adds the derivative of its map with respect to p_j (docs/equations.md §22).
   // Returns "" when the method does so; else why not, in words (the default: it does not).
   virtual std::string carry_parameters(std::shared_ptr<const ParameterDerivatives> parameters);
+  // Forces beyond the potential (force_model.hpp; docs/equations.md §33), before the first
+  // start(): the method adds them to its steps and, from a state whose force_balance has a
+  // column per force, carries their balance (33.3)–(33.4) in current(), current_state() and
+  // interpolate(). Returns "" when it does; else why not, in words (the default: it does not).
+  virtual std::string add_forcing(std::shared_ptr<const Forcing> forcing);
   // Per-step records, if the integrator keeps any (none by default): the rows kept since the
   // last call, which the integrator then forgets (the host streams them to the output as the
   // run goes, so a long run's records never accumulate in memory).

@@ -24,11 +24,15 @@
 // Version 7: Potential::force_jacobian (∂(f, M)/∂(x, θ), positions and attitudes,
 // with a workspace) replaces Potential::position_hessian; State::tangent,
 // Integrator::tangent_map_unavailable and Integrator::carry_parameters (derivatives).
-// Version 8 (current): Body::field (a body given by its Stokes coefficients) added to System.
+// Version 8: Body::field (a body given by its Stokes coefficients) added to System.
+// Version 9 (current): forces beyond the potential — PluginKind::Force, ForceModel
+// (force_model.hpp), PluginDescriptor::make_force, Integrator::add_forcing and
+// State::force_balance.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
 // always read it and refuse a plugin built for another version, naming both.
+#include <noether/force_model.hpp>
 #include <noether/integrator.hpp>
 #include <noether/params.hpp>
 #include <noether/potential.hpp>
@@ -41,11 +45,11 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 8u
+#define NOETHER_PLUGIN_API_VERSION 9u
 
 namespace noether {
 
-enum class PluginKind : std::uint32_t { Potential = 1, Integrator = 2 };
+enum class PluginKind : std::uint32_t { Potential = 1, Integrator = 2, Force = 3 };
 
 const char* to_string(PluginKind kind);
 
@@ -66,6 +70,7 @@ using PotentialFactory = std::unique_ptr<Potential> (*)(const System& system,
                                                         const Params& params);
 using IntegratorFactory = std::unique_ptr<Integrator> (*)(
     const System& system, std::shared_ptr<const Potential> potential, const Params& params);
+using ForceFactory = std::unique_ptr<ForceModel> (*)(const System& system, const Params& params);
 
 struct PluginDescriptor {
   std::uint32_t api_version;  // must stay the first member in every API version
@@ -76,6 +81,7 @@ struct PluginDescriptor {
   std::size_t param_count;
   PotentialFactory make_potential;    // set for PluginKind::Potential
   IntegratorFactory make_integrator;  // set for PluginKind::Integrator
+  ForceFactory make_force;            // set for PluginKind::Force
 };
 
 }  // namespace noether

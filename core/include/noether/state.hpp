@@ -25,6 +25,10 @@ struct State {
   // θ_k the right perturbation R_k exp(S(θ_k)) of an attitude, one row per coordinate (6n + 6m)
   // and one column per variation carried. Empty: no tangent is carried.
   Eigen::MatrixXd tangent;
+  // The balance of the scene's forces beyond gravity (force_model.hpp; docs/equations.md §33),
+  // when it has any: one column per force, rows W, ΔP, ΔL (kBalanceRows), what the force put in
+  // since t0. An integrator that accepts forces carries it like the tangent. Empty: no forces.
+  Eigen::MatrixXd force_balance;
 
   // A state of the right shape for `system`: zeros, identity attitudes.
   static State zeros(const System& system);

@@ -36,6 +36,7 @@ struct OutputOptions {
   std::size_t stm_columns = 0;
   std::vector<std::string> sensitivity_names;
   bool chaos = false;  // /derivatives/megno and /derivatives/fli (run.chaos)
+  std::vector<std::string> force_names;  // the scene's forces: /observables/force_balance, /parameters/forces
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
   // Build the file under its hidden name until publish() (a continued run: the old file stays
   // as it is until its frames have been read back, verified and copied).

@@ -50,6 +50,7 @@ class PluginRegistry {
   std::shared_ptr<Integrator> make_integrator(const std::string& name, const System& system,
                                               std::shared_ptr<const Potential> potential,
                                               const Params& params);
+  std::shared_ptr<const ForceModel> make_force(const std::string& name, const System& system, const Params& params);
 
  private:
   struct Loaded {

@@ -72,6 +72,7 @@ struct Scene {
   System system;
   State initial;
   std::vector<PluginConfig> potentials;  // summed when more than one
+  std::vector<PluginConfig> forces;      // forces beyond the potential (`forces:`), none by default
   PluginConfig integrator;
   RunSettings run;
   std::vector<Impulse> impulses;  // in the scene's order (keys impulses.K.…), times after t0

@@ -73,6 +73,14 @@ struct ResolutionCheck {
 // The wall time of a run up to which its step-halving check repeats it whole.
 inline constexpr double kWholeRunSeconds = 30.0;
 
+// What a force beyond the potential put into the run (docs/forces.md), from t0 to the end: the
+// columns of State::force_balance (docs/equations.md eq. 33.3).
+struct ForceSummary {
+  std::string name;
+  double work = 0.0;
+  Vec3 linear_momentum = Vec3::Zero(), angular_momentum = Vec3::Zero();
+};
+
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
   std::string integrator;
@@ -108,6 +116,9 @@ struct RunSummary {
   // the references E0, P0, L0 by its jump, so the errors above are the integrator's alone.
   int impulses = 0;
   double impulse_energy = 0.0;
+  // The scene's forces beyond the potential: what each put in. The errors above are measured from
+  // E0 + W, P0 + ΔP and L0 + ΔL, which the forced flow conserves (docs/equations.md eq. 33.3).
+  std::vector<ForceSummary> forces;
   // Each rigid body's libration about its binary's line of centres and its nutation, from the
   // output frames (docs/user-guide.md "Spin state").
   std::vector<SpinState> spin_states;
@@ -117,7 +128,7 @@ struct RunSummary {
   std::string time_unit;    // the scene's unit of time, for the summary
   // The scene's units of energy and length when it declares units (empty otherwise): the
   // summary prints its numbers with them.
-  std::string energy_unit, length_unit;
+  std::string energy_unit, length_unit, angular_momentum_unit;
   double min_distance = 0.0;                    // closest approach of two body centres seen
   double t_of_min_distance = 0.0;
   std::string min_distance_pair;                // "a–b"
@@ -129,6 +140,10 @@ struct RunSummary {
   WorkCounters work;
   double wall_seconds = 0.0;
 };
+
+// The scene's forces beyond the potential (`forces:`), made by name: each named by its plugin and
+// its `body` ("tides alpha").
+std::shared_ptr<const Forcing> make_scene_forcing(const Scene& scene, PluginRegistry& registry);
 
 // The scene's potential: its plugins made by name, summed when more than one.
 std::shared_ptr<const Potential> make_scene_potential(const Scene& scene, PluginRegistry& registry);

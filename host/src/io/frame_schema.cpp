@@ -54,6 +54,9 @@ void sensitivity(const FrameInput& in, void* out) {
   tangent_columns(in.state.tangent, last - static_cast<Eigen::Index>(in.sensitivity_columns), last, out);
 }
 void megno(const FrameInput& in, void* out) { copy(in.chaos.megno, out); }
+void force_balance(const FrameInput& in, void* out) {  // [force][7]: Eigen's columns are the forces
+  std::copy(in.state.force_balance.data(), in.state.force_balance.data() + in.state.force_balance.size(), doubles(out));
+}
 void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
 void velocity(const FrameInput& in, void* out) {  // v = γ/m
   double* v = doubles(out);
@@ -277,6 +280,12 @@ const FrameQuantity kFrameSchema[] = {
      "docs/equations.md eq. 23.4), in the scaled norm of eq. 23.1: grows as log10 t on a regular orbit, linearly in "
      "t on a chaotic one",
      -1, fli, nullptr},
+    {"force_balance", "/observables/force_balance/value", E::kForceBalance, D::kMixed, kH5md,
+     "what each force beyond the potential (the scene's forces:, named by /parameters/forces) put into the run since "
+     "t0 [frame][force][7]: the work W, the linear momentum ΔP (3) and the angular momentum ΔL about the origin (3) "
+     "(docs/equations.md eq. 33.3), in the units of energy, momentum and angular momentum; E − ΣW, P − ΣΔP and "
+     "L − ΣΔL are what the forced flow conserves",
+     -1, force_balance, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -320,6 +329,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kTangent: return l.stm_columns > 0;
     case E::kSensitivity: return l.sensitivity_columns > 0;
     case E::kChaos: return l.chaos;
+    case E::kForceBalance: return l.forces > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -351,13 +361,15 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kIntegrator: return {l.width};
     case E::kTangent: return {6 * (l.bodies + l.rigid), l.stm_columns};
     case E::kSensitivity: return {6 * (l.bodies + l.rigid), l.sensitivity_columns};
+    case E::kForceBalance: return {l.forces, 7};
   }
   return {};
 }
 
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
-                      std::size_t sensitivity_columns, bool chaos) {
+                      std::size_t sensitivity_columns, bool chaos, std::size_t forces) {
   FrameLayout l;
+  l.forces = forces;
   l.chaos = chaos;
   l.stm_columns = stm_columns;
   l.sensitivity_columns = sensitivity_columns;
@@ -377,7 +389,8 @@ bool rigid_only(const FrameQuantity& q) {
          q.extent == E::kRigidScalar;
 }
 bool optional(const FrameQuantity& q) {
-  return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos;
+  return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos ||
+         q.extent == E::kForceBalance;
 }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
@@ -393,6 +406,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kTangent: return "run.stm";
     case E::kSensitivity: return "run.sensitivities";
     case E::kChaos: return "run.chaos";
+    case E::kForceBalance: return "forces";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -437,6 +451,7 @@ std::string describe_extent(Extent e) {
     case E::kIntegrator: return "[frame][width]";
     case E::kTangent: return "[frame][coordinate][coordinate]";
     case E::kSensitivity: return "[frame][coordinate][parameter]";
+    case E::kForceBalance: return "[frame][force][7]";
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:

@@ -68,6 +68,7 @@ enum class Extent {
   kTangent,          // [coordinate][coordinate]: the STM, State::tangent's first columns (run.stm)
   kSensitivity,      // [coordinate][parameter]: State::tangent's last columns (run.sensitivities)
   kChaos,            // []: a chaos indicator (run.chaos)
+  kForceBalance,     // [force][7]: State::force_balance (the scene's `forces:`)
 };
 
 // What decides which series a file has, and their shapes.
@@ -76,6 +77,7 @@ struct FrameLayout {
   std::size_t stm_columns = 0;          // State::tangent's columns of the STM (0: run.stm off)
   std::size_t sensitivity_columns = 0;  // its last columns (run.sensitivities)
   bool chaos = false;                   // the chaos indicators (run.chaos)
+  std::size_t forces = 0;               // forces beyond the potential (State::force_balance's columns)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -115,7 +117,7 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
 // The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
 // a tangent of `stm_columns` + (δ of the chaos indicators) + `sensitivity_columns` columns.
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
-                      std::size_t sensitivity_columns = 0, bool chaos = false);
+                      std::size_t sensitivity_columns = 0, bool chaos = false, std::size_t forces = 0);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

@@ -3,6 +3,7 @@
 // interface, so that the plugin drives any of them, and composes the one-step (Hamiltonian)
 // forms for order 4.
 #include <noether/discrete_attitude.hpp>
+#include <noether/force_model.hpp>
 #include <noether/forces.hpp>
 #include <noether/integrator.hpp>
 #include <noether/potential.hpp>
@@ -43,6 +44,9 @@ class DiscreteFlow {
   // Sensitivities to parameters of the dynamics (noether::Integrator::carry_parameters): false
   // for a form without a tangent map.
   virtual bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives>) { return false; }
+  // Forces beyond the potential (noether::Integrator::add_forcing), by the discrete
+  // Lagrange–d'Alembert principle (docs/equations.md §33): false for a form that takes none.
+  virtual bool add_forcing(std::shared_ptr<const noether::Forcing>) { return false; }
 
   noether::WorkCounters work;
 };

@@ -1,9 +1,14 @@
-// LGVI, inertial frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (93)–(97) (docs/equations.md §4).
+// LGVI, inertial frame, Hamiltonian form: Lee, Leok & McClamroch 2007 eqs. (93)–(97) (docs/equations.md §4),
+// and with forces beyond the potential by the discrete Lagrange–d'Alembert principle (Marsden &
+// West 2001, §3.2; docs/equations.md §33): a kick of the forces at each end of the step around
+// the conservative map, the closing one implicit in the momenta (33.1)–(33.2).
 #include "discrete_flow.hpp"
 #include "tangent_map.hpp"
 
 #include <noether/error.hpp>
 
+#include <limits>
+#include <optional>
 #include <sstream>
 
 namespace lgvi {
@@ -46,14 +51,88 @@ class InertialHamiltonian final : public DiscreteFlow {
     s_ = s;
     evaluate(s_, current_);
     tangent_.start(s_, evaluate_, work);
+    if (forcing_) {
+      if (s_.force_balance.rows() != noether::kBalanceRows ||
+          s_.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size()))
+        throw noether::Error("lgvi: the state carries no balance of its forces (State::force_balance)");
+      (*forcing_)(s_);  // the forces of the first opening kick (33.1)
+    }
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     return tangent_.carry_parameters(std::move(parameters));
   }
 
+  bool add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    forcing_.emplace(system_, std::move(forcing));
+    return true;
+  }
+
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
   void advance(double h) override {
+    if (!forcing_) return conservative_step(h);
+    before_ = s_;
+    try {
+      // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k,  the forces at z_k          (33.1)
+      kick_from_ = s_;
+      s_.p += (0.5 * h) * forcing_->total().f;
+      s_.Pi += (0.5 * h) * forcing_->total().M;
+      forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
+      conservative_step(h);
+      closing_kick(h);
+    } catch (...) {
+      s_ = before_;
+      current_ = before_forces_;
+      try {
+        (*forcing_)(s_);
+      } catch (...) {  // it was evaluated there before
+      }
+      throw;
+    }
+  }
+
+ private:
+  // The closing kick of the forces at z_{k+1} (33.2): γ_{k+1} = γ⁻ + (h/2) f^F(z_{k+1}), Π likewise,
+  // with z_{k+1}'s momenta — a fixed point, iterated from γ⁻ when the forces depend on momenta
+  // until it stands still (bit for bit, or within a few ulps followed by one more evaluation, so
+  // that the next opening kick's forces are those at z_{k+1} exactly).
+  void closing_kick(double h) {
+    kick_from_ = s_;
+    const double eps = std::numeric_limits<double>::epsilon();
+    for (int iteration = 0;; ++iteration) {
+      (*forcing_)(s_);
+      trial_p_ = kick_from_.p + (0.5 * h) * forcing_->total().f;
+      trial_Pi_ = kick_from_.Pi + (0.5 * h) * forcing_->total().M;
+      if (!forcing_->depends_on_momenta() || (trial_p_ == s_.p && trial_Pi_ == s_.Pi)) {
+        s_.p = trial_p_;
+        s_.Pi = trial_Pi_;
+        forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
+        return;
+      }
+      double change = 0.0;  // the largest change of a body's momentum, relative to it
+      for (Eigen::Index i = 0; i < s_.p.cols(); ++i)
+        change = std::max(change, (trial_p_.col(i) - s_.p.col(i)).norm() / std::max(trial_p_.col(i).norm(), 1e-300));
+      for (Eigen::Index k = 0; k < s_.Pi.cols(); ++k)
+        change = std::max(change, (trial_Pi_.col(k) - s_.Pi.col(k)).norm() / std::max(trial_Pi_.col(k).norm(), 1e-300));
+      s_.p = trial_p_;
+      s_.Pi = trial_Pi_;
+      if (change <= 8 * eps) {
+        forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
+        (*forcing_)(s_);  // the next opening kick's forces, at z_{k+1} itself
+        return;
+      }
+      if (iteration == 50) {
+        std::ostringstream msg;
+        msg << "lgvi: the closing kick of the forces (docs/equations.md eq. 33.2) did not converge at t = " << s_.t
+            << " with step h = " << h << " (relative change " << change
+            << " after 50 iterations): the forces change the momenta too much within a step; reduce integrator.step";
+        throw noether::IntegrationError(msg.str(), s_.t);
+      }
+    }
+  }
+
+  void conservative_step(double h) {
+    if (forcing_) before_forces_ = current_;
     const Forces& fk = current_;
     // h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ                                        (93)
     for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
@@ -98,6 +177,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     ++work.steps;
   }
 
+ public:
   void current(State& s, Forces& f) const override {
     s = s_;
     f = current_;
@@ -122,6 +202,12 @@ class InertialHamiltonian final : public DiscreteFlow {
   // The tangent map's: the step's w_k (F_k is F_), and the Jacobians at both ends.
   Eigen::Matrix3Xd w_;
   TangentCarrier tangent_;
+  // Forces beyond the potential (none: the conservative map alone), the state and forces at the
+  // step's start (restored on failure), and the closing kick's iterates.
+  std::optional<noether::ForcingEvaluator> forcing_;
+  State before_, kick_from_;
+  Forces before_forces_;
+  Eigen::Matrix3Xd trial_p_, trial_Pi_;
 };
 
 }  // namespace

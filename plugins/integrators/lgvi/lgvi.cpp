@@ -56,6 +56,17 @@ class Lgvi final : public noether::Integrator {
     else
       flow_ = form == "hamiltonian" ? lgvi::make_relative_hamiltonian(system, evaluator_, settings)
                                     : lgvi::make_relative_lagrangian(system, evaluator_, settings);
+    form_ = frame + " " + form;
+  }
+
+  // Forces beyond the potential (docs/equations.md §33): the inertial Hamiltonian form and its
+  // compositions take them (symmetric, so the compositions keep their order).
+  std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    if (!flow_->add_forcing(std::move(forcing)))
+      return "the " + form_ + " form of the lgvi takes no forces beyond the potential yet: use frame: inertial, "
+             "form: hamiltonian";
+    forced_ = true;
+    return "";
   }
 
   noether::PotentialEvaluator* potential_evaluator() override { return &evaluator_; }
@@ -95,8 +106,11 @@ class Lgvi final : public noether::Integrator {
   }
   double fixed_step() const override { return h_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
-  std::string tangent_map_unavailable() const override { return ""; }
+  std::string tangent_map_unavailable() const override {
+    return forced_ ? "the lgvi with forces beyond the potential has no tangent map yet" : "";
+  }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
+    if (forced_) return tangent_map_unavailable();
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";
   }
@@ -136,6 +150,8 @@ class Lgvi final : public noether::Integrator {
   double h_ = 0.0;
   int order_ = 2;
   std::vector<double> gamma_;  // composition coefficients (empty: the base map, order 2)
+  std::string form_;           // "inertial hamiltonian", …
+  bool forced_ = false;        // forces beyond the potential were added
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;

@@ -6,7 +6,9 @@
 // variational equations (docs/equations.md eq. 21.10) are integrated beside the state by the
 // same method; the adaptive methods control the error of the state only, unless
 // stm_error_control asks for both (a differenced force Jacobian's noise, ~1e-10, then caps
-// what rtol can be met: steps collapse below it).
+// what rtol can be met: steps collapse below it). Forces beyond the potential (docs/equations.md
+// §33) join the inertial Hamiltonian equations, their balance (33.3) integrated beside the state
+// by the same method, outside the error control.
 #include <noether/continuous_equations.hpp>
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
@@ -63,6 +65,7 @@ class Rk final : public noether::Integrator {
       : equations_(noether::make_continuous_equations(
             system, std::move(potential), p.at("frame").as_string(),
             p.at("form").as_string())) {
+    form_ = p.at("frame").as_string() + " " + p.at("form").as_string();
     method_ = p.at("method").as_string();
     if (method_ != "rk4" && method_ != "dopri5" && method_ != "rkf78")
       throw SceneError(p.at("method").here() + "rk: method must be rk4, dopri5 or rkf78, not '" +
@@ -87,25 +90,40 @@ class Rk final : public noether::Integrator {
                              "controlled; give rk a positive atol";
   }
 
-  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  std::string tangent_map_unavailable() const override {
+    return forcing_ ? "rk with forces beyond the potential carries no tangent yet" : tangent_unavailable_;
+  }
+  std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    if (form_ != "inertial hamiltonian")
+      return "rk takes forces beyond the potential in its inertial Hamiltonian equations only: use frame: inertial, "
+             "form: hamiltonian";
+    forcing_.emplace(equations_->system(), std::move(forcing));
+    return "";
+  }
   // The parameters' terms (22.2) join the variational equations of the last columns.
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
+    if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
 
   void start(const noether::State& state) override {
-    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
+    if (state.tangent.size() > 0 && !tangent_map_unavailable().empty()) throw noether::Error(tangent_map_unavailable());
+    if (forcing_ && (state.force_balance.rows() != noether::kBalanceRows ||
+                     state.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size())))
+      throw noether::Error("rk: the state carries no balance of its forces (State::force_balance)");
     if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
       throw noether::Error("rk: the tangent has fewer columns than the parameters it carries");
     tangent_rows_ = state.tangent.rows();
     tangent_columns_ = state.tangent.cols();
-    y_.resize(equations_->size() + static_cast<std::size_t>(state.tangent.size()));
-    controlled_ = stm_error_control_ ? y_.size() : equations_->size();
+    balance_offset_ = equations_->size() + static_cast<std::size_t>(state.tangent.size());
+    y_.resize(balance_offset_ + static_cast<std::size_t>(forcing_ ? state.force_balance.size() : 0));
+    controlled_ = stm_error_control_ ? balance_offset_ : equations_->size();
     equations_->pack(state, y_.data());
-    // y = (the equations' variables, then V column by column)
+    // y = (the equations' variables, then V column by column, then the forces' balance)
     std::copy(state.tangent.data(), state.tangent.data() + state.tangent.size(), y_.data() + equations_->size());
+    if (forcing_) std::copy(state.force_balance.data(), state.force_balance.data() + state.force_balance.size(),
+                            y_.data() + balance_offset_);
     y_prev_ = y_;
     t_ = t_prev_ = state.t;
     k_ = 0;
@@ -279,12 +297,32 @@ class Rk final : public noether::Integrator {
       state.tangent = Eigen::Map<const Eigen::MatrixXd>(y.data() + equations_->size(), tangent_rows_, tangent_columns_);
     else
       state.tangent.resize(0, 0);
+    if (forcing_)
+      state.force_balance = Eigen::Map<const Eigen::MatrixXd>(y.data() + balance_offset_, noether::kBalanceRows,
+                                                              static_cast<Eigen::Index>(forcing_->size()));
+  }
+
+  // The forces beyond the potential at the stage y: added to γ̇ and Π̇ of the inertial
+  // Hamiltonian equations (29)–(32), each one's balance rate (33.3) into its columns.
+  void add_forces(const Vector& y, Vector& dydt, double t) {
+    equations_->unpack(y.data(), t, stage_);
+    (*forcing_)(stage_);
+    const auto& sys = equations_->system();
+    const std::size_t n = sys.size(), nr = sys.rigid_count();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) dydt[3 * n + 3 * i + a] += forcing_->total().f(a, static_cast<Eigen::Index>(i));
+    for (std::size_t k = 0; k < nr; ++k)
+      for (int a = 0; a < 3; ++a) dydt[6 * n + 9 * nr + 3 * k + a] += forcing_->total().M(a, static_cast<Eigen::Index>(k));
+    for (std::size_t j = 0; j < forcing_->size(); ++j)
+      Eigen::Map<Eigen::Matrix<double, noether::kBalanceRows, 1>>(dydt.data() + balance_offset_ + noether::kBalanceRows * j) =
+          noether::balance_rate(sys, stage_, forcing_->term(j));
   }
 
   // y' = F(t, y), and V' = A V beside it when a tangent is carried (21.10), with the force
   // Jacobian at the stage's state (differenced evaluations counted as work).
   void rhs(const Vector& y, Vector& dydt, double t) {
     equations_->rhs(t, y.data(), dydt.data());
+    if (forcing_) add_forces(y, dydt, t);
     if (tangent_columns_ == 0) return;
     equations_->unpack(y.data(), t, stage_);
     bool analytic = true;
@@ -332,6 +370,10 @@ class Rk final : public noether::Integrator {
   std::int64_t differenced_evaluations_ = 0;
   std::string tangent_unavailable_;
   std::optional<noether::ParameterForces> parameter_forces_;  // sensitivities to parameters of the dynamics
+  std::string form_;  // "inertial hamiltonian", …
+  // Forces beyond the potential (none: the potential alone) and where their balance starts in y.
+  std::optional<noether::ForcingEvaluator> forcing_;
+  std::size_t balance_offset_ = 0;
 };
 
 const noether::ParamDoc params[] = {

@@ -1,0 +1,67 @@
+#include <noether/error.hpp>
+#include <noether/force_model.hpp>
+
+namespace noether {
+
+ForceModel::~ForceModel() = default;
+std::unique_ptr<Workspace> ForceModel::make_workspace() const { return std::make_unique<Workspace>(); }
+bool ForceModel::depends_on_momenta() const { return true; }
+
+Eigen::Matrix<double, kBalanceRows, 1> balance_rate(const System& system, const State& state, const Forces& force) {
+  Eigen::Matrix<double, kBalanceRows, 1> rate = Eigen::Matrix<double, kBalanceRows, 1>::Zero();
+  for (std::size_t i = 0; i < system.size(); ++i) {  // (33.3)
+    const auto c = static_cast<Eigen::Index>(i);
+    const Vec3 f = force.f.col(c);
+    rate(0) += f.dot(state.p.col(c)) / system.body(i).mass;
+    rate.segment<3>(1) += f;
+    rate.segment<3>(4) += Vec3(state.x.col(c)).cross(f);
+  }
+  for (std::size_t k = 0; k < system.rigid_count(); ++k) {
+    const auto c = static_cast<Eigen::Index>(k);
+    const Body& b = system.body(system.body_of_rigid(k));
+    const Vec3 M = force.M.col(c);
+    rate(0) += M.dot(b.inertia_inverse * Vec3(state.Pi.col(c)));
+    rate.segment<3>(4) += state.R[k] * M;
+  }
+  return rate;
+}
+
+ForcingEvaluator::ForcingEvaluator(const System& system, std::shared_ptr<const Forcing> forcing)
+    : system_(system), forcing_(std::move(forcing)) {
+  if (!forcing_) throw Error("ForcingEvaluator: no forces given");
+  for (const ForceTerm& term : *forcing_) {
+    if (!term.model) throw Error("force '" + term.name + "' has no model");
+    workspaces_.push_back(term.model->make_workspace());
+    if (!workspaces_.back()) throw Error("force '" + term.name + "' made no workspace");
+    depends_on_momenta_ = depends_on_momenta_ || term.model->depends_on_momenta();
+    terms_.emplace_back();
+    terms_.back().resize(system_);
+  }
+  total_.resize(system_);
+}
+
+void ForcingEvaluator::operator()(const State& state) {
+  total_.set_zero();
+  for (std::size_t j = 0; j < terms_.size(); ++j) {
+    Forces& f = terms_[j];
+    (*forcing_)[j].model->evaluate(state, f, *workspaces_[j]);
+    if (!f.f.allFinite() || !f.M.allFinite())
+      throw IntegrationError("force '" + (*forcing_)[j].name + "' returned a non-finite force or moment at t = " +
+                                 std::to_string(state.t),
+                             state.t);
+    total_.f += f.f;
+    total_.M += f.M;
+  }
+}
+
+void ForcingEvaluator::add_kick(const State& before, const State& after, double tau, Eigen::MatrixXd& balance) {
+  // The kick's mean momenta at its (fixed) positions and attitudes: its balance (33.4).
+  mean_.x = before.x;
+  mean_.R = before.R;
+  mean_.p = 0.5 * (before.p + after.p);
+  mean_.Pi = 0.5 * (before.Pi + after.Pi);
+  for (std::size_t j = 0; j < terms_.size(); ++j)
+    balance.col(static_cast<Eigen::Index>(j)) += tau * balance_rate(system_, mean_, terms_[j]);
+}
+
+}  // namespace noether
