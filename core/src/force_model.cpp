@@ -64,4 +64,16 @@ void ForcingEvaluator::add_kick(const State& before, const State& after, double 
     balance.col(static_cast<Eigen::Index>(j)) += tau * balance_rate(system_, mean_, terms_[j]);
 }
 
+void ForcingEvaluator::add_to_inertial_hamiltonian(const State& state, double* dydt, double* balance_rates) {
+  (*this)(state);
+  const std::size_t n = system_.size(), nr = system_.rigid_count();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) dydt[3 * n + 3 * i + a] += total_.f(a, static_cast<Eigen::Index>(i));
+  for (std::size_t k = 0; k < nr; ++k)
+    for (int a = 0; a < 3; ++a) dydt[6 * n + 9 * nr + 3 * k + a] += total_.M(a, static_cast<Eigen::Index>(k));
+  for (std::size_t j = 0; j < terms_.size(); ++j)
+    Eigen::Map<Eigen::Matrix<double, kBalanceRows, 1>>(balance_rates + kBalanceRows * j) =
+        balance_rate(system_, state, terms_[j]);
+}
+
 }  // namespace noether

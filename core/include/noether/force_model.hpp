@@ -66,6 +66,10 @@ class ForcingEvaluator {
   // kick's mean velocities v̄ = (γ + γ')/2m and Ω̄ = J⁻¹(Π + Π')/2, so that Σ_j W_j is exactly
   // the kinetic energy the kick added.
   void add_kick(const State& before, const State& after, double tau, Eigen::MatrixXd& balance);
+  // The forces in the continuous inertial Hamiltonian equations (continuous_equations.hpp, y =
+  // [x | γ | R (9 each) | Π]): evaluates them at `state`, adds f^F to γ̇ and M^F to Π̇ in `dydt`,
+  // and writes each force's balance rate (33.3), kBalanceRows numbers per force, to `balance_rates`.
+  void add_to_inertial_hamiltonian(const State& state, double* dydt, double* balance_rates);
 
  private:
   System system_;

@@ -6,7 +6,9 @@
 // sensitivities with error control: one sensitivity vector per column of the tangent, whose
 // right-hand side is the variational equations (docs/equations.md eq. 21.10) laid out in y's
 // slots (θ in the first three of each attitude's nine, the other six zero). The error control
-// is on the state only unless stm_error_control asks for the sensitivities too.
+// is on the state only unless stm_error_control asks for the sensitivities too. Forces beyond
+// the potential (docs/equations.md §33) join the inertial Hamiltonian equations, their balance
+// (33.3) integrated after the state in y, outside the error control (an atol of 1e300 there).
 #include <noether/continuous_equations.hpp>
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
@@ -42,7 +44,7 @@ using noether::SceneError;
 // Owns every SUNDIALS object of one integration; releases them in reverse order.
 struct CvodeSession {
   SUNContext context = nullptr;
-  N_Vector y = nullptr, dky = nullptr;
+  N_Vector y = nullptr, dky = nullptr, tolerances = nullptr;
   void* memory = nullptr;
   SUNMatrix matrix = nullptr;
   SUNLinearSolver linear = nullptr;
@@ -57,6 +59,7 @@ struct CvodeSession {
     if (linear) SUNLinSolFree(linear);
     if (matrix) SUNMatDestroy(matrix);
     if (dky) N_VDestroy(dky);
+    if (tolerances) N_VDestroy(tolerances);
     if (y) N_VDestroy(y);
     if (context) SUNContext_Free(&context);
   }
@@ -85,36 +88,61 @@ class Cvode final : public noether::Integrator {
     else if (atol_ == 0.0)
       tangent_unavailable_ = "with atol: 0 the error of the state-transition matrix, whose entries start at 0, cannot be "
                              "controlled; give cvode a positive atol";
+    form_ = p.at("frame").as_string() + " " + p.at("form").as_string();
   }
 
-  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
+  std::string tangent_map_unavailable() const override {
+    return forcing_ ? "cvode with forces beyond the potential carries no tangent yet" : tangent_unavailable_;
+  }
+  std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    if (form_ != "inertial hamiltonian")
+      return "cvode takes forces beyond the potential in its inertial Hamiltonian equations only: use frame: "
+             "inertial, form: hamiltonian";
+    forcing_.emplace(equations_->system(), std::move(forcing));
+    return "";
+  }
   // The parameters' terms (22.2) join the sensitivity right-hand side of the last columns.
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    if (!tangent_unavailable_.empty()) return tangent_unavailable_;
+    if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
 
   void start(const noether::State& state) override {
-    if (state.tangent.size() > 0 && !tangent_unavailable_.empty()) throw noether::Error(tangent_unavailable_);
+    if (state.tangent.size() > 0 && !tangent_map_unavailable().empty()) throw noether::Error(tangent_map_unavailable());
+    balance_size_ = forcing_ ? static_cast<std::size_t>(noether::kBalanceRows) * forcing_->size() : 0;
+    if (forcing_ && (state.force_balance.rows() != noether::kBalanceRows ||
+                     state.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size())))
+      throw noether::Error("cvode: the state carries no balance of its forces (State::force_balance)");
     if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
       throw noether::Error("cvode: the tangent has fewer columns than the parameters it carries");
     session_ = std::make_unique<CvodeSession>();
     CvodeSession& s = *session_;
     check(SUNContext_Create(nullptr, &s.context), "SUNContext_Create", state.t);
-    const auto n = static_cast<sunindextype>(equations_->size());
+    const auto n = static_cast<sunindextype>(equations_->size() + balance_size_);
     s.y = N_VNew_Serial(n, s.context);
     // Fused vector operations (one pass, one call, for CVODE's linear combinations of the
     // Nordsieck history); CVODE's internal vectors are cloned from y and inherit them.
     check(N_VEnableFusedOps_Serial(s.y, SUNTRUE), "N_VEnableFusedOps_Serial", state.t);
     s.dky = N_VNew_Serial(n, s.context);
     equations_->pack(state, N_VGetArrayPointer(s.y));
+    if (forcing_)  // y = (the equations' variables, then the forces' balance)
+      std::copy(state.force_balance.data(), state.force_balance.data() + balance_size_,
+                N_VGetArrayPointer(s.y) + equations_->size());
     s.memory = CVodeCreate(method_ == "adams" ? CV_ADAMS : CV_BDF, s.context);
     if (!s.memory) throw IntegrationError("cvode: CVodeCreate failed", state.t);
     CVodeSetErrHandlerFn(s.memory, &Cvode::on_error, this);
     check(CVodeInit(s.memory, &Cvode::rhs, state.t, s.y), "CVodeInit", state.t);
     check(CVodeSetUserData(s.memory, this), "CVodeSetUserData", state.t);
-    check(CVodeSStolerances(s.memory, rtol_, atol_), "CVodeSStolerances", state.t);
+    if (forcing_) {  // the balance rides along outside the error control
+      s.tolerances = N_VNew_Serial(n, s.context);
+      double* atol = N_VGetArrayPointer(s.tolerances);
+      std::fill(atol, atol + equations_->size(), atol_);
+      std::fill(atol + equations_->size(), atol + n, 1e300);
+      check(CVodeSVtolerances(s.memory, rtol_, s.tolerances), "CVodeSVtolerances", state.t);
+    } else {
+      check(CVodeSStolerances(s.memory, rtol_, atol_), "CVodeSStolerances", state.t);
+    }
     if (method_ == "adams") {
       s.nonlinear = SUNNonlinSol_FixedPoint(s.y, 0, s.context);
       check(CVodeSetNonlinearSolver(s.memory, s.nonlinear), "CVodeSetNonlinearSolver", state.t);
@@ -136,7 +164,7 @@ class Cvode final : public noether::Integrator {
   void step(double t_max) override {
     CvodeSession& s = *session_;
     const double* y = N_VGetArrayPointer(s.y);
-    y_prev_.assign(y, y + equations_->size());
+    y_prev_.assign(y, y + equations_->size() + balance_size_);
     check(CVodeSetStopTime(s.memory, t_max), "CVodeSetStopTime", t_);
     double t_reached = t_;
     const int flag = CVode(s.memory, t_max, s.y, &t_reached, CV_ONE_STEP);
@@ -168,7 +196,7 @@ class Cvode final : public noether::Integrator {
   noether::PotentialEvaluator* potential_evaluator() override { return &equations_->evaluator(); }
 
   void current_state(noether::State& state) override {
-    equations_->unpack(N_VGetArrayPointer(session_->y), t_, state);
+    unpack(N_VGetArrayPointer(session_->y), t_, state);
     state.tangent.resize(0, 0);
     if (session_->Ns > 0 && !stepped_) {  // as started: CVODES has no step to read them from yet
       state.tangent = start_tangent_;
@@ -183,7 +211,7 @@ class Cvode final : public noether::Integrator {
   // for the sensitivities (CVodeGetSensDky).
   bool interpolate(double t, noether::State& state) override {
     check(CVodeGetDky(session_->memory, t, 0, session_->dky), "CVodeGetDky", t);
-    equations_->unpack(N_VGetArrayPointer(session_->dky), t, state);
+    unpack(N_VGetArrayPointer(session_->dky), t, state);
     state.tangent.resize(0, 0);
     if (session_->Ns > 0) {
       check(CVodeGetSensDky(session_->memory, t, 0, session_->yS), "CVodeGetSensDky", t);
@@ -193,6 +221,14 @@ class Cvode final : public noether::Integrator {
   }
 
  private:
+  // The state of y, with the forces' balance when there are forces.
+  void unpack(const double* y, double t, noether::State& state) const {
+    equations_->unpack(y, t, state);
+    if (forcing_)
+      state.force_balance = Eigen::Map<const Eigen::MatrixXd>(y + equations_->size(), noether::kBalanceRows,
+                                                              static_cast<Eigen::Index>(forcing_->size()));
+  }
+
   // The slot in y of each row of the tangent (21.1): x, θ (the first three of the attitude's
   // nine numbers), γ, Π; y's layout is [x | γ | R (9 each) | Π] (continuous_equations.hpp).
   std::vector<std::size_t> tangent_slots() const {
@@ -281,6 +317,11 @@ class Cvode final : public noether::Integrator {
     auto* me = static_cast<Cvode*>(self);
     try {
       me->equations_->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+      if (me->forcing_) {  // forces beyond the potential and their balance rates (33.3)
+        me->equations_->unpack(N_VGetArrayPointer(y), t, me->stage_);
+        me->forcing_->add_to_inertial_hamiltonian(me->stage_, N_VGetArrayPointer(ydot),
+                                                  N_VGetArrayPointer(ydot) + me->equations_->size());
+      }
       return 0;
     } catch (const std::exception& e) {
       me->last_error_ = e.what();
@@ -348,6 +389,10 @@ class Cvode final : public noether::Integrator {
   std::int64_t differenced_evaluations_ = 0;
   std::string tangent_unavailable_;
   std::optional<noether::ParameterForces> parameter_forces_;  // sensitivities to parameters of the dynamics
+  std::string form_;  // "inertial hamiltonian", …
+  // Forces beyond the potential (none: the potential alone) and their balance's numbers in y.
+  std::optional<noether::ForcingEvaluator> forcing_;
+  std::size_t balance_size_ = 0;
 };
 
 const noether::ParamDoc params[] = {

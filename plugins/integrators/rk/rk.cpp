@@ -303,19 +303,10 @@ class Rk final : public noether::Integrator {
   }
 
   // The forces beyond the potential at the stage y: added to γ̇ and Π̇ of the inertial
-  // Hamiltonian equations (29)–(32), each one's balance rate (33.3) into its columns.
+  // Hamiltonian equations (29)–(32), each one's balance rate (33.3) into its components.
   void add_forces(const Vector& y, Vector& dydt, double t) {
     equations_->unpack(y.data(), t, stage_);
-    (*forcing_)(stage_);
-    const auto& sys = equations_->system();
-    const std::size_t n = sys.size(), nr = sys.rigid_count();
-    for (std::size_t i = 0; i < n; ++i)
-      for (int a = 0; a < 3; ++a) dydt[3 * n + 3 * i + a] += forcing_->total().f(a, static_cast<Eigen::Index>(i));
-    for (std::size_t k = 0; k < nr; ++k)
-      for (int a = 0; a < 3; ++a) dydt[6 * n + 9 * nr + 3 * k + a] += forcing_->total().M(a, static_cast<Eigen::Index>(k));
-    for (std::size_t j = 0; j < forcing_->size(); ++j)
-      Eigen::Map<Eigen::Matrix<double, noether::kBalanceRows, 1>>(dydt.data() + balance_offset_ + noether::kBalanceRows * j) =
-          noether::balance_rate(sys, stage_, forcing_->term(j));
+    forcing_->add_to_inertial_hamiltonian(stage_, dydt.data(), dydt.data() + balance_offset_);
   }
 
   // y' = F(t, y), and V' = A V beside it when a tangent is carried (21.10), with the force
