@@ -25,11 +25,12 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
 std::shared_ptr<const Forcing> make_scene_forcing(const Scene& scene, PluginRegistry& registry) {
   auto forcing = std::make_shared<Forcing>();
   for (const auto& f : scene.forces) {
-    std::string name = f.plugin;
-    if (f.params.has("body")) name += " " + f.params.at("body").as_string();
+    // "tides alpha", "prescribed-body earth": the plugin and what the entry is about.
+    const char* key = f.params.has("name") ? "name" : f.params.has("body") ? "body" : nullptr;
+    const std::string base = f.plugin + (key ? " " + f.params.at(key).as_string() : std::string());
+    std::string name = base;
     for (int k = 2; std::any_of(forcing->begin(), forcing->end(), [&](const ForceTerm& t) { return t.name == name; }); ++k)
-      name = f.plugin + (f.params.has("body") ? " " + f.params.at("body").as_string() : std::string()) + " " +
-             std::to_string(k);
+      name = base + " " + std::to_string(k);
     forcing->push_back({name, registry.make_force(f.plugin, scene.system, f.params)});
   }
   return forcing;

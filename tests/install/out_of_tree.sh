@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The out-of-tree plugin workflow as a user meets it: install noether to a fresh prefix, build
-# examples/custom-potential and examples/custom-integrator against the installed package only,
-# list them with the installed driver, and run each example's own tests (the J2 nodal
-# precession against the analytic rate, check-potential; Störmer–Verlet's order and bounded
-# energy error, its refusal of rigid bodies).
+# examples/custom-potential, examples/custom-integrator and examples/custom-force against the
+# installed package only, list them with the installed driver, and run each example's own tests
+# (the J2 nodal precession against the analytic rate, check-potential; Störmer–Verlet's order and
+# bounded energy error, its refusal of rigid bodies; linear drag against its exact decay).
 #   out_of_tree.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$1 src=$2
@@ -26,10 +26,17 @@ cmake -S "$src/examples/custom-integrator" -B "$work/integrator" -G Ninja \
 cmake --build "$work/integrator"
 NOETHER_PLUGIN_PATH="$work/integrator" "$work/prefix/bin/noether" plugins | grep -E '^integrator +stormer-verlet'
 ctest --test-dir "$work/integrator" --output-on-failure
+# The out-of-tree force, the same way.
+cmake -S "$src/examples/custom-force" -B "$work/force" -G Ninja \
+      -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure-force.log"
+cmake --build "$work/force"
+NOETHER_PLUGIN_PATH="$work/force" "$work/prefix/bin/noether" plugins | grep -E '^force +linear-drag'
+ctest --test-dir "$work/force" --output-on-failure
 # The out-of-tree plugins link the installed libnoether-core only, and only its interface.
 core=$(find "$work/prefix" -name 'libnoether-core.so' | head -1)
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/build/noether-j2.so" | tail -1
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/integrator/noether-stormer-verlet.so" | tail -1
+"$src/tests/abi/check_plugin_abi.sh" "$core" "$work/force/noether-linear-drag.so" | tail -1
 # The Python module from the prefix: found there (<prefix>/<libdir>/python3/dist-packages), it
 # finds the installed libnoether and plugins, and also the out-of-tree one on NOETHER_PLUGIN_PATH.
 if [ -n "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py')" ]; then
