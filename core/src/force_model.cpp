@@ -40,6 +40,12 @@ ForcingEvaluator::ForcingEvaluator(const System& system, std::shared_ptr<const F
   total_.resize(system_);
 }
 
+void ForcingEvaluator::check_balance(const State& state, const char* who) const {
+  if (state.force_balance.rows() != kBalanceRows || state.force_balance.cols() != static_cast<Eigen::Index>(size()))
+    throw Error(std::string(who) + ": the state carries no balance of its " + std::to_string(size()) +
+                " forces (State::force_balance)");
+}
+
 void ForcingEvaluator::operator()(const State& state) {
   total_.set_zero();
   for (std::size_t j = 0; j < terms_.size(); ++j) {

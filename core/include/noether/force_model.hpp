@@ -56,6 +56,8 @@ class ForcingEvaluator {
   std::size_t size() const { return forcing_->size(); }
   const Forcing& forcing() const { return *forcing_; }
   bool depends_on_momenta() const { return depends_on_momenta_; }
+  // Throws Error, naming `who`, unless `state` carries a balance of these forces (a column each).
+  void check_balance(const State& state, const char* who) const;
   // Evaluates every term at `state`: term(j) its force, total() their sum.
   void operator()(const State& state);
   const Forces& term(std::size_t j) const { return terms_[j]; }

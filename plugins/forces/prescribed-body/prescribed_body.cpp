@@ -32,9 +32,9 @@ using noether::System;
 using noether::Vec3;
 
 Vec3 vector_param(const Params& p, const char* key) {
-  const auto& items = p.at(key).items();
-  if (items.size() != 3) throw SceneError(p.at(key).here() + "prescribed-body: '" + key + "' must be [x, y, z]");
-  return {items[0].as_double(), items[1].as_double(), items[2].as_double()};
+  const std::vector<double> v = p.at(key).as_doubles();
+  if (v.size() != 3) throw SceneError(p.at(key).here() + "prescribed-body: '" + key + "' must be [x, y, z]");
+  return {v[0], v[1], v[2]};
 }
 
 class PrescribedBody final : public noether::ForceModel {
@@ -45,9 +45,10 @@ class PrescribedBody final : public noether::ForceModel {
     order_ = static_cast<int>(p.at("order").as_int());
     if (order_ != 0 && order_ != 2) throw SceneError(p.at("order").here() + "prescribed-body: order must be 0 or 2");
     const std::string center = p.at("center").as_string();
+    for (const auto& b : system.bodies()) scene_mass_ += b.mass;
     double center_mass = 0.0;
     if (center == "barycentre" || center == "barycenter") {
-      for (const auto& b : system.bodies()) center_mass += b.mass;
+      center_mass = scene_mass_;
       center_ = -1;
     } else if (center == "origin") {
       center_ = -2;
@@ -97,16 +98,12 @@ class PrescribedBody final : public noether::ForceModel {
     if (center_ >= 0) return s.x.col(center_);
     if (center_ == -2) return Vec3::Zero();
     Vec3 sum = Vec3::Zero();
-    double m = 0.0;
-    for (std::size_t i = 0; i < system_.size(); ++i) {
-      sum += system_.body(i).mass * Vec3(s.x.col(static_cast<Eigen::Index>(i)));
-      m += system_.body(i).mass;
-    }
-    return sum / m;
+    for (std::size_t i = 0; i < system_.size(); ++i) sum += system_.body(i).mass * Vec3(s.x.col(static_cast<Eigen::Index>(i)));
+    return sum / scene_mass_;
   }
 
   System system_;
-  double mass_ = 0.0;
+  double mass_ = 0.0, scene_mass_ = 0.0;
   int order_ = 2;
   Eigen::Index center_ = -1;  // a body, −1 the barycentre, −2 the origin
   std::optional<noether::KeplerOrbit> orbit_;

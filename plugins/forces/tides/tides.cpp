@@ -43,6 +43,7 @@ class Tides final : public noether::ForceModel {
     lag_ = p.at("time_lag").as_double();
     radius_ = p.has("radius") ? p.at("radius").as_double() : b.radius;
     static_bulge_ = p.at("static_bulge").as_bool();
+    radius5_ = std::pow(radius_, 5);
     if (!(k2_ >= 0.0) || !std::isfinite(k2_)) throw SceneError(p.at("k2").here() + "tides: k2 must be ≥ 0 and finite");
     if (!(lag_ >= 0.0) || !std::isfinite(lag_))
       throw SceneError(p.at("time_lag").here() + "tides: time_lag must be ≥ 0 and finite");
@@ -69,7 +70,6 @@ class Tides final : public noether::ForceModel {
     const Vec3 xa = s.x.col(a), va = s.p.col(a) / mass_[body_];
     const noether::Mat3& Ra = s.R[static_cast<std::size_t>(rigid_)];
     const Vec3 omega = Ra * (inertia_inverse_ * Vec3(s.Pi.col(rigid_)));  // inertial spin
-    const double R5 = std::pow(radius_, 5);
     Vec3 torque = Vec3::Zero();
     for (const std::size_t j : perturbers_) {
       const auto b = static_cast<Eigen::Index>(j);
@@ -77,7 +77,7 @@ class Tides final : public noether::ForceModel {
       const Vec3 v = Vec3(s.p.col(b)) / mass_[j] - va;
       const double r2 = r.squaredNorm();
       if (!(r2 > 0.0)) throw noether::IntegrationError("tides: two bodies at the same position", s.t);
-      const double c = 3.0 * k2_ * G_ * mass_[j] * mass_[j] * R5 / (r2 * r2 * r2 * r2 * r2);
+      const double c = 3.0 * k2_ * G_ * mass_[j] * mass_[j] * radius5_ / (r2 * r2 * r2 * r2 * r2);
       Vec3 bracket = lag_ * (2.0 * r.dot(v) * r + r2 * (r.cross(omega) + v));  // (34.1)
       if (static_bulge_) bracket += r2 * r;
       const Vec3 F = -c * bracket;
@@ -93,7 +93,7 @@ class Tides final : public noether::ForceModel {
   std::size_t body_ = 0;
   Eigen::Index rigid_ = 0;
   noether::Mat3 inertia_inverse_;
-  double k2_ = 0.0, lag_ = 0.0, radius_ = 0.0;
+  double k2_ = 0.0, lag_ = 0.0, radius_ = 0.0, radius5_ = 0.0;  // R and R⁵
   bool static_bulge_ = true;
   std::vector<std::size_t> perturbers_;
   std::vector<double> mass_;

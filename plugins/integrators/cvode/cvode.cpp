@@ -111,9 +111,7 @@ class Cvode final : public noether::Integrator {
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_map_unavailable().empty()) throw noether::Error(tangent_map_unavailable());
     balance_size_ = forcing_ ? static_cast<std::size_t>(noether::kBalanceRows) * forcing_->size() : 0;
-    if (forcing_ && (state.force_balance.rows() != noether::kBalanceRows ||
-                     state.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size())))
-      throw noether::Error("cvode: the state carries no balance of its forces (State::force_balance)");
+    if (forcing_) forcing_->check_balance(state, "cvode");
     if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
       throw noether::Error("cvode: the tangent has fewer columns than the parameters it carries");
     session_ = std::make_unique<CvodeSession>();

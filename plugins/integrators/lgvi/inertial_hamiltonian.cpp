@@ -52,9 +52,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     evaluate(s_, current_);
     tangent_.start(s_, evaluate_, work);
     if (forcing_) {
-      if (s_.force_balance.rows() != noether::kBalanceRows ||
-          s_.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size()))
-        throw noether::Error("lgvi: the state carries no balance of its forces (State::force_balance)");
+      forcing_->check_balance(s_, "lgvi");
       (*forcing_)(s_);  // the forces of the first opening kick (33.1)
     }
   }
@@ -72,6 +70,7 @@ class InertialHamiltonian final : public DiscreteFlow {
   void advance(double h) override {
     if (!forcing_) return conservative_step(h);
     before_ = s_;
+    before_forces_ = current_;
     try {
       // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k,  the forces at z_k          (33.1)
       kick_from_ = s_;
@@ -132,7 +131,6 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
   void conservative_step(double h) {
-    if (forcing_) before_forces_ = current_;
     const Forces& fk = current_;
     // h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ                                        (93)
     for (std::size_t r = 0; r < system_.rigid_count(); ++r) {

@@ -109,9 +109,7 @@ class Rk final : public noether::Integrator {
 
   void start(const noether::State& state) override {
     if (state.tangent.size() > 0 && !tangent_map_unavailable().empty()) throw noether::Error(tangent_map_unavailable());
-    if (forcing_ && (state.force_balance.rows() != noether::kBalanceRows ||
-                     state.force_balance.cols() != static_cast<Eigen::Index>(forcing_->size())))
-      throw noether::Error("rk: the state carries no balance of its forces (State::force_balance)");
+    if (forcing_) forcing_->check_balance(state, "rk");
     if (parameter_forces_ && !parameter_forces_->fits(state.tangent))
       throw noether::Error("rk: the tangent has fewer columns than the parameters it carries");
     tangent_rows_ = state.tangent.rows();
