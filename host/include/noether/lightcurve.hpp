@@ -5,6 +5,7 @@
 // docs/fitting.md, "Lightcurves").
 #include <noether/lie.hpp>
 #include <noether/mesh.hpp>
+#include <noether/tessellated_ellipsoid.hpp>
 
 #include <vector>
 
@@ -15,11 +16,6 @@ namespace noether {
 //   Lommel–Seeliger: S = μ0 μ / (μ0 + μ)      Lambert: S = μ0 μ
 enum class Scattering { lommel_seeliger, lambert };
 double scattering(Scattering law, double mu0, double mu);
-
-// The ellipsoid x²/a² + y²/b² + z²/c² = 1 as a closed mesh: the icosahedron subdivided `level`
-// times (20·4^level faces), its vertices on the unit sphere, then stretched by the semi-axes.
-// Outward, counter-clockwise faces. level ∈ [0, 8].
-Mesh tessellated_ellipsoid(const Vec3& semi_axes, int level);
 
 struct FluxSettings {
   // A facet that is partly hidden or partly shadowed (its centre and three points near its

@@ -13,11 +13,10 @@
 // The prescribed body feels nothing back: the scene's momenta change by what it puts in, which
 // the balance records (docs/equations.md eq. 33.3).
 #include <noether/error.hpp>
-#include <noether/kepler_orbit.hpp>
+#include <noether/prescribed_conic.hpp>
 #include <noether/plugin.hpp>
 
 #include <cmath>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,47 +30,19 @@ using noether::State;
 using noether::System;
 using noether::Vec3;
 
-Vec3 vector_param(const Params& p, const char* key) {
-  const std::vector<double> v = p.at(key).as_doubles();
-  if (v.size() != 3) throw SceneError(p.at(key).here() + "prescribed-body: '" + key + "' must be [x, y, z]");
-  return {v[0], v[1], v[2]};
-}
-
 class PrescribedBody final : public noether::ForceModel {
  public:
-  PrescribedBody(const System& system, const Params& p) : system_(system) {
-    mass_ = p.at("mass").as_double();
-    if (!(mass_ > 0) || !std::isfinite(mass_)) throw SceneError(p.at("mass").here() + "prescribed-body: mass must be positive");
+  PrescribedBody(const System& system, const Params& p)
+      : system_(system), mass_(positive_mass(p)), conic_(system, p, mass_, "prescribed-body") {
     order_ = static_cast<int>(p.at("order").as_int());
     if (order_ != 0 && order_ != 2) throw SceneError(p.at("order").here() + "prescribed-body: order must be 0 or 2");
-    const std::string center = p.at("center").as_string();
-    for (const auto& b : system.bodies()) scene_mass_ += b.mass;
-    double center_mass = 0.0;
-    if (center == "barycentre" || center == "barycenter") {
-      center_mass = scene_mass_;
-      center_ = -1;
-    } else if (center == "origin") {
-      center_ = -2;
-      if (!p.has("mu")) throw SceneError(p.at("center").here() + "prescribed-body: center: origin needs 'mu', the conic's G M");
-    } else {
-      center_ = system.index_of(center);
-      if (center_ < 0)
-        throw SceneError(p.at("center").here() + "prescribed-body: center must be barycentre, origin or a body, not '" +
-                         center + "'");
-      center_mass = system.body(static_cast<std::size_t>(center_)).mass;
-    }
-    const double mu = p.has("mu") ? p.at("mu").as_double() : system.G() * (mass_ + center_mass);
-    if (!(mu > 0)) throw SceneError((p.has("mu") ? p.at("mu").here() : p.here()) + "prescribed-body: mu must be positive");
-    orbit_.emplace(vector_param(p, "position"), vector_param(p, "velocity"), mu, p.at("epoch").as_double());
   }
 
   bool depends_on_momenta() const override { return false; }
 
   void evaluate(const State& s, Forces& out, noether::Workspace&) const override {
     out.set_zero();
-    Vec3 rho, rho_dot;
-    orbit_->state(s.t, rho, rho_dot);
-    const Vec3 X = center(s) + rho;
+    const Vec3 X = conic_.position(s);
     const double GM = system_.G() * mass_;
     for (std::size_t i = 0; i < system_.size(); ++i) {
       const auto c = static_cast<Eigen::Index>(i);
@@ -94,19 +65,16 @@ class PrescribedBody final : public noether::ForceModel {
   }
 
  private:
-  Vec3 center(const State& s) const {
-    if (center_ >= 0) return s.x.col(center_);
-    if (center_ == -2) return Vec3::Zero();
-    Vec3 sum = Vec3::Zero();
-    for (std::size_t i = 0; i < system_.size(); ++i) sum += system_.body(i).mass * Vec3(s.x.col(static_cast<Eigen::Index>(i)));
-    return sum / scene_mass_;
+  static double positive_mass(const Params& p) {
+    const double m = p.at("mass").as_double();
+    if (!(m > 0) || !std::isfinite(m)) throw SceneError(p.at("mass").here() + "prescribed-body: mass must be positive");
+    return m;
   }
 
   System system_;
-  double mass_ = 0.0, scene_mass_ = 0.0;
+  double mass_;
+  noether::PrescribedConic conic_;
   int order_ = 2;
-  Eigen::Index center_ = -1;  // a body, −1 the barycentre, −2 the origin
-  std::optional<noether::KeplerOrbit> orbit_;
 };
 
 const noether::ParamDoc params[] = {
