@@ -61,36 +61,111 @@ TEST(KeplerOrbit, IsTheIntegratedTwoBodyOrbit) {
   }
 }
 
-// A prescribed body at order 2 against the same body integrated, as a point mass in
-// mutual-series of order 2 (inertia integrals, Hou et al.): the force on and torque of an
-// ellipsoid near it, two formulations of MacCullagh's quadrupole term.
-TEST(PrescribedBody, ForceAndTorqueAreTheSeriesOfOrderTwo) {
-  const char* body = "  - {name: rock, mass: 2, shape: {ellipsoid: {semi_axes: [0.3, 0.2, 0.1]}}, position: [0, 0, 0], "
-                     "velocity: [0, 0, 0], attitude: {euler_angles: [30, 20, 10]}}\n";
-  const Scene integrated = parse_scene(std::string("G: 1\nbodies:\n") + body +
+namespace {
+
+const char* kRock = "  - {name: rock, mass: 2, shape: {ellipsoid: {semi_axes: [0.3, 0.2, 0.1]}}, position: [0, 0, 0], "
+                    "velocity: [0, 0, 0], attitude: {euler_angles: [30, 20, 10]}}\n";
+
+// The rock (above) and a planet of mass 5 prescribed on a conic about it: `model` is the force's
+// order or tolerance, e.g. "order: 4".
+Scene rock_and_prescribed_planet(const std::string& model, const Vec3& x = Vec3(1.5, -1, 0.7),
+                                 const Vec3& v = Vec3(0, 1, 0)) {
+  std::ostringstream yaml;
+  yaml.precision(17);
+  yaml << "G: 1\nbodies:\n" << kRock << "potential: {plugin: point-mass}\n"
+       << "forces: [{plugin: prescribed-body, name: planet, mass: 5, center: origin, mu: 7, position: [" << x.x() << ", "
+       << x.y() << ", " << x.z() << "], velocity: [" << v.x() << ", " << v.y() << ", " << v.z() << "], " << model << "}]\n"
+       << "integrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 1, output_every: 1}\n";
+  return parse_scene(yaml.str(), "prescribed");
+}
+
+// The force and torque on the rock where the scene starts.
+std::pair<Vec3, Vec3> rock_forces(const Scene& scene) {
+  const auto force = registry().make_force("prescribed-body", scene.system, scene.forces[0].params);
+  Forces f;
+  f.resize(scene.system);
+  auto ws = force->make_workspace();
+  force->evaluate(scene.initial, f, *ws);
+  return {f.f.col(0), f.M.col(0)};
+}
+
+}  // namespace
+
+// A prescribed body against two independent formulations: at order 2, MacCullagh's quadrupole
+// written out (35.5) — U2 = −(G M / 2)(tr J / d³ − 3 dᵀ J_in d / d⁵), its gradient and the
+// gravity-gradient torque 3 G M (d_b × J d_b) / d⁵; at order 4, the same planet integrated in
+// mutual-series of order 4.
+TEST(PrescribedBody, ForceAndTorqueAreMacCullaghsAndTheIntegratedSeries) {
+  const Scene prescribed = rock_and_prescribed_planet("order: 2");
+  const auto [F, M] = rock_forces(prescribed);
+  const double GM = 5.0;
+  const Mat3& R = prescribed.initial.R[0];
+  const Mat3& J = prescribed.system.body(0).inertia;
+  const Vec3 d(1.5, -1, 0.7), db = R.transpose() * d, Jd = R * J * db;
+  const double dn = d.norm(), d5 = std::pow(dn, 5), dJd = db.dot(J * db);
+  const Vec3 F0 = GM * 2.0 * d / (dn * dn * dn) - 0.5 * GM * (-3.0 * J.trace() * d / d5 - 6.0 * Jd / d5 + 15.0 * dJd * d / (d5 * dn * dn));
+  const Vec3 M0 = (3.0 * GM / d5) * db.cross(J * db);
+  std::printf("order 2 against MacCullagh's: force %.2e, torque %.2e\n", (F - F0).norm() / F0.norm(),
+              (M - M0).norm() / M0.norm());
+  EXPECT_LT((F - F0).norm(), 1e-13 * F0.norm());
+  EXPECT_LT((M - M0).norm(), 1e-13 * M0.norm());
+
+  const Scene integrated = parse_scene(std::string("G: 1\nbodies:\n") + kRock +
                                            "  - {name: planet, mass: 5, position: [1.5, -1, 0.7], velocity: [0, 1, 0]}\n"
-                                           "potential: {plugin: mutual-series, order: 2}\nintegrator: {plugin: lgvi, step: 0.01}\n"
+                                           "potential: {plugin: mutual-series, order: 4}\nintegrator: {plugin: lgvi, step: 0.01}\n"
                                            "run: {t_end: 1, output_every: 1}\n",
                                        "integrated");
-  const Scene prescribed = parse_scene(std::string("G: 1\nbodies:\n") + body +
-                                           "potential: {plugin: point-mass}\n"
-                                           "forces: [{plugin: prescribed-body, name: planet, mass: 5, center: origin, "
-                                           "mu: 7, position: [1.5, -1, 0.7], velocity: [0, 1, 0]}]\n"
-                                           "integrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 1, output_every: 1}\n",
-                                       "prescribed");
   Forces series;
   series.resize(integrated.system);
   make_scene_potential(integrated, registry())->evaluate(integrated.initial, series);
-  const auto force = registry().make_force("prescribed-body", prescribed.system, prescribed.forces[0].params);
-  Forces f;
-  f.resize(prescribed.system);
-  auto ws = force->make_workspace();
-  force->evaluate(prescribed.initial, f, *ws);
-  const double df = (Vec3(f.f.col(0)) - Vec3(series.f.col(0))).norm() / series.f.col(0).norm();
-  const double dM = (Vec3(f.M.col(0)) - Vec3(series.M.col(0))).norm() / series.M.col(0).norm();
-  std::printf("prescribed against mutual-series order 2: force %.2e, torque %.2e\n", df, dM);
+  const auto [F4, M4] = rock_forces(rock_and_prescribed_planet("order: 4"));
+  const double df = (F4 - Vec3(series.f.col(0))).norm() / series.f.col(0).norm();
+  const double dM = (M4 - Vec3(series.M.col(0))).norm() / series.M.col(0).norm();
+  std::printf("order 4 against mutual-series order 4 with the planet integrated: force %.2e, torque %.2e\n", df, dM);
   EXPECT_LT(df, 1e-13);
   EXPECT_LT(dM, 1e-13);
+  EXPECT_GT((F4 - F).norm(), 1e-6 * F.norm());  // order 4 is not order 2 here
+}
+
+// With a tolerance, each rigid body's order is the lowest that meets it at the closest the conic
+// comes (35.6): a hyperbola whose periapsis 1.5 (5 rock radii) is at the epoch, so the first evaluation is the
+// closest; the chosen order's error against order 12 there (force relative to |F|, torque to d |F|)
+// stays within each tolerance and grows as the tolerance loosens. A min_separation that the conic
+// breaks stops the run, naming the remedy.
+TEST(PrescribedBody, ToleranceChoosesTheOrderAtTheClosestApproach) {
+  const Vec3 x(1.5, 0, 0), v(0, 5, 0.5);  // v² > 2 μ / r: a hyperbola, at periapsis
+  const auto [F12, M12] = rock_forces(rock_and_prescribed_planet("order: 12", x, v));
+  double previous = 0.0;
+  for (const double tolerance : {1e-7, 1e-5, 1e-3}) {
+    std::ostringstream model;
+    model << "tolerance: " << tolerance;
+    const auto [F, M] = rock_forces(rock_and_prescribed_planet(model.str(), x, v));
+    const double error = std::max((F - F12).norm() / F12.norm(), (M - M12).norm() / (x.norm() * F12.norm()));
+    std::printf("tolerance %.0e: error against order 12 at the periapsis %.2e\n", tolerance, error);
+    EXPECT_LE(error, tolerance);
+    EXPECT_GT(error, previous);
+    previous = error;
+  }
+  try {
+    const Scene scene = rock_and_prescribed_planet("tolerance: 1.0e-9, min_separation: 5", x, v);
+    rock_forces(scene);
+    FAIL() << "a min_separation the conic breaks was not caught";
+  } catch (const IntegrationError& e) {
+    EXPECT_NE(std::string(e.what()).find("give a smaller min_separation"), std::string::npos) << e.what();
+  }
+  try {
+    rock_forces(rock_and_prescribed_planet("tolerance: 1.0e-9", Vec3(0.25, 0, 0), Vec3(0, 12, 0)));
+    FAIL() << "a conic through the body's sphere was not refused";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("where the series need not converge"), std::string::npos) << e.what();
+  }
+  try {
+    rock_and_prescribed_planet("tolerance: 1.0e-9, order: 4");
+    rock_forces(rock_and_prescribed_planet("tolerance: 1.0e-9, order: 4"));
+    FAIL() << "order and tolerance together were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("not both"), std::string::npos) << e.what();
+  }
 }
 
 namespace {

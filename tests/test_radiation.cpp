@@ -274,10 +274,16 @@ TEST(Radiation, SymmetricBodiesHaveNoAveragedSpinTorque) {
                             ", units: km}}";
   const Scene a = lit_body(alpha, o, Vec3(1e3, 0, 0));
   const double closed = turn_average(a.system.body(0).solid->mesh, o).second.z();  // P = 1 at 1e3
-  const double e1024 = averaged(alpha, 1024, nullptr) / closed - 1, e4096 = averaged(alpha, 4096, nullptr) / closed - 1;
-  std::printf("Alpha: the plugin's torque averaged over 1024 and 4096 azimuths off the closed form by %.1e and %.1e\n",
-              e1024, e4096);
-  EXPECT_LT(std::abs(e4096), 1e-6);
+#ifdef NOETHER_TEST_SANITIZED  // 16 times fewer evaluations of Alpha's 9168 facets under the sanitizers
+  const int azimuths = 256;
+  const double within = 2e-4;
+#else
+  const int azimuths = 4096;
+  const double within = 1e-6;
+#endif
+  const double error = averaged(alpha, azimuths, nullptr) / closed - 1;
+  std::printf("Alpha: the plugin's torque averaged over %d azimuths off the closed form by %.1e\n", azimuths, error);
+  EXPECT_LT(std::abs(error), within);
 
   auto octahedron = [](const Vec3& axes) {
     Mesh m;

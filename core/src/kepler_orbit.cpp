@@ -1,6 +1,8 @@
 #include <noether/error.hpp>
 #include <noether/kepler_orbit.hpp>
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <string>
 
@@ -29,6 +31,13 @@ KeplerOrbit::KeplerOrbit(const Eigen::Vector3d& r0, const Eigen::Vector3d& v0, d
   if (!(r0n_ > 0) || !r0.allFinite() || !v0.allFinite()) throw Error("KeplerOrbit: the relative state must be finite, r0 ≠ 0");
   alpha_ = 2.0 / r0n_ - v0.squaredNorm() / mu;
   sigma0_ = r0.dot(v0) / std::sqrt(mu);
+}
+
+double KeplerOrbit::periapsis() const {
+  const double h2 = r0_.cross(v0_).squaredNorm();
+  if (!(h2 > 0)) return 0.0;  // radial: it reaches the focus
+  const Eigen::Vector3d e = ((v0_.squaredNorm() - mu_ / r0n_) * r0_ - r0_.dot(v0_) * v0_) / mu_;
+  return h2 / (mu_ * (1.0 + e.norm()));
 }
 
 void KeplerOrbit::state(double t, Eigen::Vector3d& r, Eigen::Vector3d& v) const {

@@ -18,6 +18,9 @@ class KeplerOrbit {
   double mu() const { return mu_; }
   // 1/a = 2/r0 − v0²/μ: > 0 bound, < 0 hyperbolic.
   double inverse_semi_major_axis() const { return alpha_; }
+  // The closest the conic comes to its focus, q = h² / (μ (1 + e)) (h = |r0 × v0|; for a
+  // radial orbit: 0) — whether or not the motion between t0 and a given time passes it.
+  double periapsis() const;
 
  private:
   Eigen::Vector3d r0_, v0_;

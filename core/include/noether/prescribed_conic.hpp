@@ -24,9 +24,11 @@ class PrescribedConic {
 
   // X(t) where the run stands at s (35.1)–(35.3).
   Vec3 position(const State& s) const;
+  // The center c(t) where the run stands at s.
+  Vec3 center(const State& s) const;
+  const KeplerOrbit& orbit() const { return orbit_; }
 
  private:
-  Vec3 center(const State& s) const;
 
   std::vector<double> masses_;
   double scene_mass_ = 0.0;

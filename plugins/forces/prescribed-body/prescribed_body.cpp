@@ -2,21 +2,27 @@
 // (a planet passing a binary asteroid, the Sun about it; docs/forces.md, docs/equations.md §35).
 // Its position is X(t) = c(t) + ρ(t): ρ a Kepler conic (KeplerOrbit) from the relative state
 // given at `epoch`, about c — the scene's barycentre where the run stands (default), a body, or
-// the origin. Every body i feels it as a point mass M,
+// the origin. Every point mass i feels it as a point mass M,
 //
 //   f_i = G M m_i d_i / |d_i|³,   d_i = X − x_i,                                               (35.4)
 //
-// and with order 2 each rigid body also its quadrupole's share (MacCullagh's potential
-// U2 = −(G M / 2)(tr J / d³ − 3 dᵀ J_in d / d⁵), J_in = R J Rᵀ): the force ∂U2/∂d and the
-// gravity-gradient torque 3 G M (d_b × J d_b) / d⁵ in the body frame, d_b = Rᵀ d          (35.5)
+// and every rigid body through the mutual series of order N between the point mass and the body's
+// inertia integrals (§13; order 2 is MacCullagh's quadrupole force and gravity-gradient torque,
+// (35.5)): the force ∂U/∂R and the torque on the body, in its frame, at R = Rᵀ d. N is `order`, or
+// the lowest order meeting `tolerance` at the closest the conic comes to the body (35.6), chosen
+// per body as mutual-series chooses per pair (§15).
 //
 // The prescribed body feels nothing back: the scene's momenta change by what it puts in, which
 // the balance records (docs/equations.md eq. 33.3).
+#include <noether/body_integrals.hpp>
 #include <noether/error.hpp>
-#include <noether/prescribed_conic.hpp>
+#include <noether/mutual_series.hpp>
+#include <noether/order_selection.hpp>
 #include <noether/plugin.hpp>
+#include <noether/prescribed_conic.hpp>
 
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,41 +36,142 @@ using noether::State;
 using noether::System;
 using noether::Vec3;
 
+// Per body: the series order (0: a point mass) and, with a tolerance, the separation it was chosen
+// for — chosen at the first evaluation (where the run starts) and watched.
+struct SeriesWorkspace final : noether::Workspace {
+  noether::SeriesBank bank;  // the series evaluators, by order (scratch)
+  std::vector<int> order;
+  std::vector<double> check_below;
+  bool chosen = false;
+};
+
 class PrescribedBody final : public noether::ForceModel {
  public:
   PrescribedBody(const System& system, const Params& p)
-      : system_(system), mass_(positive_mass(p)), conic_(system, p, mass_, "prescribed-body") {
+      : system_(system), mass_(positive_mass(p)), conic_(system, p, mass_, "prescribed-body"),
+        point_(noether::point_integrals({mass_}, {Vec3::Zero()}, 0)) {
+    const bool tolerance = p.has("tolerance");
+    if (tolerance && noether::given(p, "order"))
+      throw SceneError(p.at("order").here() + "prescribed-body: give 'order' or 'tolerance', not both");
+    for (const char* key : {"max_order", "min_separation"})
+      if (!tolerance && noether::given(p, key))
+        throw SceneError(p.at(key).here() + "prescribed-body: '" + key + "' goes with 'tolerance', not with a fixed 'order'");
     order_ = static_cast<int>(p.at("order").as_int());
-    if (order_ != 0 && order_ != 2) throw SceneError(p.at("order").here() + "prescribed-body: order must be 0 or 2");
+    if (order_ < 0 || order_ > 12) throw SceneError(p.at("order").here() + "prescribed-body: order must be in 0..12");
+    int integrals_order = order_;
+    if (tolerance) {
+      selection_.tolerance = p.at("tolerance").as_double();
+      if (!(selection_.tolerance > 0.0 && selection_.tolerance < 1.0))
+        throw SceneError(p.at("tolerance").here() + "prescribed-body: tolerance must be between 0 and 1 (a relative error)");
+      if (p.has("max_order")) {
+        selection_.max_order = static_cast<int>(p.at("max_order").as_int());
+        if (selection_.max_order < 0 || selection_.max_order > 12)
+          throw SceneError(p.at("max_order").here() + "prescribed-body: max_order must be in 0..12");
+      }
+      if (p.has("min_separation")) {
+        min_separation_ = p.at("min_separation").as_double();
+        if (!(min_separation_ > 0.0))
+          throw SceneError(p.at("min_separation").here() + "prescribed-body: min_separation must be positive");
+      }
+      integrals_order = selection_.max_order + 2;
+      tolerance_where_ = p.at("tolerance").here();
+    }
+    for (const auto& body : system.bodies()) {
+      integrals_.push_back(body.rigid && integrals_order > 0
+                               ? noether::body_integrals(body, integrals_order, "prescribed-body", tolerance)
+                               : noether::InertiaIntegrals{});
+      radius_.push_back(noether::integrals_radius(body));
+    }
   }
 
   bool depends_on_momenta() const override { return false; }
 
-  void evaluate(const State& s, Forces& out, noether::Workspace&) const override {
+  std::unique_ptr<noether::Workspace> make_workspace() const override {
+    auto w = std::make_unique<SeriesWorkspace>();
+    for (const auto& body : system_.bodies()) w->order.push_back(body.rigid ? order_ : 0);
+    w->check_below.assign(system_.size(), 0.0);
+    w->chosen = selection_.tolerance == 0.0;
+    return w;
+  }
+
+  void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
+    auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "prescribed-body");
+    if (!w.chosen) choose(s, w);
     out.set_zero();
     const Vec3 X = conic_.position(s);
-    const double GM = system_.G() * mass_;
+    const double G = system_.G();
     for (std::size_t i = 0; i < system_.size(); ++i) {
       const auto c = static_cast<Eigen::Index>(i);
       const Vec3 d = X - Vec3(s.x.col(c));
       const double d2 = d.squaredNorm(), dn = std::sqrt(d2);
       if (!(dn > 0)) throw noether::IntegrationError("prescribed-body: a body reached the prescribed body", s.t);
-      Vec3 f = (GM * system_.body(i).mass / (d2 * dn)) * d;  // (35.4)
-      const int k = system_.rigid_index(i);
-      if (order_ == 2 && k >= 0) {  // (35.5)
-        const Mat3& R = s.R[static_cast<std::size_t>(k)];
-        const Mat3& J = system_.body(i).inertia;
-        const Vec3 db = R.transpose() * d, Jdb = J * db;
-        const double d5 = d2 * d2 * dn, dJd = db.dot(Jdb);
-        const Vec3 Jd = R * Jdb;
-        f += -0.5 * GM * (-3.0 * J.trace() * d / d5 - 6.0 * Jd / d5 + 15.0 * dJd * d / (d5 * d2));
-        out.M.col(k) = (3.0 * GM / d5) * db.cross(Jdb);
+      const int order = w.order[i];
+      if (order == 0) {
+        out.f.col(c) = (G * mass_ * system_.body(i).mass / (d2 * dn)) * d;  // (35.4)
+        continue;
       }
-      out.f.col(c) = f;
+      const auto k = static_cast<std::size_t>(system_.rigid_index(i));
+      const Mat3& R = s.R[k];
+      const Vec3 d_body = R.transpose() * d;
+      if (dn < w.check_below[i]) watch(i, d_body, w, s.t);
+      // (35.5): the series of §13 with the body as A, the prescribed point mass as B, in A's frame.
+      const noether::MutualTerms terms = w.bank.at(order).evaluate(G, integrals_[i], point_, d_body, Mat3::Identity());
+      out.f.col(c) = R * terms.dU_dR;
+      out.M.col(static_cast<Eigen::Index>(k)) = terms.torque_A;
     }
   }
 
  private:
+  // Each rigid body's order from the tolerance at the closest the conic comes to it (35.6): the
+  // conic's periapsis about its center less the body's distance from the center now, × 0.9 — or
+  // min_separation.
+  void choose(const State& s, SeriesWorkspace& w) const {
+    const double periapsis = conic_.orbit().periapsis();
+    const Vec3 center = conic_.center(s);
+    for (std::size_t i = 0; i < system_.size(); ++i) {
+      if (!system_.body(i).rigid) continue;
+      const double offset = (Vec3(s.x.col(static_cast<Eigen::Index>(i))) - center).norm();
+      const double closest = min_separation_ > 0.0 ? min_separation_ : 0.9 * (periapsis - offset);
+      const std::string& name = system_.body(i).name;
+      if (!(closest > radius_[i])) {
+        std::ostringstream msg;
+        msg << tolerance_where_ << "prescribed-body: its conic comes within " << closest << " of body '" << name
+            << "' (radius " << radius_[i] << "), where the series need not converge: give min_separation if it "
+            << "never comes that close, a fixed order, or integrate the body with mutual-exact";
+        throw SceneError(msg.str());
+      }
+      const noether::OrderChoice choice = noether::choose_series_order(
+          w.bank, system_.G(), integrals_[i], point_, radius_[i], 0.0, closest, Vec3::UnitX(), Mat3::Identity(), selection_);
+      if (!choice.met) {
+        std::ostringstream msg;
+        msg << tolerance_where_ << "prescribed-body: no order up to max_order " << selection_.max_order
+            << " meets the tolerance " << selection_.tolerance << " for body '" << name << "' at " << closest
+            << " (estimated at " << choice.estimated_error
+            << "): raise max_order, loosen the tolerance, or give min_separation if it never comes that close";
+        throw SceneError(msg.str());
+      }
+      w.order[i] = choice.order;
+      w.check_below[i] = closest;
+    }
+    w.chosen = true;
+  }
+
+  // Closer than its order was chosen for: the error estimate (15.2) here, which must still meet the
+  // tolerance, or the run stops.
+  void watch(std::size_t i, const Vec3& d_body, SeriesWorkspace& w, double t) const {
+    const double dn = d_body.norm();
+    w.check_below[i] = 0.99 * dn;  // again only once it is 1 % closer
+    const double estimate = noether::series_error_estimate(w.bank, w.order[i], system_.G(), integrals_[i], point_,
+                                                           radius_[i], 0.0, d_body, Mat3::Identity());
+    if (estimate <= selection_.tolerance) return;
+    std::ostringstream msg;
+    msg << "prescribed-body: it came within " << dn << " of body '" << system_.body(i).name
+        << "', where the error of series order " << w.order[i] << " is estimated at " << estimate
+        << ", above the tolerance " << selection_.tolerance
+        << ": give a smaller min_separation (the closest it comes) or a fixed order";
+    throw noether::IntegrationError(msg.str(), t);
+  }
+
   static double positive_mass(const Params& p) {
     const double m = p.at("mass").as_double();
     if (!(m > 0) || !std::isfinite(m)) throw SceneError(p.at("mass").here() + "prescribed-body: mass must be positive");
@@ -74,7 +181,13 @@ class PrescribedBody final : public noether::ForceModel {
   System system_;
   double mass_;
   noether::PrescribedConic conic_;
-  int order_ = 2;
+  noether::InertiaIntegrals point_;                // the prescribed body's: a point mass M
+  int order_ = 2;                                  // the fixed order (rigid bodies)
+  noether::OrderSelection selection_{0.0, 12, 24, 1};  // tolerance 0: a fixed order
+  double min_separation_ = 0.0;
+  std::string tolerance_where_;
+  std::vector<noether::InertiaIntegrals> integrals_;  // per body (rigid: to the order needed)
+  std::vector<double> radius_;                        // per body (integrals_radius)
 };
 
 const noether::ParamDoc params[] = {
@@ -87,7 +200,15 @@ const noether::ParamDoc params[] = {
      "what its conic is relative to: barycentre (the scene's, where the run stands), a body's name, or origin"},
     {"mu", "number", "(G (mass + the center's mass; the scene's total for barycentre))",
      "the gravitational parameter of its conic (required for center: origin)"},
-    {"order", "integer", "2", "0: point masses; 2: also each rigid body's quadrupole — force and gravity-gradient torque"},
+    {"order", "integer", "2",
+     "the mutual series' order N on rigid bodies, 0..12: 0 point masses, 2 quadrupoles (force and gravity-gradient "
+     "torque); or give 'tolerance'"},
+    {"tolerance", "number", "(none)",
+     "choose each rigid body's order instead: the lowest whose estimated relative error of force and torque meets it "
+     "at the closest the conic comes to the body (docs/forces.md)"},
+    {"max_order", "integer", "12", "with tolerance: the highest order it may choose"},
+    {"min_separation", "number", "(0.9 × (the conic's periapsis − the body's distance from its center))",
+     "with tolerance: the closest the prescribed body comes to any rigid body"},
 };
 
 std::unique_ptr<noether::ForceModel> make(const System& system, const Params& p) {

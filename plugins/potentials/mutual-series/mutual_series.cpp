@@ -13,6 +13,7 @@
 // polyhedron exactly) or its Stokes coefficients (a body given by its gravity field); in each
 // pair the second body's integrals are rotated into the first's frame at every evaluation
 // (docs/equations.md (12.6)).
+#include <noether/body_integrals.hpp>
 #include <noether/error.hpp>
 #include <noether/mutual_pair.hpp>
 #include <noether/order_selection.hpp>
@@ -61,38 +62,8 @@ class MutualSeriesPotential final : public noether::Potential {
     const int T_order = tolerance_ > 0.0 ? max_order_ + 2 : fixed_order_;
     for (std::size_t i = 0; i < system.size(); ++i) {
       const noether::Body& body = system.body(i);
-      if (body.solid) {
-        integrals_.push_back(body.solid->integrals(T_order));
-        radius_.push_back(body.solid->radius);
-      } else if (body.field) {  // its coefficients' integrals (docs/equations.md (31.3))
-        if (T_order > body.field->degree)
-          throw SceneError("mutual-series: body '" + body.name + "' is given by its gravity field to degree " +
-                           std::to_string(body.field->degree) + ", so " +
-                           (tolerance_ > 0.0 ? "a tolerance, which needs its integrals to max_order + 2 = " +
-                                                   std::to_string(T_order) + ", needs max_order ≤ " +
-                                                   std::to_string(body.field->degree - 2)
-                                             : "order " + std::to_string(fixed_order_) + " cannot be evaluated; use order ≤ " +
-                                                   std::to_string(body.field->degree)));
-        integrals_.push_back(noether::field_integrals(noether::truncated(*body.field, T_order, body.field->normalized),
-                                                      0.5 * body.inertia.trace()));
-        radius_.push_back(body.radius);
-      } else if (body.rigid) {
-        const std::string what = tolerance_ > 0.0 ? "a tolerance needs its higher integrals"
-                                                  : "order " + std::to_string(fixed_order_) + " cannot be evaluated";
-        if (!body.shape.is_null() && (T_order > 2))
-          throw SceneError(body.shape.here() + "mutual-series: body '" + body.name +
-                           "' is a point cluster; its shape is not a solid: use sphere-cluster, "
-                           "or give it an ellipsoid or polyhedron shape");
-        if (T_order > 2)
-          throw SceneError("mutual-series: body '" + body.name + "' has an inertia but no shape, "
-                           "so its integrals beyond degree 2 are unknown and " + what +
-                           "; give it a shape (ellipsoid or polyhedron), or use order ≤ 2");
-        integrals_.push_back(noether::integrals_from_inertia(body.mass, body.inertia));
-        radius_.push_back(0.0);
-      } else {
-        integrals_.push_back(noether::point_integrals({body.mass}, {Vec3::Zero()}, 0));
-        radius_.push_back(0.0);
-      }
+      integrals_.push_back(noether::body_integrals(body, T_order, "mutual-series", tolerance_ > 0.0));
+      radius_.push_back(noether::integrals_radius(body));
       names_.push_back(body.name);
       mass_.push_back(body.mass);
     }
