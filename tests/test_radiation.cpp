@@ -36,15 +36,24 @@ struct Optics {
   double lambertian() const { return (2.0 / 3.0) * (diffuse + (thermal ? 1.0 - specular - diffuse : 0.0)); }
 };
 
-// The force and torque of one evaluation of the scene's first force on its first body.
-std::pair<Vec3, Vec3> evaluate(const Scene& scene, const State& s) {
-  const auto force = registry().make_force(scene.forces[0].plugin, scene.system, scene.forces[0].params);
-  Forces f;
-  f.resize(scene.system);
-  auto ws = force->make_workspace();
-  force->evaluate(s, f, *ws);
-  return {f.f.col(0), f.M.col(0)};
-}
+// The scene's first force, made once: its force on and torque of its first body at a state.
+class FirstForce {
+ public:
+  explicit FirstForce(const Scene& scene)
+      : force_(registry().make_force(scene.forces[0].plugin, scene.system, scene.forces[0].params)),
+        workspace_(force_->make_workspace()) {
+    f_.resize(scene.system);
+  }
+  std::pair<Vec3, Vec3> operator()(const State& s) {
+    force_->evaluate(s, f_, *workspace_);
+    return {f_.f.col(0), f_.M.col(0)};
+  }
+
+ private:
+  std::shared_ptr<const ForceModel> force_;
+  std::unique_ptr<Workspace> workspace_;
+  Forces f_;
+};
 
 std::string obj_file(const Mesh& m, const std::string& name) {
   const std::string path = ::testing::TempDir() + name + ".obj";
@@ -117,7 +126,7 @@ TEST(Radiation, BoxAndSphereAreTheirClosedForms) {
   for (const Optics& o : {Optics{0, 0, true}, Optics{0.3, 0.2, true}, Optics{0.1, 0.6, false}})
     for (const Vec3& u : {Vec3(1, 0, 0), Vec3(0.6, -0.48, 0.64)}) {
       const Scene scene = lit_body(box, o, 7.0 * u);
-      const auto [F, M] = evaluate(scene, scene.initial);
+      const auto [F, M] = FirstForce(scene)(scene.initial);
       const auto [F0, M0] = box_closed_form(half, u, o);
       EXPECT_LT((F - F0).norm(), 1e-14 * F0.norm()) << o.yaml();
       EXPECT_LT((M - M0).norm(), 1e-14 * F0.norm()) << o.yaml();
@@ -130,7 +139,7 @@ TEST(Radiation, BoxAndSphereAreTheirClosedForms) {
     for (const int level : {4, 5}) {
       const Scene scene = lit_body("{ellipsoid: {semi_axes: [1, 1, 1]}}", o, 3.0 * u,
                                    ", tessellation: " + std::to_string(level));
-      const Vec3 F = evaluate(scene, scene.initial).first;
+      const Vec3 F = FirstForce(scene)(scene.initial).first;
       EXPECT_LT((F + F.norm() * u).norm(), 1e-3 * F.norm()) << "along −u";
       error[level - 4] = std::abs(F.norm() - exact) / exact;
     }
@@ -251,19 +260,20 @@ TEST(Radiation, YorpIsTheRotationAveragedTorque) {
 }
 
 // The plugin's own torque, averaged over N Sun azimuths 2πk/N in the equatorial plane: for Alpha it
-// tends to the closed form (36.3) (64: 5e-4, 256: 8e-5, 1024: 2e-6, 4096: 5e-7, 16384: 9e-8); for bodies with a mirror plane
-// through the spin axis — the tessellated ellipsoid, a regular octahedron and one stretched along
+// tends to the closed form (36.3) (N = 64: 5e-4, 256: 8e-5, 1024: 2e-6, 4096: 5e-7, 16384: 9e-8);
+// for bodies with a mirror plane through the spin axis — the tessellated ellipsoid, a regular octahedron and one stretched along
 // its axes — the azimuths pair up by the mirror and the average is zero to round-off, at any N.
 TEST(Radiation, SymmetricBodiesHaveNoAveragedSpinTorque) {
   const Optics o{0.2, 0.3, true};
   auto averaged = [&](const std::string& shape, int N, double* size, const std::string& extra = "") {
     double Mz = 0.0, sum_abs = 0.0;
     const Scene scene = lit_body(shape, o, Vec3(1e3, 0, 0), extra);
+    FirstForce evaluate(scene);
     State s = scene.initial;
     for (int k = 0; k < N; ++k) {  // the body turned by −φ: the Sun at azimuth φ in its frame
       const double phi = 2 * M_PI * k / N;
       s.R[0] = Eigen::AngleAxisd(-phi, Vec3::UnitZ()).toRotationMatrix();
-      const auto [F, M] = evaluate(scene, s);
+      const auto [F, M] = evaluate(s);
       Mz += M.z() / N;
       sum_abs += F.norm() * scene.system.body(0).solid->radius / N;  // the size of a lever's torque
     }

@@ -29,7 +29,6 @@ class PrescribedConic {
   const KeplerOrbit& orbit() const { return orbit_; }
 
  private:
-
   std::vector<double> masses_;
   double scene_mass_ = 0.0;
   Eigen::Index center_ = -1;  // a body, −1 the barycentre, −2 the origin
