@@ -3,11 +3,15 @@
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
+#include <noether/lie.hpp>
 #include <noether/simulation.hpp>
+
+#include "../host/src/event_watch.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using namespace noether;
 
@@ -105,4 +109,44 @@ TEST(Events, ABodyWithAShapeTakesItsRadiusFromTheShape) {
                SceneError);
   EXPECT_THROW(load_scene(test::source_path("examples/collision.yaml"), {"bodies.0.radius=-1"}),
                SceneError);
+}
+
+// The stepping loop's quick test of a watched pair at every step (Watch::clear: centres'
+// squared distance against the threshold's square) agrees with the event function g itself:
+// clear means g > 0, and g > 0 beyond round-off means clear — on the collision and close
+// approach of the falling spheres, the shaped collision of KW4's ellipsoids (where clear is the
+// bounding spheres being apart), and an escape, at 2000 random separations about each threshold.
+TEST(Events, TheQuickTestOfAPairAgreesWithItsEventFunction) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const char* file : {"examples/collision.yaml", "examples/kw4-ellipsoids.yaml"}) {
+    SCOPED_TRACE(file);
+    const Scene scene = load_scene(test::source_path(file));
+    const System& system = scene.system;
+    Events events;
+    events.close_approach = 1.3 * (system.body(0).radius + system.body(1).radius);
+    events.escape = Escape{0, 1, 2.0 * events.close_approach, false};
+    const std::vector<Watch> watched = watches(system, events);
+    ASSERT_EQ(watched.size(), 3u);  // close approach, collision, escape
+    State s = scene.initial;
+    int clear = 0, near = 0;
+    for (int k = 0; k < 2000; ++k) {
+      for (auto& R : s.R) R = exp_so3(Vec3(unit(random), unit(random), unit(random)));
+      const Vec3 direction = Vec3(unit(random), unit(random), unit(random)).normalized();
+      for (const Watch& w : watched) {
+        const double r = w.threshold * (1.0 + 0.5 * unit(random));
+        s.x.col(1) = s.x.col(0) + r * direction;
+        const double g = w.gap(system, s);
+        if (w.clear(s)) {
+          ++clear;
+          EXPECT_GT(g, 0.0) << w.name() << " at r = " << r;
+        } else if (w.kind != Watch::Kind::kCollision || !w.samples) {
+          ++near;
+          EXPECT_LE(g, 1e-12 * w.threshold) << w.name() << " at r = " << r;  // not clear: g ≤ 0
+        }
+      }
+    }
+    EXPECT_GT(clear, 2000);  // both sides of each threshold were tried
+    EXPECT_GT(near, 1000);
+  }
 }

@@ -2,7 +2,10 @@
 // file h5dump reads, every series of one length, its first /frames_complete frames complete.
 #include "test_support.hpp"
 
+#include <noether/diagnostics.hpp>
+#include <noether/output.hpp>
 #include <noether/simulation.hpp>
+#include <noether/lie.hpp>
 
 #include "../host/src/io/safe_publish.hpp"
 #include "../host/src/io/superblock.hpp"
@@ -14,6 +17,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <sys/wait.h>
 #include <thread>
 #include <fcntl.h>
@@ -200,4 +204,79 @@ TEST(Output, AStalePartialFileOfAReusedPidIsReplaced) {
   EXPECT_TRUE(fs::exists(partial));
   close(fd);
   fs::remove(partial);
+}
+
+namespace {
+
+// Every numeric dataset of a file, by path: its bytes as 8-byte words.
+std::map<std::string, std::vector<std::uint64_t>> numeric_datasets(const fs::path& path) {
+  std::map<std::string, std::vector<std::uint64_t>> out;
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << path;
+  H5Ovisit(
+      f, H5_INDEX_NAME, H5_ITER_NATIVE,
+      [](hid_t root, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+        if (info->type != H5O_TYPE_DATASET) return 0;
+        hid_t d = H5Dopen2(root, name, H5P_DEFAULT);
+        hid_t type = H5Dget_type(d);
+        const H5T_class_t cls = H5Tget_class(type);
+        if ((cls == H5T_FLOAT || cls == H5T_INTEGER) && H5Tget_size(type) == 8) {
+          hid_t space = H5Dget_space(d);
+          std::vector<std::uint64_t> words(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+          if (!words.empty()) H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, words.data());
+          H5Sclose(space);
+          (*static_cast<std::map<std::string, std::vector<std::uint64_t>>*>(data))[name] = std::move(words);
+        }
+        H5Tclose(type);
+        H5Dclose(d);
+        return 0;
+      },
+      &out);
+  H5Fclose(f);
+  return out;
+}
+
+}  // namespace
+
+// Blocks written on a thread of their own while frames keep coming (the default where HDF5 is
+// thread-safe) make the file that blocks written in line make, word for word: blocks of 7
+// frames, series allocated for 50 frames and grown in the background 5 times over 1000 frames.
+TEST(Output, BlocksWrittenInTheBackgroundMatchBlocksWrittenInLine) {
+  const Scene scene = test::dumbbell_scene();
+  auto write = [&](const fs::path& file, bool background) {
+    OutputOptions o;
+    o.block_frames = 7;
+    o.block_seconds = 1e9;  // blocks by count only: the same blocks either way
+    o.expected_frames = 50;
+    o.background_blocks = background;
+    o.overwrite = true;
+    H5Writer writer(file, scene, o);
+    State s = scene.initial;
+    WorkCounters work;
+    for (int k = 0; k < 1000; ++k) {
+      s.t = 0.01 * k;
+      s.x(0, 0) = 0.67 + 1e-3 * k;
+      s.p(1, 1) = -0.99 + 1e-4 * k;
+      s.R[0] = exp_so3(Vec3(0.0, 0.0, 0.09 * k));
+      work.steps = 50 * k;
+      writer.write_frame(s, diagnose(scene.system, s, -1.0 - 1e-3 * k), work, 0.0);
+    }
+    writer.finish(work, 0.0, "completed");
+    EXPECT_EQ(writer.frames_written(), 1000u);
+  };
+  const fs::path background = temp_file("noether-background"), in_line = temp_file("noether-in-line");
+  write(background, true);
+  write(in_line, false);
+  const auto a = numeric_datasets(background), b = numeric_datasets(in_line);
+  EXPECT_GE(a.size(), 30u);
+  EXPECT_EQ(a.size(), b.size());
+  for (const auto& [name, words] : a) {
+    ASSERT_TRUE(b.count(name)) << name;
+    EXPECT_EQ(words, b.at(name)) << name;
+  }
+  ASSERT_TRUE(a.count("frames_complete"));
+  EXPECT_EQ(a.at("frames_complete"), std::vector<std::uint64_t>{1000});
+  EXPECT_EQ(a.at("particles/bodies/position/value").size(), 1000u * 2 * 3);
+  fs::remove(background);
+  fs::remove(in_line);
 }

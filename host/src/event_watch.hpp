@@ -23,6 +23,9 @@ struct Watch {
 
   // g at a state (positions; attitudes for shapes; momenta for kUnbound). Eqs. 16.1, 16.5, 16.8.
   double gap(const System& system, const State& state) const;
+  // Whether g > 0 is certain from the centres' squared distance alone (no square root, no
+  // surface): the check the stepping loop makes at every step before computing g.
+  bool clear(const State& state) const;
   const char* name() const;  // "close approach", "collision", "escape", "unbound"
   // The stop reason: "collision: the shapes of bodies 'a' and 'b' touched at t = …".
   std::string describe(const System& system, double t) const;

@@ -40,6 +40,8 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
       throw OutputError("cannot create the output file " + path.string() + system_reason() +
                         " (does its folder exist, and is it writable?)");
     create_layout(scene);
+    hbool_t threadsafe = false;
+    m.background_blocks = options.background_blocks && H5is_library_threadsafe(&threadsafe) >= 0 && threadsafe;
     if (!options.defer_publish) publish();
   } catch (...) {
     abandon();
@@ -50,6 +52,7 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
 void H5Writer::publish() {
   Impl& m = *impl_;
   if (m.published) return;
+  settle();
   m.flush_file("flushing the output file");
   publish_file(m.partial, m.path, m.claimed >= 0);
   m.published = true;
@@ -59,6 +62,12 @@ void H5Writer::publish() {
 
 void H5Writer::abandon() {
   Impl& m = *impl_;
+  if (m.block_in_flight.valid()) {  // the file closes after the block in flight, whatever became of it
+    try {
+      settle();
+    } catch (...) {
+    }
+  }
   if (m.file >= 0) {
     m.close_datasets();
     H5Fclose(m.file);
@@ -99,44 +108,63 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
                           integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos};
   // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
   // seeded with the frame's index (the bytes a continued run reads back).
-  const std::uint64_t seed = frames_written_ + m.buffered;
+  const std::uint64_t seed = m.handed + m.buffered;
   m.sums.assign(m.checkpointed.size(), 0);
   for (auto& column : m.columns) {
-    m.scratch.assign(column.series->frame_size, 0);
-    column.quantity->fill(in, m.scratch.data());
-    column.series->push(m.scratch.data());
+    std::uint64_t* frame = column.series->append_frame();  // filled in place
+    column.quantity->fill(in, frame);
     if (column.quantity->checksum_column >= 0)
       m.sums[static_cast<std::size_t>(column.quantity->checksum_column)] =
-          io::checksum64(m.scratch.data(), m.scratch.size() * sizeof(std::uint64_t), seed);
+          io::checksum64(frame, column.series->frame_size * sizeof(std::uint64_t), seed);
   }
   m.checksum_series->push(m.sums.data());
   ++m.buffered;
   const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();
-  if (m.buffered >= m.options.block_frames || since >= m.options.block_seconds) flush();
+  if (m.buffered < m.options.block_frames && since < m.options.block_seconds) return;
+  if (!m.background_blocks || !m.published) return flush();
+  // The block is written on a thread of its own while the run goes on; the previous one first
+  // (its error, if any, is this call's).
+  settle();
+  const hsize_t first = m.handed, end = first + m.buffered;
+  hand_over();
+  m.block_end = end;
+  m.block_in_flight = std::async(std::launch::async, [&m, first, end] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // each thread has its own error stack
+    m.write_block(first, end);
+  });
+}
+
+void H5Writer::hand_over() {
+  Impl& m = *impl_;
+  for (auto& c : m.columns) c.series->hand_over();
+  m.checksum_series->hand_over();
+  m.handed += m.buffered;
+  m.buffered = 0;
+  m.last_flush = Clock::now();
+}
+
+void H5Writer::settle() {
+  Impl& m = *impl_;
+  if (!m.block_in_flight.valid()) return;
+  auto block = std::move(m.block_in_flight);
+  block.get();  // rethrows the block's error; then its frames are in the file
+  frames_written_ = m.block_end;
 }
 
 void H5Writer::flush() {
   Impl& m = *impl_;
   if (m.file < 0) return;
+  settle();
   if (m.buffered == 0) return;
-  const hsize_t first = frames_written_, needed = first + m.buffered;
-  if (needed > m.allocated) {  // grow: the only metadata change while frames are written
-    m.resize_series(std::max<hsize_t>(needed, 2 * m.allocated));
-  }
-  // The frames first, then the counter that makes them part of the file: a kill before the
-  // second flush leaves the counter at the previous block.
-  for (auto& c : m.columns) c.series->write(first);
-  m.checksum_series->write(first);
-  m.flush_file("flushing the output file");
-  frames_written_ = needed;
-  m.buffered = 0;
-  m.write_complete(static_cast<std::int64_t>(frames_written_));
-  m.flush_file("flushing the output file");
-  m.last_flush = Clock::now();
+  const hsize_t first = m.handed, end = first + m.buffered;
+  hand_over();
+  m.write_block(first, end);
+  frames_written_ = end;
 }
 
 void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
   Impl& m = *impl_;
+  settle();
   for (const auto& series : records) {
     const hsize_t width = std::max<std::size_t>(1, series.width), rows = series.values.size() / width;
     auto found = m.step_records.find(series.name);
@@ -174,6 +202,7 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
 void H5Writer::write_summary_values(const std::vector<std::pair<std::string, std::vector<double>>>& numbers,
                                     const std::vector<std::pair<std::string, std::string>>& texts) {
   Impl& m = *impl_;
+  settle();
   const io::H5Handle g(make_group(m.file, "/checkpoint/summary"));
   string_attribute(g, "description",
                    "the summary's running values where Simulation.save was called, from which "

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <map>
 #include <memory>
 #include <optional>
@@ -51,8 +52,15 @@ struct H5Writer::Impl {
   // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame, so
   // that a continued run finds a damaged frame before it trusts it.
   std::unique_ptr<Series> checksum_series;
-  std::vector<std::uint64_t> scratch, sums;  // one frame of one series; one frame's checksums
+  std::vector<std::uint64_t> sums;  // one frame's checksums
   std::size_t buffered = 0;
+  std::size_t handed = 0;  // frames handed to be written: those written and the block in flight
+  // The block being written on a thread of its own while the run goes on (when HDF5 is built
+  // thread-safe: every other call of the file waits for it first, H5Writer::settle), and the
+  // frames written once it is.
+  bool background_blocks = false;
+  std::future<void> block_in_flight;
+  std::size_t block_end = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
   struct StepRecords {     // /integrator/<name>: an integrator's per-step records
@@ -87,6 +95,17 @@ struct H5Writer::Impl {
     if (configured) H5Fset_mdc_config(file, &saved);
   }
   void flush_file(const char* what) { io::flush_extended(file, lock, what); }
+  // Writes the handed frames [first, end) (io::Series::hand_over): the frames first, then the
+  // counter that makes them part of the file, each followed by a flush, so that a kill before
+  // the second flush leaves the counter at the previous block.
+  void write_block(hsize_t first, hsize_t end) {
+    if (end > allocated) resize_series(std::max<hsize_t>(end, 2 * allocated));  // the only metadata change while frames are written
+    for (auto& c : columns) c.series->write_handed(first);
+    checksum_series->write_handed(first);
+    flush_file("flushing the output file");
+    write_complete(static_cast<std::int64_t>(end));
+    flush_file("flushing the output file");
+  }
   void write_complete(std::int64_t frames) {
     check(H5Dwrite(complete, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &frames),
           "writing /frames_complete");

@@ -275,6 +275,7 @@ void H5Writer::create_series(const Scene& scene) {
     auto series = std::make_unique<Series>(group, name.c_str(), integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE,
                                            shape, m.allocated,
                                            integer ? static_cast<const void*>(&integer_fill) : &real_fill);
+    series->reserve_frames(std::min<hsize_t>(m.options.block_frames, m.allocated));
     string_attribute(series->dataset, "unit", io::unit_of(q.unit, scene.units));
     string_attribute(series->dataset, "description", q.description);
     m.columns.push_back({&q, std::move(series)});
@@ -284,6 +285,7 @@ void H5Writer::create_series(const Scene& scene) {
   const std::uint64_t zero = 0;
   m.checksum_series = std::make_unique<Series>(checkpoint, "checksum", H5T_NATIVE_UINT64,
                                                std::vector<hsize_t>{checkpointed.size()}, m.allocated, &zero);
+  m.checksum_series->reserve_frames(std::min<hsize_t>(m.options.block_frames, m.allocated));
   string_attribute(m.checksum_series->dataset, "description",
                    "checksum64 of each frame of the series named in `columns`, seeded with the frame's index "
                    "(0: the series is absent); `noether run --resume` verifies every frame it reads");
@@ -298,6 +300,7 @@ void H5Writer::create_series(const Scene& scene) {
 void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
   if (models.empty()) return;
   Impl& m = *impl_;
+  settle();
   const io::H5Handle parameters(check_id(H5Gopen2(m.file, "parameters", H5P_DEFAULT), "/parameters"));
   if (H5Lexists(parameters, "pair_models", H5P_DEFAULT) > 0) H5Ldelete(parameters, "pair_models", H5P_DEFAULT);
   const io::H5Handle group(make_group(parameters, "pair_models"));

@@ -153,14 +153,17 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
   if (schedule.observe_start) observe();
 
   std::vector<Watch> watch = watches(system, schedule.events);
-  State previous, reached, probe;
+  // The states at the last step's start and end: two buffers whose roles swap after each step
+  // (the pointers, not the contents).
+  State ends[2], probe;
+  State *previous = &ends[0], *reached = &ends[1];
   if (!watch.empty()) {
-    previous = state;
+    *previous = state;
     for (auto& w : watch) w.armed = w.gap(system, state) > 0;
   }
   // The state at τ inside the last step: the method's dense output, else hermite_state.
   auto positions_at = [&](double tau) -> const State& {
-    if (!integrator.interpolate(tau, probe)) hermite_state(system, previous, reached, tau, probe);
+    if (!integrator.interpolate(tau, probe)) hermite_state(system, *previous, *reached, tau, probe);
     return probe;
   };
 
@@ -195,24 +198,28 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
     // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
     // variant of regula falsi on the interpolated positions (16.3).
     if (!watch.empty() || schedule.after_step) {
-      integrator.current_state(reached);
-      reached.t = t;
+      integrator.current_state(*reached);
+      reached->t = t;
     }
     if (!watch.empty()) {
-      if (!reached.x.allFinite())  // not a collision: the method failed
+      if (!reached->x.allFinite())  // not a collision: the method failed
         throw IntegrationError("the state became non-finite (NaN or infinite positions) in the step to t = " +
                                    std::to_string(t) + "; the last valid state is kept",
                                t_prev);
       double t_event = std::numeric_limits<double>::infinity();
       const Watch* hit = nullptr;
       for (auto& w : watch) {
-        const double g1 = w.gap(system, reached);
+        if (w.clear(*reached)) {  // most steps of most pairs
+          w.armed = true;
+          continue;
+        }
+        const double g1 = w.gap(system, *reached);
         if (!w.armed) {
           w.armed = g1 > 0;
           continue;
         }
         if (g1 > 0) continue;
-        double a = t_prev, b = t, ga = w.gap(system, previous), gb = g1;
+        double a = t_prev, b = t, ga = w.gap(system, *previous), gb = g1;
         int side = 0;
         for (int it = 0; it < 200 && b - a > 1e-14 * std::max(1.0, std::abs(b)); ++it) {
           const double c = (a * gb - b * ga) / (gb - ga);
@@ -241,7 +248,7 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         bool interpolated = false;
         if (h > 0 || !integrator.interpolate(t_event, state)) {
           // No dense output: one shortened step of the method from the step's start.
-          integrator.start(previous);
+          integrator.start(*previous);
           integrator.step(t_event);
           integrator.current(state, forces);
         } else {
@@ -265,7 +272,7 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         probe.t = t_end;
         schedule.after_step(probe);
       } else {
-        schedule.after_step(reached);
+        schedule.after_step(*reached);
       }
     }
     if (!watch.empty()) std::swap(previous, reached);

@@ -1,7 +1,8 @@
 #pragma once
 // Output: the HDF5 writer (layout after H5MD, docs/user-guide.md "Output"). Frames are buffered
-// and written in blocks into series allocated up front; after each block the file is flushed and
-// then /frames_complete advanced, so a run killed at any moment leaves a readable file whose
+// and written in blocks into series allocated up front (on a thread of their own while the run
+// goes on, when HDF5 is thread-safe); after each block the file is flushed and then
+// /frames_complete advanced, so a run killed at any moment leaves a readable file whose
 // series all have one length and whose first /frames_complete frames are complete. Every frame
 // of what a continued run reads back is checksummed (/checkpoint/checksum).
 #include <noether/chaos_values.hpp>
@@ -22,8 +23,11 @@
 namespace noether {
 
 struct OutputOptions {
-  std::size_t block_frames = 256;  // write a block at least every this many frames
+  std::size_t block_frames = 1024; // write a block at least every this many frames
   double block_seconds = 1.0;      // and at least this often in wall time
+  // Write each block on a thread of its own while the run goes on (used only when the HDF5
+  // library is thread-safe, as Debian's is); false: in line, as the frames arrive.
+  bool background_blocks = true;
   // Frames the run will write at most (0: unknown); the series are allocated for them up front,
   // within `preallocate_bytes`, so that a kill at any moment leaves a consistent file.
   std::uint64_t expected_frames = 0;
@@ -85,6 +89,11 @@ class H5Writer {
   void create_layout(const Scene& scene);  // every group, attribute and series, then a flush
   void create_series(const Scene& scene);  // the frame schema's series (io/frame_schema.hpp)
   void abandon();  // closes the file; removes it if it was never published
+  // The buffered frames become the block to write (and the buffers take the next frames).
+  void hand_over();
+  // Waits for the block written in the background, if any (rethrowing its error): every call
+  // that touches the file makes this first, so the file has one writer at a time.
+  void settle();
   std::unique_ptr<Impl> impl_;
   std::size_t frames_written_ = 0;
 };

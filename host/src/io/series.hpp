@@ -63,9 +63,19 @@ struct Series {
 
   // One frame (frame_size numbers of the series' type).
   void push(const void* values) {
+    if (frame_size) std::memcpy(append_frame(), values, frame_size * sizeof(std::uint64_t));
+  }
+  // One frame more, zeroed, to be filled in place (valid until the next append or hand_over).
+  std::uint64_t* append_frame() {
     const std::size_t at = buffer.size();
     buffer.resize(at + frame_size);
-    if (frame_size) std::memcpy(buffer.data() + at, values, frame_size * sizeof(std::uint64_t));
+    return buffer.data() + at;
+  }
+
+  // Room for a block of `frames` frames in both buffers, so that pushing never reallocates.
+  void reserve_frames(std::size_t frames) {
+    buffer.reserve(frames * frame_size);
+    handed.reserve(frames * frame_size);
   }
 
   // Sets the number of frames (growing allocates and fills the new chunks).
@@ -77,11 +87,22 @@ struct Series {
 
   // Writes the buffered frames from `first_frame` on (inside the allocated frames).
   void write(hsize_t first_frame) {
-    if (buffer.empty() || frame_size == 0) {
-      buffer.clear();
+    hand_over();
+    write_handed(first_frame);
+  }
+  // The buffered frames become the block to write (`handed`), and the buffer takes the next
+  // frames meanwhile: a block may be written on another thread while frames are pushed.
+  void hand_over() {
+    std::swap(buffer, handed);
+    buffer.clear();
+  }
+  // Writes the handed block from `first_frame` on.
+  void write_handed(hsize_t first_frame) {
+    if (handed.empty() || frame_size == 0) {
+      handed.clear();
       return;
     }
-    const hsize_t frames = buffer.size() / frame_size;
+    const hsize_t frames = handed.size() / frame_size;
     std::vector<hsize_t> start{first_frame}, count{frames};
     for (auto d : frame_shape) {
       start.push_back(0);
@@ -90,12 +111,15 @@ struct Series {
     hid_t file_space = H5Dget_space(dataset);
     H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
     hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
-    check(H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, buffer.data()),
-          "writing a block of frames");
+    const herr_t status = H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, handed.data());
     H5Sclose(mem_space);
     H5Sclose(file_space);
-    buffer.clear();
+    handed.clear();
+    check(status, "writing a block of frames");
   }
+
+ private:
+  std::vector<std::uint64_t> handed;  // the block being written
 };
 
 }  // namespace noether::io

@@ -119,6 +119,9 @@ class Lgvi final : public noether::Integrator {
     flow_->current(state, forces);
     state.t = t_;
   }
+  // The state alone, at every step where events are watched: into a kept Forces, so that
+  // the step loop allocates nothing.
+  void current_state(noether::State& state) override { current(state, scratch_forces_); }
 
  private:
   // One step of size dt: the base map, or its symmetric composition γ_1 dt, …, γ_s dt
@@ -128,8 +131,7 @@ class Lgvi final : public noether::Integrator {
     if (gamma_.empty()) {
       flow_->advance(dt);
     } else {
-      noether::Forces unused;
-      flow_->current(before_, unused);
+      flow_->current(before_, scratch_forces_);
       try {
         for (const double g : gamma_) flow_->advance(g * dt);
       } catch (const noether::Error&) {
@@ -155,6 +157,7 @@ class Lgvi final : public noether::Integrator {
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;
+  noether::Forces scratch_forces_;  // what current_state() and a composition's start drop
 };
 
 const noether::ParamDoc params[] = {
