@@ -29,13 +29,16 @@ namespace {
 // tangent's frames but not the state of its integration: the chaos indicators' sums, the
 // parameters' stencils), a scene with impulses (which of them a continuation has passed) and one
 // with forces (what they put in so far).
-void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
+// `continuing`: --resume, which reads the forces' balance back with every frame; a saved
+// simulation does not keep the run's largest exchanged momenta, so saving refuses forces.
+void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice,
+                        bool continuing = false) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
-  if (!scene.forces.empty())  // their balance (State::force_balance) is not read back yet
+  if (!continuing && !scene.forces.empty())
     throw Error(doing + " a run whose scene has forces beyond the potential (forces:) is not supported yet" + advice);
 }
 
@@ -107,7 +110,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
+  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole", true);
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);

@@ -3,7 +3,8 @@ continued each time with `noether run --resume` ends with a file equal, bit for 
 uninterrupted run writes (docs/user-guide.md, "Continuing a run").
 
 For the LGVI (inertial Hamiltonian, and relative Lagrangian: a method whose variables are not the
-State, restored from /checkpoint/integrator) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
+State, restored from /checkpoint/integrator; and the forced LGVI with tides, whose balance is read
+back) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
 killed at a random moment, resumed and killed again, KILLS times (at least 5), then resumed to the
 end. Asserted:
   * every frame is in the file exactly once: the times are the uninterrupted run's, in order;
@@ -56,7 +57,10 @@ def summary_of(stdout):
 
 for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method: rk4, step: 0.0002}"]),
                          ("lgvi-relative-lagrangian",
-                          ["integrator={plugin: lgvi, step: 0.0002, frame: relative, form: lagrangian}"])]:
+                          ["integrator={plugin: lgvi, step: 0.0002, frame: relative, form: lagrangian}"]),
+                         # a force beyond the potential: its balance (W, ΔP, ΔL) is read back with every
+                         # frame, and the forced LGVI's opening kick starts from it
+                         ("lgvi-tides", ["forces=[{plugin: tides, body: beta, k2: 0.3, time_lag: 0.0001, radius: 0.25}]"])]:
     sets = ["--set", f"run.t_end={t_end}", "--set", "run.output_every=0.01"]
     for o in overrides:
         sets += ["--set", o]
@@ -120,7 +124,7 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
                             f"the uninterrupted run has {len(ta)}")
         elif not (np.diff(tb) > 0).all():
             failures.append(f"{label}: the times are not strictly increasing: a frame is missing or repeated")
-        for key in COMPARED:
+        for key in COMPARED + (["observables/force_balance/value"] if "observables/force_balance" in a else []):
             x, y = a[key][()], b[key][()]
             if x.shape != y.shape or x.tobytes() != y.tobytes():
                 bad = np.argwhere((x != y).reshape(len(x), -1).any(axis=1)).ravel() if x.shape == y.shape else []
@@ -136,7 +140,7 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
             failures.append(f"{label}: /checkpoint/resumed lists {len(resumes)} continuations, {resumed} were started")
         if b["work"].attrs["outcome"] != "completed":
             failures.append(f"{label}: the outcome is {b['work'].attrs['outcome']!r}")
-    for key in SUMMARY_KEYS:
+    for key in SUMMARY_KEYS + (["forces"] if "forces" in reference else []):
         if got[key] != reference[key]:
             failures.append(f"{label}: summary {key} = {got[key]!r}, uninterrupted {reference[key]!r}")
     print(f"{label}: killed {killed} times, resumed {resumed} times; {len(ta)} frames; "

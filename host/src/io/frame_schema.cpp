@@ -163,6 +163,10 @@ void nutation_angles(const FrameInput& in, void* out) {  // eq. 17.11, degrees
 }
 
 // The restore functions of the checkpointed series (FrameQuantity::restore).
+void restore_force_balance(const void* in, std::size_t width, RecordedFrame& f) {  // [force][7]
+  f.state.force_balance = Eigen::Map<const Eigen::MatrixXd>(doubles(in), kBalanceRows,
+                                                            static_cast<Eigen::Index>(width / kBalanceRows));
+}
 void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
 void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
 void restore_momentum(const void* in, std::size_t width, RecordedFrame& f) { f.state.p = matrix(in, width); }
@@ -287,7 +291,7 @@ const FrameQuantity kFrameSchema[] = {
      "t0 [frame][force][7]: the work W, the linear momentum ΔP (3) and the angular momentum ΔL about the origin (3) "
      "(docs/equations.md eq. 33.3), in the units of energy, momentum and angular momentum; E − ΣW, P − ΣΔP and "
      "L − ΣΔL are what the forced flow conserves",
-     -1, force_balance, nullptr},
+     9, force_balance, restore_force_balance},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,

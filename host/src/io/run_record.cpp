@@ -144,7 +144,9 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
       damaged(p + " has " + std::to_string(dims[0]) + " frames, /frames_complete says " + std::to_string(frames) +
               " (a run that ended writes exactly that many)");
     const std::size_t axis = dims.size() > 1 ? dims[1] : 0;
-    const std::vector<std::size_t> shape = frame_shape(*q, FrameLayout{axis, axis, axis, true, true, true});
+    FrameLayout layout{axis, axis, axis, true, true, true};
+    layout.forces = axis;
+    const std::vector<std::size_t> shape = frame_shape(*q, layout);
     if (dims.size() != shape.size() + 1 || !std::equal(shape.begin(), shape.end(), dims.begin() + 1))
       damaged(p + " is not " + describe_extent(q->extent));
     if (q->extent == Extent::kBodyVector) {
@@ -161,8 +163,15 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   if (checksummed) {
     const std::vector<hsize_t> dims = extent(open_dataset(file, kChecksumPath));
     const std::size_t columns = checkpointed_series().size();
-    if (dims.size() != 2 || dims[1] != columns || dims[0] < n)
+    // A file from before /observables/force_balance was checkpointed has one column fewer
+    // (kChecksumColumnsBeforeForces): readable, unless it holds that series unchecked.
+    if (dims.size() != 2 || (dims[1] != columns && dims[1] != kChecksumColumnsBeforeForces) || dims[0] < n)
       damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(columns) + "]");
+    checksum_columns_ = dims[1];
+    for (const FrameQuantity* q : checkpointed_series())
+      if (static_cast<std::size_t>(q->checksum_column) >= checksum_columns_ && open_dataset(file, q->path).valid())
+        throw OutputError(path.string() + " was written by an older noether, which did not checksum " + q->path +
+                          " (the forces' balance); it cannot be continued: run it again whole");
   }
   read_summary();
 }
@@ -274,9 +283,9 @@ bool RunRecord::read(std::size_t first, std::size_t count,
       for (std::size_t c = 0; c < columns.size(); ++c) {
         const Column& col = columns[c];
         const std::uint64_t* values = col.values.data() + col.width * j;
-        if (sums_dataset.valid()) {
+        if (sums_dataset.valid() && c < checksum_columns_) {
           const std::uint64_t expected = col.dataset.valid() ? checksum64(values, col.width * 8, k) : 0;
-          if (sums[columns.size() * j + c] != expected)
+          if (sums[checksum_columns_ * j + c] != expected)
             damaged("frame " + std::to_string(k) + " of " + col.quantity->path + " does not match its checksum in " +
                     kChecksumPath);
         }

@@ -58,6 +58,10 @@ class RunRecord {
   [[noreturn]] void damaged(const std::string& what) const;
   std::filesystem::path file_;
   H5Handle h5_;
+  std::size_t checksum_columns_ = 0;  // /checkpoint/checksum's columns in this file
 };
+
+// The columns of /checkpoint/checksum before /observables/force_balance became column 9.
+inline constexpr std::size_t kChecksumColumnsBeforeForces = 9;
 
 }  // namespace noether::io
