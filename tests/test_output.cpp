@@ -17,6 +17,8 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <sys/wait.h>
 #include <thread>
@@ -279,4 +281,35 @@ TEST(Output, BlocksWrittenInTheBackgroundMatchBlocksWrittenInLine) {
   EXPECT_EQ(a.at("particles/bodies/position/value").size(), 1000u * 2 * 3);
   fs::remove(background);
   fs::remove(in_line);
+}
+
+// A file built under its hidden name and then published (a continuation's, which replaces the
+// run it continues) holds every frame written so far as complete when it takes the path, so a
+// kill just after loses none: 300 frames, fewer than a block, read by another process (h5dump).
+TEST(Output, PublishingCompletesEveryFrameSoFar) {
+  const Scene scene = test::dumbbell_scene();
+  const fs::path file = temp_file("noether-publish");
+  fs::remove(file);
+  OutputOptions o;
+  o.defer_publish = true;
+  o.block_seconds = 1e9;
+  H5Writer writer(file, scene, o);
+  State s = scene.initial;
+  for (int k = 0; k < 300; ++k) {
+    s.t = 0.01 * k;
+    writer.write_frame(s, diagnose(scene.system, s, -1.0), WorkCounters{}, 0.0);
+  }
+  EXPECT_FALSE(fs::exists(file));
+  writer.publish();
+  ASSERT_TRUE(fs::exists(file));
+  const fs::path dump = temp_file("noether-publish-dump");
+  const std::string command = "HDF5_USE_FILE_LOCKING=FALSE h5dump -d /frames_complete " + file.string() + " > " +
+                              dump.string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(dump);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("(0): 300"), std::string::npos) << text;
+  writer.finish(WorkCounters{}, 0.0, "completed");
+  fs::remove(file);
+  fs::remove(dump);
 }

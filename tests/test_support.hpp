@@ -5,6 +5,7 @@
 #include <noether/scene.hpp>
 #include <noether/stepping.hpp>
 
+#include <cmath>
 #include <string>
 
 namespace noether::test {
@@ -38,6 +39,27 @@ run: {t_end: 2, output_every: 1}
 
 inline Scene dumbbell_scene(const std::vector<std::string>& overrides = {}) {
   return load_scene(source_path("examples/dumbbells.yaml"), overrides);
+}
+
+// K ellipsoids (semi-axes 1, 0.8, 0.6; unit mass, G = 1) on a cubic lattice of the given
+// spacing, each turned and spinning differently, drifting slowly: a scene of K(K−1)/2 pairs
+// for the many-body tests and benchmarks. `potential`: the scene's potential, as YAML.
+inline Scene ellipsoid_lattice_scene(int K, const std::string& potential, double spacing = 4.0) {
+  int side = 1;
+  while (side * side * side < K) ++side;
+  std::string text = "G: 1\nbodies:\n";
+  for (int k = 0; k < K; ++k) {
+    const int i = k % side, j = (k / side) % side, l = k / (side * side);
+    const double a = 0.37 * k, b = 0.11 * k;
+    text += "  - {name: e" + std::to_string(k) + ", mass: 1, shape: {ellipsoid: {semi_axes: [1, 0.8, 0.6]}}, position: [" +
+            std::to_string(spacing * i + 0.1 * std::sin(a)) + ", " + std::to_string(spacing * j + 0.1 * std::cos(a)) +
+            ", " + std::to_string(spacing * l) + "], velocity: [" + std::to_string(0.01 * std::cos(b)) + ", " +
+            std::to_string(0.01 * std::sin(b)) + ", 0], attitude: {euler_angles: [" + std::to_string(17.0 * k) + ", " +
+            std::to_string(5.0 * (k % 7)) + ", " + std::to_string(3.0 * (k % 5)) + "]}, angular_velocity: [0.01, 0, " +
+            std::to_string(0.1 + 0.01 * k) + "]}\n";
+  }
+  text += "potential: " + potential + "\nintegrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 0.1, output_every: 0.1}\n";
+  return parse_scene(text, "ellipsoid lattice", {});
 }
 
 }  // namespace noether::test

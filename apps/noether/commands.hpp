@@ -44,11 +44,11 @@ void print_shapes(const noether::Scene& scene, std::ostream& out);
 // A wall-time budget (seconds, 0: none) stops the run like an event: exit 0, stop reason in the
 // summary and the output, a note on stderr.
 // With `resume` (an output file) instead of a scene: continues that run, appending to it;
-// `resume_t_end` (NaN: the recorded t_end) extends it.
+// `resume_t_end` (NaN: the recorded t_end) extends it. `threads`: RunOptions::threads.
 int run(const std::string& scene_file, const std::string& output,
         const std::vector<std::string>& overrides, bool progress, bool force, bool json = false,
         double max_wall_time = 0.0, const std::string& resume = {},
-        double resume_t_end = std::numeric_limits<double>::quiet_NaN());
+        double resume_t_end = std::numeric_limits<double>::quiet_NaN(), int threads = 0);
 int list_plugins();
 
 // noether ensemble: exit 0 when every sample ran (completed or stopped by an event), 3 when

@@ -89,9 +89,10 @@ void install_stop_handlers() {
 
 int run(const std::string& scene_file, const std::string& output_given,
         const std::vector<std::string>& overrides, bool progress, bool force, bool json, double max_wall_time,
-        const std::string& resume, double resume_t_end) {
+        const std::string& resume, double resume_t_end, int threads) {
   noether::PluginRegistry registry;
   noether::RunOptions options;
+  options.threads = threads;
   const std::string output = resume.empty() ? output_given : resume;
   if (!output_given.empty()) options.output = output_given;
   options.overwrite = force;
@@ -193,6 +194,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
     std::vector<std::string> overrides, sensitivities;
     bool no_progress = false, force = false, stm = false, chaos = false;
     double max_wall_time = 0.0, resume_t_end = std::numeric_limits<double>::quiet_NaN();
+    int threads = 0;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("run", "integrate a scene and print a summary");
@@ -222,6 +224,10 @@ void add_run_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--max-wall-time", o->max_wall_time,
                   "stop after this many seconds of wall time, like an event (output complete up to there)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", o->threads,
+                  "threads inside each evaluation of the potential (mutual-series' pairs); the result is the same "
+                  "bit for bit for any number (default: NOETHER_THREADS from the environment, else 1)")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([o, &chosen] {
     chosen = [o] {
       if (o->resume.empty() == o->scene.empty()) {
@@ -242,7 +248,7 @@ void add_run_command(CLI::App& app, Command& chosen) {
       if (o->chaos) o->overrides.push_back("run.chaos=true");
       for (const std::string& key : o->sensitivities) o->overrides.push_back("run.sensitivities+=" + key);
       return run(o->scene, o->output, o->overrides, !o->no_progress, o->force, o->summary == "json", o->max_wall_time,
-                 o->resume, o->resume_t_end);
+                 o->resume, o->resume_t_end, o->threads);
     };
   });
 }

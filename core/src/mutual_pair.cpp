@@ -13,13 +13,25 @@ PairFrame pair_frame(const State& s, const MutualPair& p) {
   return f;
 }
 
+PairShare pair_share(const PairFrame& frame, const MutualTerms& t) {
+  PairShare s;
+  s.U = t.U;
+  s.f_a = frame.Ra * t.dU_dR;  // the force on a (13.7)
+  s.M_a = t.torque_A;
+  s.M_b = frame.C.transpose() * t.torque_B;
+  return s;
+}
+
+void add_pair_share(const MutualPair& p, const PairShare& share, Forces& out) {
+  out.U += share.U;
+  out.f.col(static_cast<Eigen::Index>(p.a)) += share.f_a;
+  out.f.col(static_cast<Eigen::Index>(p.b)) -= share.f_a;
+  if (p.rigid_a >= 0) out.M.col(p.rigid_a) += share.M_a;
+  if (p.rigid_b >= 0) out.M.col(p.rigid_b) += share.M_b;
+}
+
 void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out) {
-  out.U += t.U;
-  const Vec3 f = frame.Ra * t.dU_dR;  // the force on a (13.7)
-  out.f.col(static_cast<Eigen::Index>(p.a)) += f;
-  out.f.col(static_cast<Eigen::Index>(p.b)) -= f;
-  if (p.rigid_a >= 0) out.M.col(p.rigid_a) += t.torque_A;
-  if (p.rigid_b >= 0) out.M.col(p.rigid_b) += frame.C.transpose() * t.torque_B;
+  add_pair_share(p, pair_share(frame, t), out);
 }
 
 void add_mutual_jacobian(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, const MutualJacobian& J,

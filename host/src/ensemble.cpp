@@ -83,6 +83,7 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
   const auto t0 = Clock::now();
   try {
     RunOptions run;
+    run.threads = 1;  // the samples are the ensemble's parallelism: one thread each
     if (i < options.trajectories) {
       run.output = output.parent_path() / (output.stem().string() + "-sample-" + std::to_string(i) + ".h5");
       run.overwrite = true;

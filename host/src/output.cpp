@@ -52,7 +52,9 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
 void H5Writer::publish() {
   Impl& m = *impl_;
   if (m.published) return;
-  settle();
+  // Every frame so far complete before the file takes the path: a continuation's file replaces
+  // the run it continues, and a kill just after must find all the frames it copied.
+  flush();
   m.flush_file("flushing the output file");
   publish_file(m.partial, m.path, m.claimed >= 0);
   m.published = true;

@@ -1,6 +1,7 @@
 // Simulation: a run held open — made from a scene, integrated in calls, its state read and
 // set, finished (docs/user-guide.md; continuation.cpp resumes, saves and loads one).
 #include <noether/error.hpp>
+#include <noether/evaluation_threads.hpp>
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace noether {
@@ -22,6 +24,25 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
     terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
   return terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
 }
+namespace {
+
+// RunOptions::threads, or (0) NOETHER_THREADS from the environment, else 1.
+int evaluation_threads_of(const RunOptions& options) {
+  if (options.threads < 0)
+    throw SceneError("threads must be a positive whole number (or 0: NOETHER_THREADS, else 1), not " +
+                     std::to_string(options.threads));
+  if (options.threads > 0) return options.threads;
+  const char* given = std::getenv("NOETHER_THREADS");
+  if (!given || !*given) return 1;
+  char* end = nullptr;
+  const long n = std::strtol(given, &end, 10);
+  if (*end != '\0' || n < 1 || n > 1024)
+    throw SceneError(std::string("NOETHER_THREADS=") + given + " is not a number of threads (a whole number 1..1024)");
+  return static_cast<int>(n);
+}
+
+}  // namespace
+
 std::shared_ptr<const Forcing> make_scene_forcing(const Scene& scene, PluginRegistry& registry) {
   auto forcing = std::make_shared<Forcing>();
   for (const auto& f : scene.forces) {
@@ -43,6 +64,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   m.scene = std::move(scene);
   m.registry = &registry;
   m.options = std::move(options);
+  m.threads = m.summary.threads = evaluation_threads_of(m.options);
   const Scene& sc = m.scene;
   if (potential) {
     m.potential = std::move(potential);
@@ -192,6 +214,7 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
       m.chaos->step(reached.t, reached.tangent.col(column));
     };
   StopInfo stop;
+  const EvaluationThreads evaluation_threads(m.threads);  // the potential's, on this thread, while it integrates
   try {
     stop = advance(*m.integrator, *m.potential, sc.system, m.state, schedule, *m.observer);
   } catch (const Error& e) {

@@ -22,6 +22,7 @@ struct Simulation::Impl {
   Scene scene;
   PluginRegistry* registry = nullptr;  // what made the plugins (the resolution check makes more)
   RunOptions options;
+  int threads = 1;  // RunOptions::threads resolved (the environment's when 0)
   std::shared_ptr<const Potential> potential;
   std::shared_ptr<Integrator> integrator;
   std::unique_ptr<H5Writer> writer;

@@ -170,6 +170,8 @@ std::string format_summary(const RunSummary& s) {
   std::string out = buf;
   if (!s.units.empty()) out.insert(out.find("E0 "), "units                         " + s.units + "\n");
   if (!s.stop_reason.empty()) out += "stopped early                 " + s.stop_reason + "\n";
+  if (s.threads > 1)  // after the wall time, which they shared
+    out.insert(out.find("wall time "), "threads                       " + std::to_string(s.threads) + " in each evaluation\n");
   out += format_pair_models(s.pair_models);
   if (s.verdict.trustworthy) {
     out += "verdict                       trustworthy\n";
@@ -260,6 +262,7 @@ std::string format_summary_json(const RunSummary& s) {
   field("newton_iterations", std::to_string(s.work.newton_iterations));
   field("rejected_steps", s.work.rejected_steps < 0 ? "null" : std::to_string(s.work.rejected_steps));
   field("wall_seconds", json_number(s.wall_seconds));
+  field("threads", std::to_string(s.threads));
   std::string models = "[";
   for (const auto& m : s.pair_models)
     models += std::string(models.size() > 1 ? ", " : "") + "{\"body_a\": " + json_string(m.body_a) +

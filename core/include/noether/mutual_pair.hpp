@@ -24,6 +24,16 @@ struct PairFrame {
 
 PairFrame pair_frame(const State& s, const MutualPair& p);
 
+// A pair's share of noether's forces (13.7), apart from their sum: U, the force on a, f_a = R_a
+// ∂U/∂R (on b: −f_a), and the moments in each body's frame, M_a = τ_a, M_b = Cᵀ τ_b. Computed on
+// any thread; added in pair order (add_pair_share), the sum is add_mutual_terms' bit for bit.
+struct PairShare {
+  double U = 0.0;
+  Vec3 f_a = Vec3::Zero(), M_a = Vec3::Zero(), M_b = Vec3::Zero();
+};
+PairShare pair_share(const PairFrame& frame, const MutualTerms& t);
+void add_pair_share(const MutualPair& p, const PairShare& share, Forces& out);
+
 // out.U += U; f_a += R_a ∂U/∂R, f_b −= R_a ∂U/∂R; M_a += τ_a; M_b += Cᵀ τ_b.
 void add_mutual_terms(const MutualPair& p, const PairFrame& frame, const MutualTerms& t, Forces& out);
 

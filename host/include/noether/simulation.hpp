@@ -31,6 +31,10 @@ struct RunOptions {
   // A wall-time budget in seconds (0: none): the run stops after the step that exhausts it,
   // like an event ("wall-time budget"), with the output complete up to there.
   double max_wall_seconds = 0.0;
+  // Threads inside each evaluation of the potential (noether/evaluation_threads.hpp;
+  // docs/user-guide.md, "Threads"): 0 takes NOETHER_THREADS from the environment, else 1.
+  // The result is the same bit for bit for any number.
+  int threads = 0;
 };
 
 // Whether a finished run can be trusted (docs/user-guide.md, "Verdict"): each check that
@@ -139,6 +143,7 @@ struct RunSummary {
   std::vector<PairModel> pair_models;  // what a tolerance-driven potential chose, per pair
   WorkCounters work;
   double wall_seconds = 0.0;
+  int threads = 1;  // threads inside each evaluation of the potential (RunOptions::threads)
 };
 
 // The scene's forces beyond the potential (`forces:`), made by name: each named by its plugin and

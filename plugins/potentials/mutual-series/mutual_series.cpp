@@ -15,6 +15,7 @@
 // (docs/equations.md (12.6)).
 #include <noether/body_integrals.hpp>
 #include <noether/error.hpp>
+#include <noether/evaluation_threads.hpp>
 #include <noether/mutual_pair.hpp>
 #include <noether/order_selection.hpp>
 #include <noether/plugin.hpp>
@@ -53,6 +54,10 @@ struct SeriesWorkspace final : noether::Workspace {
   noether::SeriesBank bank;  // the series evaluators, by order (scratch)
   std::vector<PairRun> pairs;
   bool chosen = false;
+  // An evaluation on several threads (noether::evaluation_threads()): each thread's evaluators,
+  // and each pair's share of the forces, summed on the calling thread in pair order afterwards.
+  std::vector<noether::SeriesBank> thread_banks;
+  std::vector<noether::PairShare> shares;
 };
 
 class MutualSeriesPotential final : public noether::Potential {
@@ -87,41 +92,55 @@ class MutualSeriesPotential final : public noether::Potential {
     return w;
   }
 
+  // The pairs' terms summed in pair order: on one thread as they come, or computed on several
+  // (each pair independent of the others) and then summed in the same order, so that the result
+  // is the same bit for bit for any number of threads.
   void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
     if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
     out.set_zero();
-    for (std::size_t k = 0; k < pairs_.size(); ++k) {
-      const Pair& p = pairs_[k];
-      PairRun& run = w.pairs[k];
-      const noether::PairFrame frame = noether::pair_frame(s, p);
-      const double R = frame.R.norm();
-      if (!(R > 0.0)) {
-        std::ostringstream msg;
-        msg << "mutual-series: bodies '" << names_[p.a] << "' and '" << names_[p.b]
-            << "' are at the same position at t = " << s.t << " (a collision)";
-        throw noether::IntegrationError(msg.str(), s.t);
+    const int threads = noether::evaluation_threads();
+    if (threads <= 1 || pairs_.size() < 2) {
+      for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        const noether::PairFrame frame = noether::pair_frame(s, pairs_[k]);
+        noether::add_mutual_terms(pairs_[k], frame, pair_terms(s, pairs_[k], w.pairs[k], w.bank, frame), out);
       }
-      if (!run.warned_reach && R < p.reach) {
-        run.warned_reach = true;
-        spdlog::warn("mutual-series: bodies '{}' and '{}' are {:.6g} apart at t = {:.6g}, closer than "
-                     "the sum of their radii {:.6g}: the series may converge slowly or not at all",
-                     names_[p.a], names_[p.b], R, s.t, p.reach);
-      }
-      if (tolerance_ > 0.0 && R < run.check_below) watch(p, run, w.bank, frame, s.t);
-      if (run.order == 0) {  // point masses: one term
-        const double U = -G_ * mass_[p.a] * mass_[p.b] / R;
-        noether::MutualTerms t;
-        t.U = U;
-        t.dU_dR = (-U / (R * R)) * frame.R;
-        noether::add_mutual_terms(p, frame, t, out);
-      } else {
-        noether::add_mutual_terms(
-            p, frame, w.bank.at(run.order).evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C), out);
-      }
+      return;
     }
+    w.shares.resize(pairs_.size());
+    if (w.thread_banks.size() < static_cast<std::size_t>(threads)) w.thread_banks.resize(static_cast<std::size_t>(threads));
+    noether::parallel_for_each(pairs_.size(), threads, [&](std::size_t k, int thread) {
+      const noether::PairFrame frame = noether::pair_frame(s, pairs_[k]);
+      w.shares[k] = noether::pair_share(
+          frame, pair_terms(s, pairs_[k], w.pairs[k], w.thread_banks[static_cast<std::size_t>(thread)], frame));
+    });
+    for (std::size_t k = 0; k < pairs_.size(); ++k) noether::add_pair_share(pairs_[k], w.shares[k], out);
   }
 
+  // One pair's terms (13.7) in its frame, with its checks: coincident bodies, the series' reach,
+  // and the tolerance's watch (what a run of the pair writes, `run`, is the pair's own).
+  noether::MutualTerms pair_terms(const State& s, const Pair& p, PairRun& run, noether::SeriesBank& bank,
+                                  const noether::PairFrame& frame) const {
+    const double R = frame.R.norm();
+    if (!(R > 0.0)) {
+      std::ostringstream msg;
+      msg << "mutual-series: bodies '" << names_[p.a] << "' and '" << names_[p.b]
+          << "' are at the same position at t = " << s.t << " (a collision)";
+      throw noether::IntegrationError(msg.str(), s.t);
+    }
+    if (!run.warned_reach && R < p.reach) {
+      run.warned_reach = true;
+      spdlog::warn("mutual-series: bodies '{}' and '{}' are {:.6g} apart at t = {:.6g}, closer than "
+                   "the sum of their radii {:.6g}: the series may converge slowly or not at all",
+                   names_[p.a], names_[p.b], R, s.t, p.reach);
+    }
+    if (tolerance_ > 0.0 && R < run.check_below) watch(p, run, bank, frame, s.t);
+    if (run.order != 0) return bank.at(run.order).evaluate(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C);
+    noether::MutualTerms t;  // point masses: one term
+    t.U = -G_ * mass_[p.a] * mass_[p.b] / R;
+    t.dU_dR = (-t.U / (R * R)) * frame.R;
+    return t;
+  }
 
   // K = ∂(f, M)/∂(x, θ) pair by pair from the series' second derivatives (docs/equations.md §25).
   bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace& workspace) const override {

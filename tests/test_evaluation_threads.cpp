@@ -1,0 +1,122 @@
+// Threads inside one evaluation (noether/evaluation_threads.hpp; docs/user-guide.md, "Threads"):
+// mutual-series evaluates its pairs on several threads and sums them in pair order, so a run is
+// the same bit for bit for any number of threads — forces, and whole runs; and an error is the
+// one the single-threaded evaluation gives.
+#include "test_support.hpp"
+
+#include <noether/error.hpp>
+#include <noether/evaluation_threads.hpp>
+#include <noether/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace noether;
+
+namespace {
+
+Forces evaluate(const Scene& scene, const Potential& potential, int threads) {
+  const EvaluationThreads in_scope(threads);
+  Forces f;
+  f.resize(scene.system);
+  auto workspace = potential.make_workspace();
+  potential.evaluate(scene.initial, f, *workspace);
+  return f;
+}
+
+bool bitwise_equal(const Forces& a, const Forces& b) {
+  return a.U == b.U && a.f == b.f && a.M == b.M;  // Eigen's == compares every entry exactly
+}
+
+}  // namespace
+
+TEST(EvaluationThreads, EveryIndexOnceAndTheLowestIndexsErrorRethrown) {
+  for (const int threads : {1, 2, 3, 8}) {
+    SCOPED_TRACE(threads);
+    std::vector<std::atomic<int>> seen(101);
+    parallel_for_each(seen.size(), threads, [&](std::size_t i, int thread) {
+      EXPECT_GE(thread, 0);
+      EXPECT_LT(thread, threads);
+      ++seen[i];
+    });
+    for (const auto& s : seen) EXPECT_EQ(s.load(), 1);
+    try {
+      parallel_for_each(50, threads, [](std::size_t i, int) {
+        if (i == 17 || i == 18 || i == 40) throw std::runtime_error("index " + std::to_string(i));
+      });
+      FAIL() << "nothing thrown";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "index 17");
+    }
+  }
+  EXPECT_EQ(evaluation_threads(), 1);
+  {
+    const EvaluationThreads outer(4);
+    EXPECT_EQ(evaluation_threads(), 4);
+    {
+      const EvaluationThreads inner(0);  // below 1 counts as 1
+      EXPECT_EQ(evaluation_threads(), 1);
+    }
+    EXPECT_EQ(evaluation_threads(), 4);
+  }
+  EXPECT_EQ(evaluation_threads(), 1);
+}
+
+// 27 ellipsoids (351 pairs) at order 4, and 6 at a tolerance (the pairs' orders chosen and
+// watched): the forces and moments with 2, 3 and 5 threads are the single thread's, bit for bit.
+TEST(EvaluationThreads, MutualSeriesForcesAreTheSameForAnyNumberOfThreads) {
+  auto registry = test::bundled_plugins();
+  for (const auto& [K, potential] : {std::pair{27, "{plugin: mutual-series, order: 4}"},
+                                     std::pair{6, "{plugin: mutual-series, tolerance: 1e-4, min_separation: 3}"}}) {
+    SCOPED_TRACE(potential);
+    const Scene scene = test::ellipsoid_lattice_scene(K, potential);
+    const auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+    const Forces one = evaluate(scene, *model, 1);
+    EXPECT_GT(one.f.norm(), 0.0);
+    for (const int threads : {2, 3, 5}) EXPECT_TRUE(bitwise_equal(one, evaluate(scene, *model, threads))) << threads;
+  }
+}
+
+// A whole run (LGVI, 10 steps of 8 ellipsoids) with --threads 1 and 2: every final coordinate and
+// the summary's energy error bit for bit.
+TEST(EvaluationThreads, ARunIsTheSameForAnyNumberOfThreads) {
+  auto registry = test::bundled_plugins();
+  const Scene scene = test::ellipsoid_lattice_scene(8, "{plugin: mutual-series, order: 2}", 3.0);
+  std::vector<RunSummary> runs;
+  for (const int threads : {1, 2}) {
+    RunOptions options;
+    options.threads = threads;
+    runs.push_back(run_scene(scene, registry, options));
+    EXPECT_EQ(runs.back().threads, threads);
+  }
+  const State &a = runs[0].final_state, &b = runs[1].final_state;
+  EXPECT_EQ(a.t, b.t);
+  EXPECT_TRUE(a.x == b.x && a.p == b.p && a.Pi == b.Pi);
+  for (std::size_t k = 0; k < a.R.size(); ++k) EXPECT_TRUE(a.R[k] == b.R[k]) << k;
+  EXPECT_EQ(runs[0].max_abs_energy_error, runs[1].max_abs_energy_error);
+  EXPECT_GT(runs[0].max_abs_energy_error, 0.0);
+}
+
+// Two ellipsoids at one position (pairs 0–3 and 1–5 of 8): every thread count reports the pair
+// the single thread meets first.
+TEST(EvaluationThreads, AnErrorIsTheOneOfTheFirstPair) {
+  auto registry = test::bundled_plugins();
+  Scene scene = test::ellipsoid_lattice_scene(8, "{plugin: mutual-series, order: 2}");
+  scene.initial.x.col(3) = scene.initial.x.col(0);
+  scene.initial.x.col(5) = scene.initial.x.col(1);
+  const auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+  for (const int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    try {
+      evaluate(scene, *model, threads);
+      FAIL() << "no error";
+    } catch (const IntegrationError& e) {
+      EXPECT_NE(std::string(e.what()).find("bodies 'e0' and 'e3' are at the same position"), std::string::npos)
+          << e.what();
+    }
+  }
+}
