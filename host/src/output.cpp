@@ -129,7 +129,6 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
   settle();
   const hsize_t first = m.handed, end = first + m.buffered;
   hand_over();
-  m.block_end = end;
   m.block_in_flight = std::async(std::launch::async, [&m, first, end] {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // each thread has its own error stack
     m.write_block(first, end);
@@ -150,7 +149,7 @@ void H5Writer::settle() {
   if (!m.block_in_flight.valid()) return;
   auto block = std::move(m.block_in_flight);
   block.get();  // rethrows the block's error; then its frames are in the file
-  frames_written_ = m.block_end;
+  frames_written_ = m.handed;  // (nothing is handed over while a block is in flight)
 }
 
 void H5Writer::flush() {

@@ -56,11 +56,10 @@ struct H5Writer::Impl {
   std::size_t buffered = 0;
   std::size_t handed = 0;  // frames handed to be written: those written and the block in flight
   // The block being written on a thread of its own while the run goes on (when HDF5 is built
-  // thread-safe: every other call of the file waits for it first, H5Writer::settle), and the
-  // frames written once it is.
+  // thread-safe: every other call of the file waits for it first, H5Writer::settle); once it
+  // is written, the file holds `handed` frames.
   bool background_blocks = false;
   std::future<void> block_in_flight;
-  std::size_t block_end = 0;
   hsize_t allocated = 0;   // frames allocated in every series
   hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
   struct StepRecords {     // /integrator/<name>: an integrator's per-step records

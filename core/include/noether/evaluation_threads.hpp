@@ -29,7 +29,8 @@ class EvaluationThreads {
 };
 
 // Calls body(i, thread) once for each i in [0, n), on min(threads, n) threads (`thread` in
-// [0, threads): an index for per-thread scratch), index i on thread i mod threads. When bodies
+// [0, threads): an index for per-thread scratch), in chunks of 16 indices handed out in order,
+// so each thread sees its indices in increasing order. When bodies
 // throw, every index still runs and the exception of the lowest index is rethrown here. One
 // thread (or n < 2): a plain loop on the caller's thread, which stops at the first exception.
 void parallel_for_each(std::size_t n, int threads, const std::function<void(std::size_t, int)>& body);
