@@ -30,6 +30,7 @@ STARTS = re.compile(r"^(\./build/release/bin/noether|noether|\$HOME/noether/bin/
 
 # Commands that are not run here, with the test that runs them.
 OUT_OF_TREE = "tests/install/out_of_tree.sh runs this workflow (label install)"
+PIP = "tests/install/pip_install.sh runs this workflow (install.pip-install, label slow)"
 COVERED_ELSEWHERE = {
     "./tools/test.sh": "the test command itself (.ci/run)",
     "cmake --install build/release --prefix /opt/noether": OUT_OF_TREE,
@@ -44,6 +45,10 @@ COVERED_ELSEWHERE = {
     "$HOME/noether/bin/noether run examples/custom-potential/j2-orbit.yaml -o j2.h5": OUT_OF_TREE + " (j2.run)",
     "examples/custom-potential/check_precession.py j2.h5": OUT_OF_TREE + " (j2.nodal-precession)",
     "ctest --test-dir build-j2": OUT_OF_TREE,
+    "python3 -m venv --system-site-packages v && v/bin/pip install .": PIP,
+    "v/bin/noether run examples/dumbbells.yaml": PIP,
+    'v/bin/python -c "import noether"': PIP,
+    "v/bin/pip uninstall -y noether": PIP,
     "mpirun -n 8 noether ensemble examples/didymos.yaml --vary 'bodies.dimorphos.velocity.1=normal(0.1714158386581219, 0.0001)' --samples 10000 -o dart.h5":
         "tests/cli/ensemble.py runs an ensemble under mpirun -n 2 (8 ranks and 10^4 samples do not fit a 2-core CI)",
 }
