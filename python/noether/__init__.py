@@ -13,6 +13,7 @@ noether.Error and its kinds (SceneError, PluginError, IntegrationError, OutputEr
 messages the command prints.
 """
 import json
+import numbers
 import os
 import sys
 
@@ -227,6 +228,8 @@ class Simulation:
                 `noether run --sensitivity`): sim.sensitivities, docs/derivatives.md
       chaos     compute MEGNO and the fast Lyapunov indicator from a deviation vector the tangent
                 map carries (run.chaos, `noether run --chaos`): sim.chaos, docs/derivatives.md
+      threads   threads inside each evaluation of the potential (`noether run --threads`); None
+                takes NOETHER_THREADS, else 1. The results are the same bit for bit for any number.
 
     The state properties return copies (NumPy arrays) of the state where the simulation stands;
     assigning one (sim.positions = x) or calling set_state(...) replaces that part, checked, and
@@ -234,42 +237,44 @@ class Simulation:
     """
 
     def __init__(self, scene, set=(), output=None, force=False, potential=None, stm=False, sensitivities=(),
-                 chaos=False):
+                 chaos=False, threads=None):
         overrides = _derivative_overrides(set, stm, sensitivities, chaos)
         if isinstance(scene, _Simulation):  # from load()
             self._sim = scene
         elif isinstance(scene, dict):
             text, name = _scene_text(scene)
-            self._sim = _Simulation.from_text(text, name, overrides, _path(output), force, potential)
+            self._sim = _Simulation.from_text(text, name, overrides, _path(output), force, potential, _threads(threads))
         elif isinstance(scene, (str, os.PathLike)):
-            self._sim = _Simulation.from_file(os.fspath(scene), overrides, _path(output), force, potential)
+            self._sim = _Simulation.from_file(os.fspath(scene), overrides, _path(output), force, potential,
+                                              _threads(threads))
         else:
             raise TypeError("Simulation(scene): a path to a YAML scene, or a dict of its keys; "
                             "for YAML text use Simulation.from_yaml(text)")
 
     @classmethod
     def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False,
-                  sensitivities=(), chaos=False):
+                  sensitivities=(), chaos=False, threads=None):
         """A simulation of a scene given as YAML text (relative shape paths: from the working
         folder)."""
         overrides = _derivative_overrides(set, stm, sensitivities, chaos)
-        return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential))
+        return cls(_Simulation.from_text(text, name, overrides, _path(output), force, potential, _threads(threads)))
 
     @classmethod
-    def load(cls, path, output=None, force=False, potential=None):
+    def load(cls, path, output=None, force=False, potential=None, threads=None):
         """A simulation saved with save(), or the run of an output file at its last complete
         frame: it continues as the saved one would have (bit for bit with fixed-step
         integrators; an output file's frames are replayed into the summary). With output, frames
         go to a new file whose frame 0 is the loaded state. A simulation saved with a Python
         potential needs it again: potential=."""
-        return cls(_Simulation.load(os.fspath(path), _path(output), force, potential))
+        return cls(_Simulation.load(os.fspath(path), _path(output), force, potential, _threads(threads)))
 
     @classmethod
-    def resume(cls, path, t_end=None):
+    def resume(cls, path, t_end=None, threads=None):
         """Continues the run recorded in an output file (as `noether run --resume`): from its
         last complete frame, appending to the file; t_end extends it. integrate(sim.run["t_end"])
         then finish() completes it."""
-        return cls(_Simulation.resume(os.fspath(path), float("nan") if t_end is None else float(t_end)))
+        return cls(_Simulation.resume(os.fspath(path), float("nan") if t_end is None else float(t_end),
+                                      _threads(threads)))
 
     # Running ---------------------------------------------------------------------------------
     def integrate(self, t):
@@ -404,3 +409,12 @@ class Simulation:
 
 def _path(p):
     return None if p is None else os.fspath(p)
+
+
+def _threads(threads):
+    """Simulation(threads=): RunOptions::threads; None is 0, NOETHER_THREADS or else 1."""
+    if threads is None:
+        return 0
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or threads < 1:
+        raise SceneError(f"threads must be a positive whole number (or None: NOETHER_THREADS, else 1), not {threads!r}")
+    return int(threads)

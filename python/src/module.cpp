@@ -93,29 +93,34 @@ class PySimulation {
   PySimulation(std::unique_ptr<noether::Simulation> sim, std::shared_ptr<SignalWatch> watch)
       : sim_(std::move(sim)), watch_(std::move(watch)) {}
 
+  // threads: RunOptions::threads (0: NOETHER_THREADS, else 1).
   static PySimulation from_text(const std::string& text, const std::string& name,
                                 const std::vector<std::string>& overrides, const std::optional<std::string>& output,
-                                bool force, py::object potential) {
-    return make(noether::parse_scene(text, name, overrides), output, force, std::move(potential));
+                                bool force, py::object potential, int threads) {
+    return make(noether::parse_scene(text, name, overrides), output, force, std::move(potential), threads);
   }
   static PySimulation from_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
-                                const std::optional<std::string>& output, bool force, py::object potential) {
-    return make(noether::load_scene(file, overrides), output, force, std::move(potential));
+                                const std::optional<std::string>& output, bool force, py::object potential,
+                                int threads) {
+    return make(noether::load_scene(file, overrides), output, force, std::move(potential), threads);
   }
   static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force,
-                           py::object potential) {
+                           py::object potential, int threads) {
     auto watch = std::make_shared<SignalWatch>();
     noether::RunOptions options = watched_options(watch);
     if (output) options.output = *output;
     options.overwrite = force;
+    options.threads = threads;
     std::shared_ptr<const noether::Potential> custom;
     if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
     return PySimulation(noether::Simulation::load(file, registry(), options, custom), watch);
   }
 
-  static PySimulation resume(const std::filesystem::path& file, double t_end) {
+  static PySimulation resume(const std::filesystem::path& file, double t_end, int threads) {
     auto watch = std::make_shared<SignalWatch>();
-    return PySimulation(noether::Simulation::resume(file, registry(), watched_options(watch), t_end), watch);
+    noether::RunOptions options = watched_options(watch);
+    options.threads = threads;
+    return PySimulation(noether::Simulation::resume(file, registry(), options, t_end), watch);
   }
 
   py::dict integrate(double t) {
@@ -318,11 +323,12 @@ class PySimulation {
 
  private:
   static PySimulation make(noether::Scene scene, const std::optional<std::string>& output, bool force,
-                           py::object potential) {
+                           py::object potential, int threads) {
     auto watch = std::make_shared<SignalWatch>();
     noether::RunOptions options = watched_options(watch);
     if (output) options.output = *output;
     options.overwrite = force;
+    options.threads = threads;
     std::shared_ptr<const noether::Potential> custom;
     if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
     return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom), watch);

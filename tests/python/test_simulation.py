@@ -388,3 +388,44 @@ def test_sensitivity_to_a_mass_matches_runs_with_the_mass_moved():
     h = 1e-8
     fd = (final(0.01 + h) - final(0.01 - h)) / (2 * h)
     assert np.linalg.norm(column - fd) < 1e-6 * np.linalg.norm(fd)
+
+
+def _ellipsoid_lattice(k):
+    """k tumbling ellipsoids on a cubic lattice (tests/test_support.hpp's ellipsoid_lattice_scene)."""
+    side = 1
+    while side ** 3 < k:
+        side += 1
+    bodies = []
+    for n in range(k):
+        i, j, l = n % side, (n // side) % side, n // (side * side)
+        bodies.append({"name": f"e{n}", "mass": 1, "shape": {"ellipsoid": {"semi_axes": [1, 0.8, 0.6]}},
+                       "position": [4.0 * i + 0.1 * np.sin(0.37 * n), 4.0 * j + 0.1 * np.cos(0.37 * n), 4.0 * l],
+                       "velocity": [0.01 * np.cos(0.11 * n), 0.01 * np.sin(0.11 * n), 0],
+                       "attitude": {"euler_angles": [17.0 * n, 5.0 * (n % 7), 3.0 * (n % 5)]},
+                       "angular_velocity": [0.01, 0, 0.1 + 0.01 * n]})
+    return {"G": 1, "bodies": bodies, "potential": {"plugin": "mutual-series", "order": 4},
+            "integrator": {"plugin": "lgvi", "step": 0.01}, "run": {"t_end": 0.2, "output_every": 0.1}}
+
+
+def test_threads_give_the_same_run_bit_for_bit(monkeypatch):
+    # Simulation(threads=N) as `noether run --threads N` (docs/user-guide.md, "Threads"): 27 bodies'
+    # 351 pairs on 1 and 2 threads, the same states bit for bit; the keyword wins over
+    # NOETHER_THREADS, which applies without it.
+    monkeypatch.setenv("NOETHER_THREADS", "2")
+    runs = {}
+    for threads in (1, None):
+        sim = noether.Simulation(_ellipsoid_lattice(27), threads=threads)
+        sim.integrate(0.2)
+        runs[threads] = sim
+    assert runs[1].summary()["threads"] == 1
+    assert runs[None].summary()["threads"] == 2  # from the environment
+    monkeypatch.delenv("NOETHER_THREADS")
+    assert noether.Simulation(_ellipsoid_lattice(2), threads=3).summary()["threads"] == 3
+    assert noether.Simulation(_ellipsoid_lattice(2)).summary()["threads"] == 1
+    assert np.array_equal(runs[None].positions, runs[1].positions)
+    assert np.array_equal(runs[None].attitudes, runs[1].attitudes)
+    assert runs[None].summary()["max_abs_energy_error"] == runs[1].summary()["max_abs_energy_error"]
+    assert np.abs(runs[1].positions - np.array([b["position"] for b in _ellipsoid_lattice(27)["bodies"]])).max() > 1e-4
+    for bad in (0, -1, 1.5, True, "2"):
+        with pytest.raises(noether.SceneError, match="threads must be a positive whole number"):
+            noether.Simulation(_ellipsoid_lattice(2), threads=bad)
