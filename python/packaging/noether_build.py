@@ -27,6 +27,7 @@ Options (`pip install . --config-settings KEY=VALUE`, or the environment):
   jobs        parallel compile jobs (default CMAKE_BUILD_PARALLEL_LEVEL, else every CPU)
 """
 import base64
+import functools
 import hashlib
 import io
 import os
@@ -53,6 +54,7 @@ EXTRAS = {"output": ["h5py"], "plots": ["h5py", "matplotlib"]}
 PYTHON_DIR = "lib/python3/dist-packages/noether"  # where CMake installs the package (python/CMakeLists.txt)
 
 
+@functools.cache
 def _version():
     text = (SOURCE / "CMakeLists.txt").read_text()
     m = re.search(r"project\(noether\s+VERSION\s+([0-9.]+)", text)

@@ -93,7 +93,6 @@ class PySimulation {
   PySimulation(std::unique_ptr<noether::Simulation> sim, std::shared_ptr<SignalWatch> watch)
       : sim_(std::move(sim)), watch_(std::move(watch)) {}
 
-  // threads: RunOptions::threads (0: NOETHER_THREADS, else 1).
   static PySimulation from_text(const std::string& text, const std::string& name,
                                 const std::vector<std::string>& overrides, const std::optional<std::string>& output,
                                 bool force, py::object potential, int threads) {
@@ -107,20 +106,16 @@ class PySimulation {
   static PySimulation load(const std::filesystem::path& file, const std::optional<std::string>& output, bool force,
                            py::object potential, int threads) {
     auto watch = std::make_shared<SignalWatch>();
-    noether::RunOptions options = watched_options(watch);
-    if (output) options.output = *output;
-    options.overwrite = force;
-    options.threads = threads;
-    std::shared_ptr<const noether::Potential> custom;
-    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
-    return PySimulation(noether::Simulation::load(file, registry(), options, custom), watch);
+    return PySimulation(noether::Simulation::load(file, registry(), run_options(watch, output, force, threads),
+                                                  python_potential(potential)),
+                        watch);
   }
 
   static PySimulation resume(const std::filesystem::path& file, double t_end, int threads) {
     auto watch = std::make_shared<SignalWatch>();
-    noether::RunOptions options = watched_options(watch);
-    options.threads = threads;
-    return PySimulation(noether::Simulation::resume(file, registry(), options, t_end), watch);
+    return PySimulation(noether::Simulation::resume(file, registry(), run_options(watch, std::nullopt, false, threads),
+                                                    t_end),
+                        watch);
   }
 
   py::dict integrate(double t) {
@@ -325,13 +320,25 @@ class PySimulation {
   static PySimulation make(noether::Scene scene, const std::optional<std::string>& output, bool force,
                            py::object potential, int threads) {
     auto watch = std::make_shared<SignalWatch>();
+    return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(),
+                                                              run_options(watch, output, force, threads),
+                                                              python_potential(potential)),
+                        watch);
+  }
+  // The run's options from the Python arguments (threads: RunOptions::threads, 0 for
+  // NOETHER_THREADS, else 1), with `watch` wired in.
+  static noether::RunOptions run_options(const std::shared_ptr<SignalWatch>& watch,
+                                         const std::optional<std::string>& output, bool force, int threads) {
     noether::RunOptions options = watched_options(watch);
     if (output) options.output = *output;
     options.overwrite = force;
     options.threads = threads;
-    std::shared_ptr<const noether::Potential> custom;
-    if (!potential.is_none()) custom = std::make_shared<noether::python::PythonPotential>(potential);
-    return PySimulation(std::make_unique<noether::Simulation>(std::move(scene), registry(), options, custom), watch);
+    return options;
+  }
+  // A potential written in Python (potential=), or none.
+  static std::shared_ptr<const noether::Potential> python_potential(const py::object& potential) {
+    if (potential.is_none()) return nullptr;
+    return std::make_shared<noether::python::PythonPotential>(potential);
   }
   std::unique_ptr<noether::Simulation> sim_;
   std::shared_ptr<SignalWatch> watch_;

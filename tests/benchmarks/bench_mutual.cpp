@@ -72,8 +72,6 @@ BENCHMARK_CAPTURE(BM_MutualExact, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")
 
 namespace {
 
-// One evaluation of mutual-series with `tolerance: 1e-k` (k = the argument) after its choice,
-// and the order it chose (docs/choosing-a-model.md).
 // The scene, its potential and the evaluator that made the choice, kept for the process:
 // Google Benchmark calls a benchmark several times (to size its iterations, once per
 // repetition), and the set-up — the radar meshes' integrals to the order a tolerance may pick, the
@@ -103,6 +101,8 @@ ToleranceSetUp& tolerance_set_up(const char* scene_file, const std::string& tol)
   return *entry;
 }
 
+// One evaluation of mutual-series with `tolerance: 1e-k` (k = the argument) after its choice,
+// and the order it chose (docs/choosing-a-model.md).
 void BM_MutualTolerance(benchmark::State& st, const char* scene_file) {
   ToleranceSetUp& set_up = tolerance_set_up(scene_file, "1e-" + std::to_string(st.range(0)));
   if (!set_up.met) {

@@ -23,7 +23,7 @@ fi
 cd "$work/src"
 # The backend's source distribution (PEP 517's build_sdist, as `python3 -m build` would call it):
 # every file of the copy, under noether-<version>/, with PKG-INFO.
-(cd "$work/src" && find . -type f | sed 's|^\./||' | sort) > "$work/files.txt"
+find . -type f | sed 's|^\./||' | sort > "$work/files.txt"
 sdist=$(/usr/bin/python3 -c "import sys; sys.path.insert(0, 'python/packaging'); import noether_build; print(noether_build.build_sdist('$work'))")
 tar -tzf "$work/$sdist" | sed 's|^[^/]*/||' | grep -v '^PKG-INFO$' | sort > "$work/sdist.txt"
 diff "$work/files.txt" "$work/sdist.txt" > /dev/null || { echo "FAIL: $sdist does not hold the source tree"; diff "$work/files.txt" "$work/sdist.txt" | head; exit 1; }
@@ -44,7 +44,6 @@ grep -v "wall time" "$work/venv.txt" > "$work/venv.cmp"
 grep -v "wall time" "$work/tree.txt" > "$work/tree.cmp"
 diff "$work/tree.cmp" "$work/venv.cmp" || { echo "FAIL: the venv's noether prints another summary"; exit 1; }
 grep -E "^(max \|E - E0\||verdict)" "$work/venv.txt"
-[ "$(command -v noether || true)" != "$work/v/bin/noether" ]  # the test did not rely on an activated venv
 
 "$work/v/bin/noether" plugins | awk 'NF && $1 ~ /^(potential|integrator|force)$/ {print $1, $2}' | sort > "$work/venv-plugins.txt"
 "$build/bin/noether" plugins | awk 'NF && $1 ~ /^(potential|integrator|force)$/ {print $1, $2}' | sort > "$work/tree-plugins.txt"
