@@ -22,6 +22,7 @@ PACKAGES=(
   python3-nbclient python3-ipykernel
   pybind11-dev
   strace
+  libjs-three chromium
 )
 if [ "${1:-}" = "--sanitize" ]; then
   PACKAGES+=(clang-14 libclang-rt-14-dev)

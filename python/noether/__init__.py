@@ -29,8 +29,9 @@ except ImportError as e:  # a compiled module for another interpreter (pyenv, a 
 from . import _noether
 from .output import Output, read
 from .compare import Table, compare
+from .view import View, view
 
-__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "plugins", "observe", "fit", "stokes", "relative_equilibrium",
+__all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "view", "View", "plugins", "observe", "fit", "stokes", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
            "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 

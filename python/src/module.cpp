@@ -19,6 +19,7 @@
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
 #include <noether/version.hpp>
+#include <noether/view.hpp>
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -526,6 +527,17 @@ PYBIND11_MODULE(_noether, m) {
     }
     return py::make_tuple(py::array_t<double>(static_cast<py::ssize_t>(t.size()), t.data()),
                           py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data()));
+  });
+  // noether.view (docs/visualisation.md, "In Python and Jupyter"): the page `noether view` writes.
+  m.def("view_html", [](const std::filesystem::path& run, std::size_t max_frames, const std::string& title,
+                        const std::string& params) {
+    noether::ViewOptions options;
+    options.max_frames = max_frames;
+    options.title = title;
+    options.params = params;
+    noether::ViewReport report;
+    std::string html = noether::view_html(run, options, &report);
+    return py::make_tuple(py::bytes(html), report.frames_in_file, report.frames_shown, report.notes);
   });
   m.def("relative_equilibrium",
         [](const std::string& file, const std::string& text, const std::string& name,

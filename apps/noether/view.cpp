@@ -1,0 +1,76 @@
+// noether view: a run's output file as one self-contained HTML page (docs/visualisation.md).
+#include "commands.hpp"
+
+#include <noether/error.hpp>
+#include <noether/view.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace noether::app {
+
+namespace {
+
+struct ViewCommand {
+  std::string run, output;
+  ViewOptions options;
+  bool force = false;
+};
+
+int view(const ViewCommand& c) {
+  namespace fs = std::filesystem;
+  const fs::path output = c.output.empty() ? fs::path(c.run).replace_extension(".html") : fs::path(c.output);
+  std::error_code ec;
+  if (fs::is_symlink(output, ec)) throw OutputError(output.string() + " is a symbolic link; give the file it points to");
+  if (fs::exists(output, ec) && !c.force) throw OutputError(output.string() + " exists; --force replaces it");
+  if (fs::exists(output, ec) && fs::equivalent(output, c.run, ec))
+    throw OutputError(output.string() + " is the run's own file; give another -o");
+  ViewReport report;
+  const std::string html = view_html(c.run, c.options, &report);
+  // Written under a hidden name beside it and renamed into place: the path holds the old page
+  // or the whole new one, never a part.
+  const fs::path partial = output.parent_path() / ("." + output.filename().string() + ".partial-" + std::to_string(getpid()));
+  {
+    std::ofstream out(partial, std::ios::binary);
+    out.write(html.data(), static_cast<std::streamsize>(html.size()));
+    out.close();
+    if (!out) {
+      fs::remove(partial, ec);
+      throw OutputError(output.string() + ": cannot write (" + partial.string() + ")");
+    }
+  }
+  fs::rename(partial, output, ec);
+  if (ec) {
+    fs::remove(partial, ec);
+    throw OutputError(output.string() + ": cannot write");
+  }
+  for (const auto& note : report.notes) std::fprintf(stderr, "noether: note: %s\n", note.c_str());
+  std::printf("view: %s (%zu of %zu frames, %.1f MB); open it in a web browser\n", output.c_str(), report.frames_shown,
+              report.frames_in_file, static_cast<double>(html.size()) / 1e6);
+  return 0;
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app, Command& chosen) {
+  auto c = std::make_shared<ViewCommand>();
+  auto* sub = app.add_subcommand("view", "a run's bodies in 3-D: one HTML page to open in a browser, offline");
+  sub->add_option("run", c->run, "the run's output file (noether run -o)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-o,--output", c->output, "the page to write (default: the run's name with .html)");
+  sub->add_option("--max-frames", c->options.max_frames,
+                  "at most this many frames in the page, evenly spaced, the first and last among them")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{2}, std::size_t{1} << 26));
+  sub->add_option("--title", c->options.title, "the page's title (default: the run's file name)");
+  sub->add_option("--params", c->options.params,
+                  "the page's parameters when its address gives none, e.g. 'view=frame:alpha&axes=1' "
+                  "(docs/visualisation.md, \"Parameters\")");
+  sub->add_flag("--force", c->force, "replace an existing page");
+  sub->callback([c, &chosen] { chosen = [c] { return view(*c); }; });
+}
+
+}  // namespace noether::app

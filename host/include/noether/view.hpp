@@ -1,0 +1,42 @@
+#pragma once
+// View: a run's output file as one self-contained HTML page that shows the bodies moving in 3-D
+// — their shapes (polyhedra, ellipsoids, sphere clusters, point masses as dots), attitudes,
+// trails, a time slider — with three.js, embedded at build time from Debian's libjs-three, so
+// that the page needs no server and no network (docs/visualisation.md).
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+struct ViewOptions {
+  // At most this many frames go into the page (≥ 2): a longer run is decimated to frames taken
+  // evenly by index, the first and the last always among them (docs/visualisation.md, "Size").
+  std::size_t max_frames = 5000;
+  std::string title;  // "": the file's name
+  // The page's parameters when its address gives none (docs/visualisation.md, "Parameters"):
+  // "view=frame:alpha&axes=1"; the address's own override them. SceneError for a key the page
+  // does not know or a view of no such body.
+  std::string params;
+};
+
+// What view_html made, for the command to report.
+struct ViewReport {
+  std::size_t frames_in_file = 0, frames_shown = 0;
+  // Things the page shows differently from the run, also shown in the page: a run killed before
+  // its end, a rigid body drawn as its inertia ellipsoid because its scene's cluster could not
+  // be read, …
+  std::vector<std::string> notes;
+};
+
+// Whether this build has three.js to embed (false: built without libjs-three).
+bool view_available();
+
+// The page for `run_file` (the output of `noether run`, or a saved simulation). OutputError for a
+// file that is not a run's output (an ensemble's file names what to view instead) or is damaged;
+// Error when this build has no three.js (view_available()); SceneError for max_frames < 2.
+std::string view_html(const std::filesystem::path& run_file, const ViewOptions& options = {},
+                      ViewReport* report = nullptr);
+
+}  // namespace noether
