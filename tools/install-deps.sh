@@ -19,7 +19,7 @@ PACKAGES=(
   libnlopt-dev
   libopenmpi-dev openmpi-bin
   python3 python3-dev python3-numpy python3-matplotlib python3-h5py python3-pytest python3-hypothesis
-  python3-nbclient python3-ipykernel
+  python3-nbclient python3-ipykernel python3-meshio
   pybind11-dev
   strace
   libjs-three chromium

@@ -1,6 +1,6 @@
 #pragma once
 // The driver's commands, one file each: run.cpp (run, plugins), compare.cpp, ensemble.cpp,
-// orbit.cpp (orbit and its subcommands), check_potential.cpp, observe.cpp, fit.cpp, shape.cpp, view.cpp. Each file registers its command
+// orbit.cpp (orbit and its subcommands), check_potential.cpp, observe.cpp, fit.cpp, shape.cpp, view.cpp, export.cpp. Each file registers its command
 // and options (add_*_command); main() parses and runs the one chosen. Each command returns the
 // process exit code; noether::Error escapes to main().
 #include <noether/potential_check.hpp>
@@ -35,6 +35,7 @@ void add_observe_command(CLI::App& app, Command& chosen);
 void add_fit_command(CLI::App& app, Command& chosen);
 void add_shape_command(CLI::App& app, Command& chosen);
 void add_view_command(CLI::App& app, Command& chosen);
+void add_export_command(CLI::App& app, Command& chosen);
 
 // One line per solid body: its shape, mass, density and, for a mesh, where its centre of
 // mass was in the file and by how much it was rotated onto its principal axes.

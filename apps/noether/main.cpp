@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   add_fit_command(app, chosen);
   add_shape_command(app, chosen);
   add_view_command(app, chosen);
+  add_export_command(app, chosen);
 
   if (argc == 1) {  // bare `noether`: the help
     std::cout << app.help();

@@ -19,7 +19,6 @@ import re
 import subprocess
 import sys
 
-import h5py
 import matplotlib.image
 import numpy as np
 
@@ -27,19 +26,14 @@ noether, src, work = sys.argv[1], sys.argv[2], sys.argv[3]
 os.makedirs(work, exist_ok=True)
 sys.path.insert(0, os.path.join(src, "tools"))
 from open_view import browse as open_page  # noqa: E402
+from run_geometry import Run, run_scene  # noqa: E402  (tests/cli, this script's folder)
 
 W, H = 800, 600
 profile = os.path.join(work, "chromium-profile")
 
 
 def run(scene, name, *sets):
-    out = os.path.join(work, name + ".h5")
-    args = [noether, "run", os.path.join(src, "examples", scene), "-o", out, "--force"]
-    for s in sets:
-        args += ["--set", s]
-    p = subprocess.run(args, capture_output=True, text=True)
-    assert p.returncode == 0, f"{scene}: exit {p.returncode}\n{p.stderr}"
-    return out
+    return run_scene(noether, src, work, scene, name, *sets)
 
 
 def view(h5, *extra):
@@ -100,71 +94,19 @@ def raster(triangles):
     return mask
 
 
-def ellipsoid_mesh(axes, m=96, k=48):
-    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, m, endpoint=False), np.linspace(0, np.pi, k + 1))
-    p = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)], -1) * axes
-    vertices = p.reshape(-1, 3)
-    faces = []
-    for i in range(k):
-        for j in range(m):
-            a, b = i * m + j, i * m + (j + 1) % m
-            faces += [[a, b, a + m], [b, b + m, a + m]]
-    return vertices, np.array(faces)
-
-
-class Run:
-    def __init__(self, h5):
-        with h5py.File(h5, "r") as f:
-            self.names = [n.decode() if isinstance(n, bytes) else n for n in f["particles/bodies/name"][:]]
-            self.mass = f["particles/bodies/mass"][:]
-            self.x = f["particles/bodies/position/value"][:]
-            self.t = f["particles/bodies/position/time"][:]
-            self.R = {}
-            if "checkpoint/attitude" in f:
-                rigid_to_body = f["particles/bodies/orientation"].attrs["body_index"]
-                R = f["checkpoint/attitude"][:]
-                for k, j in enumerate(rigid_to_body):
-                    self.R[int(j)] = R[:, k]
-            self.meshes, self.kinds = {}, {}
-            for j, name in enumerate(self.names):
-                g = f.get(f"parameters/shapes/{name}")
-                if g is None:
-                    continue
-                self.kinds[j] = g.attrs["kind"]
-                if self.kinds[j] == "ellipsoid":
-                    self.meshes[j] = ellipsoid_mesh(g.attrs["semi_axes"])
-                else:
-                    self.meshes[j] = (g["vertices"][:], g["faces"][:])
-            # A dumbbell of length L: its two points drawn as spheres of radius L/10 (a fifth of the
-            # cluster's extent, docs/visualisation.md).
-            scene = f["parameters/scene_as_run"][()].decode()
-            for name, length in re.findall(r"- name: (\S+)(?:(?!- name:)[\s\S])*?dumbbell:\s*\n\s*length: (\S+)", scene):
-                L = float(length)
-                v, faces = ellipsoid_mesh(np.full(3, L / 10))
-                self.meshes[self.names.index(name)] = (np.vstack([v + [L / 2, 0, 0], v - [L / 2, 0, 0]]),
-                                                       np.vstack([faces, faces + len(v)]))
-                self.kinds[self.names.index(name)] = "dumbbell"
-
-    def origin(self, k, view):
-        if view == "barycentric":
-            return self.mass @ self.x[k] / self.mass.sum()
-        if view.startswith("centre:") or view.startswith("frame:"):
-            return self.x[k, self.names.index(view.split(":", 1)[1])]
-        return np.zeros(3)
-
-    def silhouette(self, k, j, status):
-        """Body j's expected pixels at file frame k, and its centre of mass's pixel."""
-        view = status["view"]
-        turn = np.eye(3)
-        if view.startswith("frame:"):
-            turn = self.R[self.names.index(view.split(":", 1)[1])][k].T
-        centre = turn @ (self.x[k, j] - self.origin(k, view))
-        pixel = project(centre, status)[0]
-        if j not in self.meshes:
-            return None, pixel
-        vertices, faces = self.meshes[j]
-        world = centre + vertices @ (turn @ self.R[j][k]).T
-        return raster(project(world, status)[faces]), pixel
+def silhouette(run, k, j, status):
+    """Body j's expected pixels at file frame k, and its centre of mass's pixel."""
+    view = status["view"]
+    turn = np.eye(3)
+    if view.startswith("frame:"):
+        turn = run.R[run.names.index(view.split(":", 1)[1])][k].T
+    centre = turn @ (run.x[k, j] - run.origin(k, view))
+    pixel = project(centre, status)[0]
+    if j not in run.meshes:
+        return None, pixel
+    vertices, faces = run.meshes[j]
+    world = centre + vertices @ (turn @ run.R[j][k]).T
+    return raster(project(world, status)[faces]), pixel
 
 
 def check_frame(run, html, hash_, name, silhouettes=True):
@@ -176,7 +118,7 @@ def check_frame(run, html, hash_, name, silhouettes=True):
     for j, body in enumerate(run.names):
         colour = np.array([(status["colours"][j] >> s) & 255 for s in (16, 8, 0)])
         seen = np.all(image == colour, axis=-1)
-        expected, pixel = run.silhouette(k, j, status)
+        expected, pixel = silhouette(run, k, j, status)
         if (expected is not None and not expected.any()) or (expected is None and not (0 <= pixel[0] < W and 0 <= pixel[1] < H)):
             assert not seen.any(), f"{name}: {body} is drawn where the camera does not see it"
             continue
