@@ -16,21 +16,23 @@ namespace noether::app {
 namespace {
 
 struct ViewCommand {
-  std::string run, output;
+  std::vector<std::string> runs;
+  std::string output;
   ViewOptions options;
   bool force = false;
 };
 
 int view(const ViewCommand& c) {
   namespace fs = std::filesystem;
-  const fs::path output = c.output.empty() ? fs::path(c.run).replace_extension(".html") : fs::path(c.output);
+  const fs::path output = c.output.empty() ? fs::path(c.runs[0]).replace_extension(".html") : fs::path(c.output);
   std::error_code ec;
   if (fs::is_symlink(output, ec)) throw OutputError(output.string() + " is a symbolic link; give the file it points to");
   if (fs::exists(output, ec) && !c.force) throw OutputError(output.string() + " exists; --force replaces it");
-  if (fs::exists(output, ec) && fs::equivalent(output, c.run, ec))
-    throw OutputError(output.string() + " is the run's own file; give another -o");
+  for (const auto& run : c.runs)
+    if (fs::exists(output, ec) && fs::equivalent(output, run, ec))
+      throw OutputError(output.string() + " is a run's own file; give another -o");
   ViewReport report;
-  const std::string html = view_html(c.run, c.options, &report);
+  const std::string html = view_html(std::vector<fs::path>(c.runs.begin(), c.runs.end()), c.options, &report);
   // Written under a hidden name beside it and renamed into place: the path holds the old page
   // or the whole new one, never a part.
   const fs::path partial = output.parent_path() / ("." + output.filename().string() + ".partial-" + std::to_string(getpid()));
@@ -49,8 +51,10 @@ int view(const ViewCommand& c) {
     throw OutputError(output.string() + ": cannot write");
   }
   for (const auto& note : report.notes) std::fprintf(stderr, "noether: note: %s\n", note.c_str());
-  std::printf("view: %s (%zu of %zu frames, %.1f MB); open it in a web browser\n", output.c_str(), report.frames_shown,
-              report.frames_in_file, static_cast<double>(html.size()) / 1e6);
+  std::string runs;
+  if (report.runs.size() > 1) runs = ", " + std::to_string(report.runs.size()) + " runs";
+  std::printf("view: %s (%zu of %zu frames%s, %.1f MB); open it in a web browser\n", output.c_str(), report.frames_shown,
+              report.frames_in_file, runs.c_str(), static_cast<double>(html.size()) / 1e6);
   return 0;
 }
 
@@ -59,7 +63,11 @@ int view(const ViewCommand& c) {
 void add_view_command(CLI::App& app, Command& chosen) {
   auto c = std::make_shared<ViewCommand>();
   auto* sub = app.add_subcommand("view", "a run's bodies in 3-D: one HTML page to open in a browser, offline");
-  sub->add_option("run", c->run, "the run's output file (noether run -o)")->required()->check(CLI::ExistingFile);
+  sub->add_option("runs", c->runs,
+                  "the run's output file (noether run -o); more runs of the same bodies and frame times are drawn "
+                  "with it, translucent; or an ensemble's file (noether ensemble -o), for its samples' runs")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("-o,--output", c->output, "the page to write (default: the run's name with .html)");
   sub->add_option("--max-frames", c->options.max_frames,
                   "at most this many frames in the page, evenly spaced, the first and last among them")
@@ -69,6 +77,10 @@ void add_view_command(CLI::App& app, Command& chosen) {
   sub->add_option("--params", c->options.params,
                   "the page's parameters when its address gives none, e.g. 'view=frame:alpha&axes=1' "
                   "(docs/visualisation.md, \"Parameters\")");
+  sub->add_option("--samples", c->options.samples,
+                  "with an ensemble's file: the samples whose runs (ENS-sample-I.h5, written by noether ensemble "
+                  "--trajectories K) to show, e.g. 0,3,5 (default: those there are, at most 8)")
+      ->delimiter(',');
   sub->add_flag("--force", c->force, "replace an existing page");
   sub->callback([c, &chosen] { chosen = [c] { return view(*c); }; });
 }

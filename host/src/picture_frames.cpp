@@ -52,11 +52,15 @@ std::vector<T> dataset(hid_t location, const char* path, hid_t type, std::vector
   return out;
 }
 
+}  // namespace
+
 bool is_ensemble_file(const std::filesystem::path& file) {
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   const H5Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   return f.valid() && H5Lexists(f, "outcome", H5P_DEFAULT) > 0 && H5Lexists(f, "frames_complete", H5P_DEFAULT) <= 0;
 }
+
+namespace {
 
 PictureShape solid_shape(hid_t shapes, const std::string& name) {
   const std::string where = "/parameters/shapes/" + name;
@@ -142,7 +146,8 @@ const char* PictureShape::name() const {
   return "point";
 }
 
-PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t max_frames) {
+PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t max_frames,
+                                  const std::vector<std::uint32_t>* frames_wanted) {
   if (max_frames < 2) throw SceneError("a picture of a run needs at least 2 frames (--max-frames)");
   std::error_code ec;
   if (std::filesystem::exists(file, ec) && is_ensemble_file(file))
@@ -155,11 +160,15 @@ PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t
   const auto frames = static_cast<std::size_t>(run.frames);
   out.frames_in_file = frames;
   if (run.outcome.empty())
-    out.notes.push_back("the run has no /work: it was killed or is still running; its " + std::to_string(frames) +
-                        " complete frames are shown");
+    out.notes.push_back(file.filename().string() + " has no /work: the run was killed or is still running; its " +
+                        std::to_string(frames) + " complete frames are shown");
 
-  // The frames kept: evenly spaced by index, the first and the last among them.
-  if (frames <= max_frames) {
+  // The frames kept: those asked for that the file has, or evenly spaced by index, the first and
+  // the last among them.
+  if (frames_wanted) {
+    for (const auto k : *frames_wanted)
+      if (k < frames) out.shown.push_back(k);
+  } else if (frames <= max_frames) {
     for (std::size_t k = 0; k < frames; ++k) out.shown.push_back(static_cast<std::uint32_t>(k));
   } else {
     for (std::size_t i = 0; i < max_frames; ++i)

@@ -47,7 +47,12 @@ struct PictureFrames {
 
 // The run of `file` (OutputError: not a run's output — an ensemble's file named as such —, or
 // damaged: its frames are verified against their checksums); SceneError for max_frames < 2.
-PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t max_frames);
+// With `frames_wanted`, exactly those of the file's frames that it has (in that order).
+PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t max_frames,
+                                  const std::vector<std::uint32_t>* frames_wanted = nullptr);
+
+// Whether `file` is an ensemble's (noether ensemble -o), not a run's.
+bool is_ensemble_file(const std::filesystem::path& file);
 
 // The shape as a closed triangle mesh in the body frame (an ellipsoid's and a sphere's with
 // 20·4^level faces); an empty mesh for a point.

@@ -10,6 +10,7 @@
 #include "view_assets.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace noether {
@@ -130,23 +131,35 @@ void check_params(const std::string& params, const std::vector<std::string>& nam
   }
 }
 
-}  // namespace
+// An ensemble's sample runs, as ViewOptions::samples picks them.
+std::vector<std::filesystem::path> sample_runs(const std::filesystem::path& ensemble, const std::vector<std::size_t>& samples) {
+  namespace fs = std::filesystem;
+  const auto sample = [&ensemble](std::size_t i) {
+    std::string name = ensemble.stem().string();
+    (name += "-sample-") += std::to_string(i);
+    return ensemble.parent_path() / (name += ".h5");
+  };
+  std::vector<fs::path> runs;
+  std::error_code ec;
+  if (samples.empty()) {
+    for (std::size_t i = 0; i < 8 && fs::exists(sample(i), ec); ++i) runs.push_back(sample(i));
+  } else {
+    for (const std::size_t i : samples) {
+      if (!fs::exists(sample(i), ec))
+        throw OutputError(sample(i).string() + " does not exist: `noether ensemble … --trajectories K -o " +
+                          ensemble.filename().string() + "` writes the runs of samples 0 to K − 1");
+      runs.push_back(sample(i));
+    }
+  }
+  if (runs.empty())
+    throw OutputError(ensemble.string() + " is an ensemble's file and no sample's run is beside it (" +
+                      sample(0).filename().string() + " …): write them with `noether ensemble … --trajectories K`");
+  return runs;
+}
 
-bool view_available() { return view_assets::available(); }
-
-std::string view_html(const std::filesystem::path& run_file, const ViewOptions& options, ViewReport* report) {
-  if (!view_assets::available())
-    throw Error("this noether was built without three.js, which `noether view` embeds in its pages: install "
-                "Debian's libjs-three (tools/install-deps.sh does) and build noether again");
-  const detail::PictureFrames run = detail::read_picture_frames(run_file, options.max_frames);
-  check_params(options.params, run.names, run.rigid_of_body);
-  if (report) *report = ViewReport{run.frames_in_file, run.shown.size(), run.notes};
-  const std::size_t n = run.names.size();
-
-  // Positions (float64: a body's metres must survive heliocentric distances) and attitudes
-  // (float32 quaternions x, y, z, w, as three.js orders them) of the frames shown.
-  std::vector<double> x;
-  std::vector<float> q;
+// A run's positions (float64: a body's metres must survive heliocentric distances) and attitudes
+// (float32 quaternions x, y, z, w, as three.js orders them) at its frames kept.
+void frame_arrays(const detail::PictureFrames& run, std::vector<double>& x, std::vector<float>& q) {
   for (std::size_t i = 0; i < run.t.size(); ++i) {
     x.insert(x.end(), run.x[i].data(), run.x[i].data() + run.x[i].size());
     for (const auto& R : run.R[i]) {
@@ -155,6 +168,72 @@ std::string view_html(const std::filesystem::path& run_file, const ViewOptions& 
                          static_cast<float>(qq.w())});
     }
   }
+}
+
+}  // namespace
+
+bool view_available() { return view_assets::available(); }
+
+std::string view_html(const std::filesystem::path& run_file, const ViewOptions& options, ViewReport* report) {
+  return view_html(std::vector<std::filesystem::path>{run_file}, options, report);
+}
+
+std::string view_html(const std::vector<std::filesystem::path>& given, const ViewOptions& options, ViewReport* report) {
+  if (!view_assets::available())
+    throw Error("this noether was built without three.js, which `noether view` embeds in its pages: install "
+                "Debian's libjs-three (tools/install-deps.sh does) and build noether again");
+  if (given.empty()) throw SceneError("no run to view");
+  std::vector<std::filesystem::path> files = given;
+  std::string title = options.title;
+  std::error_code ec;
+  if (given.size() == 1 && std::filesystem::exists(given[0], ec) && detail::is_ensemble_file(given[0])) {
+    files = sample_runs(given[0], options.samples);
+    if (title.empty()) {
+      title = given[0].filename().string() + ", samples ";
+      for (const auto& f : files) {
+        const std::string stem = f.stem().string();
+        (title += stem.substr(stem.rfind('-') + 1)) += f == files.back() ? "" : ", ";
+      }
+    }
+  } else if (!options.samples.empty()) {
+    throw SceneError("--samples picks an ensemble's sample runs; " + given[0].string() + " is not an ensemble's file");
+  }
+  const detail::PictureFrames run = detail::read_picture_frames(files[0], options.max_frames);
+  check_params(options.params, run.names, run.rigid_of_body);
+  ViewReport local;
+  ViewReport& out = report ? *report : local;
+  out = ViewReport{run.frames_in_file, run.shown.size(), files, run.notes};
+  const std::size_t n = run.names.size();
+  std::vector<double> x;
+  std::vector<float> q;
+  frame_arrays(run, x, q);
+
+  // The other runs at the first's frames: the same bodies, the same times.
+  std::string others = "[";
+  for (std::size_t r = 1; r < files.size(); ++r) {
+    const detail::PictureFrames other = detail::read_picture_frames(files[r], options.max_frames, &run.shown);
+    if (other.names != run.names)
+      throw OutputError(files[r].string() + " is a run of other bodies than " + files[0].string() + "'s");
+    for (std::size_t i = 0; i < other.t.size(); ++i)
+      if (std::abs(other.t[i] - run.t[i]) > 1e-12 * std::max(1.0, std::abs(run.t[i])))
+        throw OutputError(files[r].string() + "'s frame " + std::to_string(other.shown[i]) + " is at t = " +
+                          detail::exact_text(other.t[i]) + ", " + files[0].string() + "'s at " +
+                          detail::exact_text(run.t[i]) + ": runs shown together need the same frame times");
+    if (other.t.size() < run.t.size())
+      out.notes.push_back(files[r].filename().string() + " ends at t = " + detail::exact_text(other.t.back()) +
+                          " (" + std::to_string(other.frames_in_file) + " frames): not drawn after it");
+    for (const auto& note : other.notes)
+      if (note.rfind("decimated", 0) != 0) out.notes.push_back(note);
+    std::vector<double> ox;
+    std::vector<float> oq;
+    frame_arrays(other, ox, oq);
+    if (others.size() > 1) others += ',';
+    ((others += "{\"label\":") += json_string(files[r].filename().string())) += ",\"frames\":";
+    ((others += std::to_string(other.t.size())) += ",\"x\":") += typed_array(ox);
+    ((others += ",\"q\":") += typed_array(oq)) += '}';
+  }
+  others += ']';
+
   double largest_body = 0;
   for (const auto& s : run.shapes) largest_body = std::max(largest_body, s.size);
 
@@ -166,8 +245,12 @@ std::string view_html(const std::filesystem::path& run_file, const ViewOptions& 
     ((data += '"') += name) += "\":";
     data += value;
   };
-  field("title", json_string(options.title.empty() ? run_file.filename().string() : options.title));
-  field("file", json_string(run_file.filename().string()));
+  if (title.empty()) {
+    title = files[0].filename().string();
+    if (files.size() > 1) title += " and " + std::to_string(files.size() - 1) + " more";
+  }
+  field("title", json_string(title));
+  field("file", json_string(files[0].filename().string()));
   field("params", json_string(options.params));
   field("unit_length", json_string(run.unit_length));
   field("unit_time", json_string(run.unit_time));
@@ -184,8 +267,9 @@ std::string view_html(const std::filesystem::path& run_file, const ViewOptions& 
   field("t", typed_array(run.t));
   field("x", typed_array(x));
   field("q", typed_array(q));
+  field("others", others);
   std::string notes = "[";
-  for (const auto& note : run.notes) (notes += json_string(note)) += ',';
+  for (const auto& note : out.notes) (notes += json_string(note)) += ',';
   if (notes.size() > 1) notes.pop_back();
   field("notes", notes += "]");
   data += '}';

@@ -34,21 +34,25 @@ class View:
         return f"<noether.View: {self.frames_shown} of {self.frames_in_file} frames, {len(self.html) / 1e6:.1f} MB>"
 
 
-def view(run, max_frames=5000, title=None, params="", height=520):
+def view(run, max_frames=5000, title=None, params="", height=520, samples=None):
     """`noether view` in Python: the bodies of a run's output file (a path or a noether.Output)
     in 3-D — shapes, attitudes, trails, a time slider — as a View that Jupyter shows inline.
+    run may also be a list of runs of the same bodies and frame times (the first drawn opaque, the
+    others translucent), or an ensemble's file, whose samples' runs (`noether ensemble
+    --trajectories K`) it shows: `samples` picks them (default: those there are, at most 8).
     max_frames: at most that many frames, evenly spaced by index (the first and last among
     them); title: the page's (default: the file's name); params: the page's parameters, e.g.
     "view=frame:alpha&axes=1" (docs/visualisation.md, "Parameters"). A Simulation is viewed
-    through its output file once it is finished: view(Simulation(..., output="run.h5")) is
-    refused, view("run.h5") after sim.finish() is not."""
-    if isinstance(run, Output):
-        path = run.path
-    elif isinstance(run, (str, os.PathLike)):
-        path = os.fspath(run)
-    else:
-        raise TypeError("noether.view(run): the path of a run's output file, or a noether.Output; a Simulation is "
-                        "viewed through its output file: Simulation(..., output='run.h5'), sim.finish(), "
-                        "noether.view('run.h5')")
-    page, frames_in_file, frames_shown, notes = _noether.view_html(path, int(max_frames), title or "", params)
+    through its output file once it has finished."""
+    def path_of(r):
+        if isinstance(r, Output):
+            return r.path
+        if isinstance(r, (str, os.PathLike)):
+            return os.fspath(r)
+        raise TypeError("noether.view(run): the path of a run's output file, or a noether.Output (or a list of them); "
+                        "a Simulation is viewed through its output file: Simulation(..., output='run.h5'), "
+                        "sim.finish(), noether.view('run.h5')")
+    paths = [path_of(r) for r in run] if isinstance(run, (list, tuple)) else [path_of(run)]
+    page, frames_in_file, frames_shown, notes = _noether.view_html(paths, int(max_frames), title or "", params,
+                                                                   [int(s) for s in (samples or [])])
     return View(page.decode("utf-8"), frames_in_file, frames_shown, notes, height)

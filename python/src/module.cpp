@@ -529,14 +529,15 @@ PYBIND11_MODULE(_noether, m) {
                           py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data()));
   });
   // noether.view (docs/visualisation.md, "In Python and Jupyter"): the page `noether view` writes.
-  m.def("view_html", [](const std::filesystem::path& run, std::size_t max_frames, const std::string& title,
-                        const std::string& params) {
+  m.def("view_html", [](const std::vector<std::filesystem::path>& runs, std::size_t max_frames, const std::string& title,
+                        const std::string& params, const std::vector<std::size_t>& samples) {
     noether::ViewOptions options;
     options.max_frames = max_frames;
     options.title = title;
     options.params = params;
+    options.samples = samples;
     noether::ViewReport report;
-    std::string html = noether::view_html(run, options, &report);
+    std::string html = noether::view_html(runs, options, &report);
     return py::make_tuple(py::bytes(html), report.frames_in_file, report.frames_shown, report.notes);
   });
   m.def("relative_equilibrium",

@@ -196,6 +196,38 @@ for i in (0, 3, 6):
     assert status["file_frame"] == round(i * 1000 / 6) and status["time"] == t[status["file_frame"]], status
     assert status["frames_shown"] == 7
 
+# An ensemble's samples in one page: each sample's Dimorphos where its own run puts it (in flat
+# pictures each run's bodies have colours of their own); the page follows the first sample's frames.
+ens = os.path.join(work, "dart.h5")
+p = subprocess.run([noether, "ensemble", os.path.join(src, "examples", "didymos.yaml"), "--vary",
+                    "bodies.dimorphos.velocity.1=list(0.1741158386581219, 0.14, 0.2)", "--samples", "3", "--trajectories",
+                    "3", "--set", "run.t_end=14400", "--set", "run.output_every=600", "-o", ens, "--force"],
+                   capture_output=True, text=True)
+assert p.returncode == 0, p.stderr
+page = os.path.join(work, "dart.html")
+p = subprocess.run([noether, "view", ens, "--samples", "1,2", "-o", page, "--force"], capture_output=True, text=True)
+assert p.returncode == 0 and "(25 of 25 frames, 2 runs," in p.stdout, p.stdout + p.stderr
+samples = [Run(os.path.join(work, f"dart-sample-{i}.h5")) for i in (1, 2)]
+status, image = browse(page, f"{flat}&frame=24&camera=0,-400,5000&target=0,0,0&up=0,1,0&fov=40",
+                       os.path.join(work, "dart.png"))
+assert [r["label"] for r in status["runs"]] == ["dart-sample-1.h5", "dart-sample-2.h5"], status["runs"]
+for r, sample in enumerate(samples):
+    j = sample.names.index("dimorphos")
+    colour = np.array([(status["runs"][r]["colours"][j] >> s) & 255 for s in (16, 8, 0)])
+    seen = np.all(image == colour, axis=-1)
+    expected, pixel = silhouette(sample, 24, j, status)
+    overlap = (seen & expected).sum() / (seen | expected).sum()
+    print(f"dart sample {r + 1}: dimorphos {seen.sum()} px (expected {expected.sum()}), overlap {overlap:.4f}")
+    assert overlap >= 0.97, overlap
+p = subprocess.run([noether, "view", ens, "--samples", "2,7", "-o", page, "--force"], capture_output=True, text=True)
+assert p.returncode == 2 and "dart-sample-7.h5 does not exist" in p.stderr and "--trajectories K" in p.stderr, p.stderr
+p = subprocess.run([noether, "view", samples_file := os.path.join(work, "dart-sample-1.h5"), "--samples", "1", "-o", page,
+                    "--force"], capture_output=True, text=True)
+assert p.returncode == 2 and "is not an ensemble's file" in p.stderr, p.stderr
+p = subprocess.run([noether, "view", samples_file, os.path.join(work, "kw4-polyhedra.h5"), "-o", page, "--force"],
+                   capture_output=True, text=True)
+assert p.returncode == 2 and "is a run of other bodies than" in p.stderr, p.stderr
+
 # Refusals: an existing page, too few frames, an ensemble's file, a file that is not a run.
 p = subprocess.run([noether, "view", h5, "-o", html], capture_output=True, text=True)
 assert p.returncode == 2 and "exists; --force replaces it" in p.stderr, p.stderr
@@ -207,7 +239,7 @@ p = subprocess.run([noether, "ensemble", os.path.join(src, "examples", "dumbbell
                    capture_output=True, text=True)
 assert p.returncode == 0, p.stderr
 p = subprocess.run([noether, "view", ens], capture_output=True, text=True)
-assert p.returncode == 2 and "is an ensemble's file" in p.stderr and "--trajectories K" in p.stderr, p.stderr
+assert p.returncode == 2 and "no sample's run is beside it" in p.stderr and "--trajectories K" in p.stderr, p.stderr
 scene = os.path.join(src, "examples", "dumbbells.yaml")
 p = subprocess.run([noether, "view", scene, "-o", os.path.join(work, "x.html")], capture_output=True, text=True)
 assert p.returncode == 2 and "not an HDF5 file" in p.stderr, p.stderr

@@ -71,3 +71,21 @@ def test_a_point_mass_has_no_body_frame(source, tmp_path):
     with pytest.raises(noether.SceneError, match="is a point mass, which has no body frame; centre:"):
         noether.view(path, params="view=frame:" + sim.names[0])
     assert noether.view(path, params="view=centre:" + sim.names[0]).frames_shown == sim.summary()["output_frames"]
+
+
+def test_several_runs_in_one_page(dumbbell_run, dumbbells, tmp_path):
+    dumbbells["run"] = {"t_end": 1, "output_every": 0.01}  # the same frame times, ending at half
+    dumbbells["bodies"][0]["angular_velocity"] = [0, 0, 5]
+    other = tmp_path / "slower.h5"
+    sim = noether.Simulation(dumbbells, output=other)
+    sim.integrate(1)
+    sim.finish()
+    v = noether.view([dumbbell_run, noether.read(other)])
+    assert v.frames_shown == 201 and v.notes == ["slower.h5 ends at t = 1 (101 frames): not drawn after it"]
+    assert '"title":"dumbbells.h5 and 1 more"' in v.html and '"others":[{"label":"slower.h5","frames":101,' in v.html
+    page = tmp_path / "both.html"
+    p = subprocess.run([NOETHER, "view", str(dumbbell_run), str(other), "-o", str(page)], capture_output=True, text=True)
+    assert p.returncode == 0 and "(201 of 201 frames, 2 runs," in p.stdout, p.stdout + p.stderr
+    assert v.html == page.read_text(encoding="utf-8")
+    with pytest.raises(noether.SceneError, match="--samples picks an ensemble's sample runs"):
+        noether.view(dumbbell_run, samples=[0])

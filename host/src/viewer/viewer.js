@@ -30,28 +30,32 @@
     for (let i = 0; i < s.length; ++i) u[i] = s.charCodeAt(i);
     return u.buffer;
   };
-  const t = new Float64Array(buffer(run.t)), x = new Float64Array(buffer(run.x));
-  const q = new Float32Array(buffer(run.q)), frameIndex = new Uint32Array(buffer(run.frame_index));
+  const t = new Float64Array(buffer(run.t)), frameIndex = new Uint32Array(buffer(run.frame_index));
   const F = t.length, n = run.bodies.length;
+  // Run 0 is the file viewed; runs 1… are others shown with it (an ensemble's samples), at the
+  // same frames, each until its own last frame.
+  const runs = [{ label: run.file, frames: F, x: new Float64Array(buffer(run.x)), q: new Float32Array(buffer(run.q)) }]
+    .concat((run.others || []).map((o) => ({ label: o.label, frames: o.frames, x: new Float64Array(buffer(o.x)),
+                                              q: new Float32Array(buffer(o.q)) })));
   const rigidCount = run.bodies.filter((b) => b.rigid >= 0).length;
   const byName = new Map(run.bodies.map((b, j) => [b.name, j]));
 
   // Colours: distinct, and in flat mode pure, so that a test can find each body's pixels.
   const palette = flat ? [0xff0000, 0x00ff00, 0x0000ff, 0xffff00, 0xff00ff, 0x00ffff, 0xff8000, 0x8000ff]
                        : [0xd9a05b, 0x6fa8dc, 0x93c47d, 0xe06666, 0xb4a7d6, 0xf6b26b, 0x76a5af, 0xc27ba0];
-  const colourOf = (j) => palette[j % palette.length];
+  const colourOf = (j, r = 0) => palette[(flat ? r * n + j : j) % palette.length];
 
   // The view's frame at shown frame i: origin o and rotation M (view = M (x − o)), as a
   // function giving a body's position and attitude in it.
   let viewKind = P.get('view') || 'inertial';
   const totalMass = run.bodies.reduce((s, b) => s + b.mass, 0);
-  const position = (i, j) => new THREE.Vector3(x[(i * n + j) * 3], x[(i * n + j) * 3 + 1], x[(i * n + j) * 3 + 2]);
-  const attitude = (i, j) => {
-    const k = run.bodies[j].rigid;
-    return k < 0 ? new THREE.Quaternion() : new THREE.Quaternion(q[(i * rigidCount + k) * 4], q[(i * rigidCount + k) * 4 + 1],
-                                                                 q[(i * rigidCount + k) * 4 + 2], q[(i * rigidCount + k) * 4 + 3]);
+  const attitude = (i, j, r = 0) => {
+    const k = run.bodies[j].rigid, q = runs[r].q, a = (i * rigidCount + k) * 4;
+    return k < 0 ? new THREE.Quaternion() : new THREE.Quaternion(q[a], q[a + 1], q[a + 2], q[a + 3]);
   };
+  // Every run is watched from run 0's frame (its barycentre, its body).
   function frameOfView(i) {
+    const x = runs[0].x;
     const origin = [0, 0, 0];  // in float64: subtracted before three.js rounds to float32
     let turn = new THREE.Quaternion();
     const [kind, name] = viewKind.split(/:(.*)/s);
@@ -64,9 +68,11 @@
       if (kind === 'frame') turn = attitude(i, k).conjugate();
     }
     return {
-      position: (j) => new THREE.Vector3(x[(i * n + j) * 3] - origin[0], x[(i * n + j) * 3 + 1] - origin[1],
-                                         x[(i * n + j) * 3 + 2] - origin[2]).applyQuaternion(turn),
-      attitude: (j) => turn.clone().multiply(attitude(i, j)),
+      position: (j, r = 0) => {
+        const y = runs[r].x, a = (i * n + j) * 3;
+        return new THREE.Vector3(y[a] - origin[0], y[a + 1] - origin[1], y[a + 2] - origin[2]).applyQuaternion(turn);
+      },
+      attitude: (j, r = 0) => turn.clone().multiply(attitude(i, j, r)),
     };
   }
   const frameChoices = ['inertial', 'barycentric'];
@@ -95,12 +101,19 @@
     sun.position.set(1, -0.6, 0.8);
     scene.add(sun);
   }
-  const material = (colour, options = {}) =>
-    flat ? new THREE.MeshBasicMaterial(Object.assign({ color: colour }, options))
-         : new THREE.MeshStandardMaterial(Object.assign({ color: colour, roughness: 0.85, metalness: 0 }, options));
+  // A surface's material: flat or lit; a ghost (another run's body) translucent.
+  const surfaceMaterial = (colour, ghost, options) => {
+    if (flat) return new THREE.MeshBasicMaterial(Object.assign({ color: colour }, options));
+    const look = { color: colour, roughness: 0.85, metalness: 0 };
+    if (ghost) Object.assign(look, { transparent: true, opacity: 0.38, depthWrite: false });
+    return new THREE.MeshStandardMaterial(Object.assign(look, options));
+  };
 
-  function bodyObject(body, colour) {
+  // Run 0's bodies opaque, the other runs' translucent (in flat mode all opaque, each in a colour
+  // of its own).
+  function bodyObject(body, colour, ghost) {
     const group = new THREE.Group(), s = body.shape;
+    const material = (c, options = {}) => surfaceMaterial(c, ghost, options);
     let size = 0;
     if (s.kind === 'polyhedron') {
       const g = new THREE.BufferGeometry();
@@ -143,19 +156,21 @@
     }
     return { group, size };
   }
-  const bodies = run.bodies.map((b, j) => bodyObject(b, colourOf(j)));
-  bodies.forEach((b) => scene.add(b.group));
+  const drawn = runs.map((_, r) => run.bodies.map((b, j) => bodyObject(b, colourOf(j, r), r > 0)));
+  const bodies = drawn[0];
+  drawn.forEach((objects) => objects.forEach((b) => scene.add(b.group)));
 
   // Trails: the last `trailLength` frames shown, each body's path as seen in the view's frame.
   const trailLength = Math.min(F, Number(P.get('trail') || 400));
-  const trails = run.bodies.map((b, j) => {
+  const trails = runs.map((_, r) => run.bodies.map((b, j) => {
     const g = new THREE.BufferGeometry();
     g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * trailLength), 3));
-    const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: colourOf(j), transparent: true, opacity: 0.55 }));
+    const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: colourOf(j, r), transparent: true,
+                                                                 opacity: r > 0 ? 0.3 : 0.55 }));
     line.frustumCulled = false;
     scene.add(line);
     return line;
-  });
+  }));
 
   // Labels and legend.
   const labelLayer = document.getElementById('labels');
@@ -170,7 +185,9 @@
   document.getElementById('legend').innerHTML = run.bodies.map((b, j) =>
     '<div><span style="background:#' + colourOf(j).toString(16).padStart(6, '0') + '"></span>' +
     b.name.replace(/[&<>]/g, (c) => ({ '&': '&amp;', '<': '&lt;', '>': '&gt;' }[c])) + ' — ' + b.shape.kind +
-    (b.shape.inferred ? ' (of its inertia)' : '') + '</div>').join('');
+    (b.shape.inferred ? ' (of its inertia)' : '') + '</div>').join('') +
+    (runs.length > 1 ? '<div>with ' + (runs.length - 1) + ' more run' + (runs.length > 2 ? 's' : '') +
+                       ', translucent</div>' : '');
   document.getElementById('title').textContent = run.title;
   document.getElementById('notes').innerHTML = run.notes.map((s) => '<div></div>').join('');
   [...document.getElementById('notes').children].forEach((d, i) => { d.textContent = run.notes[i]; });
@@ -222,19 +239,26 @@
   function show(i) {
     current = Math.max(0, Math.min(F - 1, Math.round(i)));
     const v = frameOfView(current);
-    for (let j = 0; j < n; ++j) {
-      bodies[j].group.position.copy(v.position(j));
-      bodies[j].group.quaternion.copy(v.attitude(j));
-    }
     const first = Math.max(0, current - trailLength + 1);
     const kinds = [];
     for (let k = first; k <= current; ++k) kinds.push(frameOfView(k));
-    trails.forEach((line, j) => {
-      const a = line.geometry.attributes.position;
-      kinds.forEach((w, m) => { const p = w.position(j); a.setXYZ(m, p.x, p.y, p.z); });
-      a.needsUpdate = true;
-      line.geometry.setDrawRange(0, kinds.length);
-      line.visible = trailsBox.checked;
+    runs.forEach((R, r) => {
+      const here = current < R.frames;  // a run that ended (an event stopped it) is not drawn after
+      drawn[r].forEach((b, j) => {
+        b.group.visible = here;
+        if (!here) return;
+        b.group.position.copy(v.position(j, r));
+        b.group.quaternion.copy(v.attitude(j, r));
+      });
+      const last = Math.min(current, R.frames - 1);
+      trails[r].forEach((line, j) => {
+        const a = line.geometry.attributes.position;
+        let m = 0;
+        for (let k = first; k <= last; ++k, ++m) { const p = kinds[k - first].position(j, r); a.setXYZ(m, p.x, p.y, p.z); }
+        a.needsUpdate = true;
+        line.geometry.setDrawRange(0, m);
+        line.visible = trailsBox.checked;
+      });
     });
     slider.value = current;
     timeText.textContent = describeTime(current);
@@ -263,6 +287,7 @@
       width: renderer.domElement.width, height: renderer.domElement.height, fov: camera.fov,
       camera: camera.position.toArray(), target: controls.target.toArray(), up: camera.up.toArray(),
       colours: run.bodies.map((b, j) => colourOf(j)),
+      runs: runs.map((R, r) => ({ label: R.label, frames: R.frames, colours: run.bodies.map((b, j) => colourOf(j, r)) })),
     });
     publish();
   }
