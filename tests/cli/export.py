@@ -1,5 +1,11 @@
-"""export.py NOETHER SOURCE_DIR WORK_DIR: `noether export --format vtk` read back by meshio, an
-independent reader of VTK XML files (Debian's python3-meshio; docs/visualisation.md, "ParaView").
+"""export.py NOETHER SOURCE_DIR WORK_DIR: the data of pictures of runs, without a browser (so that
+the sanitizer job runs it; tests/cli/view.py draws the pages in Chromium): the frames a
+`noether view` page holds, and `noether export --format vtk` read back by meshio, an independent
+reader of VTK XML files (Debian's python3-meshio; docs/visualisation.md).
+
+A page's NOETHER_RUN holds the file's positions bit for bit (float64) and its exact attitudes as
+float32 quaternions (to 1e-7), at the frames it names, with their times; a polyhedron's mesh as
+float32.
 
 Each .vtu of a collection holds, for its frame, every body where the HDF5 file puts it: a
 polyhedron's vertices are x + R v (v the file's mesh in the body frame, R the exact attitude)
@@ -10,6 +16,8 @@ files' TimeValue are the frames' times; --max-frames keeps evenly spaced frames,
 among them; --force replaces an earlier export; what is not an earlier export is never
 replaced; bad options are refused and leave nothing behind.
 """
+import base64
+import json
 import os
 import re
 import subprocess
@@ -83,8 +91,47 @@ def check(h5, pvd, frames, level=4):
     return len(sets)
 
 
+def page_data(html):
+    """The NOETHER_RUN object of a page, its typed arrays decoded."""
+    text = open(html, encoding="utf-8").read()
+    data = json.loads(re.search(r"<script>const NOETHER_RUN = (\{.*?\});</script>", text, re.S).group(1))
+    arrays = {"t": "<f8", "x": "<f8", "q": "<f4", "frame_index": "<u4"}
+    return data, {k: np.frombuffer(base64.b64decode(data[k]), dtype) for k, dtype in arrays.items()}
+
+
+def check_page(h5, max_frames):
+    html = os.path.join(work, "page.html")
+    p = subprocess.run([noether, "view", h5, "-o", html, "--force", "--max-frames", str(max_frames)], capture_output=True,
+                       text=True)
+    assert p.returncode == 0, p.stderr
+    r = Run(h5)
+    data, a = page_data(html)
+    frames = a["frame_index"]
+    n = len(r.names)
+    assert np.array_equal(frames, [round(i * (len(r.t) - 1) / (max_frames - 1)) for i in range(max_frames)])
+    assert np.array_equal(a["t"], r.t[frames])
+    assert np.array_equal(a["x"].reshape(-1, n, 3), r.x[frames])
+    q = a["q"].reshape(len(frames), -1, 4)
+    for j, body in enumerate(data["bodies"]):
+        kind = r.kinds.get(j, "point")
+        assert body["name"] == r.names[j] and body["shape"]["kind"] == {"dumbbell": "spheres"}.get(kind, kind)
+        if j not in r.R:
+            continue
+        x, y, z, w = q[:, body["rigid"]].T.astype(float)  # R of the quaternion, each frame
+        R = np.stack([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]).transpose(2, 0, 1)
+        assert np.abs(R - r.R[j][frames]).max() < 1e-6, np.abs(R - r.R[j][frames]).max()
+        if r.kinds[j] == "polyhedron":
+            v = np.frombuffer(base64.b64decode(body["shape"]["vertices"]), "<f4").reshape(-1, 3)
+            f = np.frombuffer(base64.b64decode(body["shape"]["faces"]), "<u4").reshape(-1, 3)
+            assert np.array_equal(v, r.meshes[j][0].astype(np.float32)) and np.array_equal(f, r.meshes[j][1])
+    return len(frames)
+
+
 # KW4 as the radar polyhedra, decimated to 10 of its 49 frames.
 h5 = run("kw4-polyhedra.yaml", "kw4-polyhedra", "run.t_end=28800", "run.output_every=600")
+print("KW4 polyhedra page:", check_page(h5, 7), "frames hold the file's positions and attitudes")
 pvd = os.path.join(work, "kw4.pvd")
 p = export(h5, "-o", pvd, "--max-frames", "10", "--force")
 assert re.match(r"export: .*kw4\.pvd and .*kw4/ \(10 of 49 frames, [\d.]+ MB\)", p.stdout), p.stdout
@@ -105,7 +152,9 @@ print("KW4 ellipsoids:", check(h5, h5[:-3] + ".pvd", list(range(21)), level=3), 
 h5 = run("dumbbells.yaml", "dumbbells", "run.t_end=1")
 export(h5, "--max-frames", "5", "--force")
 print("dumbbells:", check(h5, h5[:-3] + ".pvd", [0, 25, 50, 75, 100]), "frames")
+print("dumbbells page:", check_page(h5, 4), "frames")
 h5 = run("figure-eight.yaml", "figure-eight")
+print("figure-eight page:", check_page(h5, 3), "frames")
 export(h5, "--max-frames", "4", "--force")
 print("figure-eight:", check(h5, h5[:-3] + ".pvd", [0, 333, 667, 1000]), "frames")
 
