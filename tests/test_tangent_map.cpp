@@ -234,12 +234,8 @@ TEST(TangentMap, ContinuousStmsAgreeWithDifferencesOfWholeRuns) {
   // KW4 in SI units: an atol in metres and kg m/s. (dopri5 agrees to 2e-7 here with g++ and
   // 2e-6 with clang: differences of whole adaptive runs carry the step choices' noise, ~rtol/h,
   // so rk is checked here with its fixed-step method.)
-  for (const char* integrator : {"integrator={plugin: rk, method: rk4, step: 60}"
-#ifndef NOETHER_TEST_SANITIZED  // cvode at rtol 1e-13 on KW4: 2 of this test's 2 minutes there; its
-                                // tangent map is checked on Kepler and the dumbbells above
-                                 , "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-6}"
-#endif
-       }) {
+  for (const char* integrator : {"integrator={plugin: rk, method: rk4, step: 60}",
+                                 "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-6}"}) {
     const Comparison c = compare_with_differences(load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
                                                              {"run.t_end=3600", "run.output_every=3600", integrator}));
     EXPECT_LT(c.worst, 1e-6) << integrator;
