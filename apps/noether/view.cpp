@@ -8,8 +8,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <unistd.h>
 
 namespace noether::app {
 
@@ -24,37 +22,13 @@ struct ViewCommand {
 
 int view(const ViewCommand& c) {
   namespace fs = std::filesystem;
-  const fs::path output = c.output.empty() ? fs::path(c.runs[0]).replace_extension(".html") : fs::path(c.output);
-  std::error_code ec;
-  if (fs::is_symlink(output, ec)) throw OutputError(output.string() + " is a symbolic link; give the file it points to");
-  if (fs::exists(output, ec) && !c.force) throw OutputError(output.string() + " exists; --force replaces it");
-  for (const auto& run : c.runs)
-    if (fs::exists(output, ec) && fs::equivalent(output, run, ec))
-      throw OutputError(output.string() + " is a run's own file; give another -o");
-  ViewReport report;
-  const std::string html = view_html(std::vector<fs::path>(c.runs.begin(), c.runs.end()), c.options, &report);
-  // Written under a hidden name beside it and renamed into place: the path holds the old page
-  // or the whole new one, never a part.
-  const fs::path partial = output.parent_path() / ("." + output.filename().string() + ".partial-" + std::to_string(getpid()));
-  {
-    std::ofstream out(partial, std::ios::binary);
-    out.write(html.data(), static_cast<std::streamsize>(html.size()));
-    out.close();
-    if (!out) {
-      fs::remove(partial, ec);
-      throw OutputError(output.string() + ": cannot write (" + partial.string() + ")");
-    }
-  }
-  fs::rename(partial, output, ec);
-  if (ec) {
-    fs::remove(partial, ec);
-    throw OutputError(output.string() + ": cannot write");
-  }
+  const fs::path page = c.output.empty() ? fs::path(c.runs[0]).replace_extension(".html") : fs::path(c.output);
+  const ViewReport report = write_view(std::vector<fs::path>(c.runs.begin(), c.runs.end()), page, c.options, c.force);
   for (const auto& note : report.notes) std::fprintf(stderr, "noether: note: %s\n", note.c_str());
   std::string runs;
   if (report.runs.size() > 1) runs = ", " + std::to_string(report.runs.size()) + " runs";
-  std::printf("view: %s (%zu of %zu frames%s, %.1f MB); open it in a web browser\n", output.c_str(), report.frames_shown,
-              report.frames_in_file, runs.c_str(), static_cast<double>(html.size()) / 1e6);
+  std::printf("view: %s (%zu of %zu frames%s, %.1f MB); open it in a web browser\n", page.c_str(), report.frames_shown,
+              report.frames_in_file, runs.c_str(), static_cast<double>(report.bytes) / 1e6);
   return 0;
 }
 

@@ -77,6 +77,10 @@ std::vector<std::string> EnsemblePlan::sample_overrides(std::size_t i) const {
   return out;
 }
 
+std::filesystem::path sample_run_path(const std::filesystem::path& ensemble, std::size_t i) {
+  return ensemble.parent_path() / (ensemble.stem().string() + "-sample-" + std::to_string(i) + ".h5");
+}
+
 SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const std::filesystem::path& output) const {
   SampleResult r;
   r.summary.assign(kSummaryCount, NAN);
@@ -85,7 +89,7 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
     RunOptions run;
     run.threads = 1;  // the samples are the ensemble's parallelism: one thread each
     if (i < options.trajectories) {
-      run.output = output.parent_path() / (output.stem().string() + "-sample-" + std::to_string(i) + ".h5");
+      run.output = sample_run_path(output, i);
       run.overwrite = true;
     }
     Simulation sim(parse_scene(base.text, base.file, sample_overrides(i)), registry, run);

@@ -5,6 +5,7 @@
 #include <noether/error.hpp>
 #include <noether/export.hpp>
 
+#include "io/safe_publish.hpp"
 #include "json_text.hpp"
 #include "picture_frames.hpp"
 
@@ -118,10 +119,11 @@ ExportReport export_vtk(const fs::path& run_file, const fs::path& collection, co
                      std::to_string(options.tessellation));
   if (collection.extension() != ".pvd") throw SceneError(collection.string() + ": a ParaView collection's name ends in .pvd");
   const fs::path folder = fs::path(collection).replace_extension();
+  // Refused before any work: the collection as every output file (io/safe_publish.hpp), the
+  // folder unless it is an earlier export's.
+  if (const int held = io::claim_output(collection, options.force, {run_file}); held >= 0) ::close(held);
   std::error_code ec;
-  for (const auto& p : {collection, folder})
-    if (fs::is_symlink(p, ec)) throw OutputError(p.string() + " is a symbolic link; give the place it points to");
-  if (fs::exists(collection, ec) && !options.force) throw OutputError(collection.string() + " exists; --force replaces it");
+  if (fs::is_symlink(folder, ec)) throw OutputError(folder.string() + " is a symbolic link; give the place it points to");
   if (fs::exists(folder, ec)) {
     if (!fs::is_directory(folder, ec) || !is_export_folder(folder))
       throw OutputError(folder.string() + " exists and holds files noether export did not write; give another name");
@@ -145,14 +147,7 @@ ExportReport export_vtk(const fs::path& run_file, const fs::path& collection, co
   report.collection = collection;
   report.folder = folder;
   report.notes = run.notes;
-  const std::string pid = std::to_string(getpid());
-  // Hidden names beside them until complete.
-  const auto hidden = [&pid](const fs::path& p) {
-    std::string name = ".";
-    ((name += p.filename().string()) += ".partial-") += pid;
-    return p.parent_path() / name;
-  };
-  const fs::path partial_folder = hidden(folder), partial_collection = hidden(collection);
+  const fs::path partial_folder = io::partial_name(folder);
   const int digits = static_cast<int>(std::to_string(run.frames_in_file - 1).size());
   std::ostringstream pvd;
   pvd << "<?xml version=\"1.0\"?>\n<!-- " << comment << " -->\n"
@@ -169,16 +164,14 @@ ExportReport export_vtk(const fs::path& run_file, const fs::path& collection, co
           << folder.filename().string() << "/" << name << "\"/>\n";
     }
     pvd << "  </Collection>\n</VTKFile>\n";
-    write_file(partial_collection, pvd.str());
-    report.bytes += pvd.str().size();
     if (fs::exists(folder, ec)) fs::remove_all(folder);  // an earlier export (checked above), with --force
     fs::rename(partial_folder, folder);
-    fs::rename(partial_collection, collection);
   } catch (...) {
     fs::remove_all(partial_folder, ec);
-    fs::remove(partial_collection, ec);
     throw;
   }
+  io::write_whole_file(collection, pvd.str(), options.force, {run_file});
+  report.bytes += pvd.str().size();
   report.frames_written = run.t.size();
   return report;
 }

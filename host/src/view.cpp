@@ -2,9 +2,11 @@
 // The page is viewer/page.html with three.js, the viewer's script and the run's data put in
 // place of its markers; the data are the run's frames (decimated to ViewOptions::max_frames),
 // attitudes as quaternions and each body's shape, as picture_frames.hpp reads them.
+#include <noether/ensemble.hpp>
 #include <noether/error.hpp>
 #include <noether/view.hpp>
 
+#include "io/safe_publish.hpp"
 #include "json_text.hpp"
 #include "picture_frames.hpp"
 #include "view_assets.hpp"
@@ -134,11 +136,7 @@ void check_params(const std::string& params, const std::vector<std::string>& nam
 // An ensemble's sample runs, as ViewOptions::samples picks them.
 std::vector<std::filesystem::path> sample_runs(const std::filesystem::path& ensemble, const std::vector<std::size_t>& samples) {
   namespace fs = std::filesystem;
-  const auto sample = [&ensemble](std::size_t i) {
-    std::string name = ensemble.stem().string();
-    (name += "-sample-") += std::to_string(i);
-    return ensemble.parent_path() / (name += ".h5");
-  };
+  const auto sample = [&ensemble](std::size_t i) { return sample_run_path(ensemble, i); };
   std::vector<fs::path> runs;
   std::error_code ec;
   if (samples.empty()) {
@@ -202,7 +200,7 @@ std::string view_html(const std::vector<std::filesystem::path>& given, const Vie
   check_params(options.params, run.names, run.rigid_of_body);
   ViewReport local;
   ViewReport& out = report ? *report : local;
-  out = ViewReport{run.frames_in_file, run.shown.size(), files, run.notes};
+  out = ViewReport{run.frames_in_file, run.shown.size(), files, 0, run.notes};
   const std::size_t n = run.names.size();
   std::vector<double> x;
   std::vector<float> q;
@@ -222,8 +220,7 @@ std::string view_html(const std::vector<std::filesystem::path>& given, const Vie
     if (other.t.size() < run.t.size())
       out.notes.push_back(files[r].filename().string() + " ends at t = " + detail::exact_text(other.t.back()) +
                           " (" + std::to_string(other.frames_in_file) + " frames): not drawn after it");
-    for (const auto& note : other.notes)
-      if (note.rfind("decimated", 0) != 0) out.notes.push_back(note);
+    out.notes.insert(out.notes.end(), other.notes.begin(), other.notes.end());  // a killed run's
     std::vector<double> ox;
     std::vector<float> oq;
     frame_arrays(other, ox, oq);
@@ -274,6 +271,17 @@ std::string view_html(const std::vector<std::filesystem::path>& given, const Vie
   field("notes", notes += "]");
   data += '}';
   return view_assets::page(data);
+}
+
+ViewReport write_view(const std::vector<std::filesystem::path>& runs, const std::filesystem::path& page,
+                      const ViewOptions& options, bool force) {
+  ViewReport report;
+  const std::string html = view_html(runs, options, &report);
+  std::vector<std::filesystem::path> inputs = runs;
+  inputs.insert(inputs.end(), report.runs.begin(), report.runs.end());
+  io::write_whole_file(page, html, force, inputs);
+  report.bytes = html.size();
+  return report;
 }
 
 }  // namespace noether

@@ -140,7 +140,7 @@ print("KW4 polyhedra:", check(h5, pvd, [round(i * 48 / 9) for i in range(10)]), 
 
 # Replaced with --force: the old frames go.
 p = export(h5, "-o", pvd, "--max-frames", "3", expect=2)
-assert "kw4.pvd exists; --force replaces it" in p.stderr, p.stderr
+assert "kw4.pvd exists; noether does not overwrite output unless asked: pass --force" in p.stderr, p.stderr
 export(h5, "-o", pvd, "--max-frames", "3", "--force")
 assert sorted(os.listdir(os.path.join(work, "kw4"))) == ["frame-00.vtu", "frame-24.vtu", "frame-48.vtu"]
 check(h5, pvd, [0, 24, 48])

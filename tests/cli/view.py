@@ -230,7 +230,7 @@ assert p.returncode == 2 and "is a run of other bodies than" in p.stderr, p.stde
 
 # Refusals: an existing page, too few frames, an ensemble's file, a file that is not a run.
 p = subprocess.run([noether, "view", h5, "-o", html], capture_output=True, text=True)
-assert p.returncode == 2 and "exists; --force replaces it" in p.stderr, p.stderr
+assert p.returncode == 2 and "exists; noether does not overwrite output unless asked: pass --force" in p.stderr, p.stderr
 p = subprocess.run([noether, "view", h5, "--max-frames", "1"], capture_output=True, text=True)
 assert p.returncode == 2 and "--max-frames" in p.stderr, p.stderr
 ens = os.path.join(work, "ens.h5")

@@ -57,6 +57,9 @@ struct EnsembleOptions {
   bool overwrite = false;
 };
 
+// The run of sample i that --trajectories writes next to the ensemble's file: ENS-sample-I.h5.
+std::filesystem::path sample_run_path(const std::filesystem::path& ensemble, std::size_t i);
+
 struct EnsembleReport {
   std::size_t samples = 0, run = 0, skipped = 0;  // skipped: finished in an earlier (resumed) run
   std::size_t ranks = 1;                          // processes (MPI), this one included

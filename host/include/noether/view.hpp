@@ -29,6 +29,7 @@ struct ViewOptions {
 struct ViewReport {
   std::size_t frames_in_file = 0, frames_shown = 0;  // of the first run
   std::vector<std::filesystem::path> runs;           // every run shown
+  std::size_t bytes = 0;                             // the page's size
   // Things the page shows differently from the run, also shown in the page: a run killed before
   // its end, a rigid body drawn as its inertia ellipsoid because its scene's cluster could not
   // be read, …
@@ -48,5 +49,11 @@ std::string view_html(const std::vector<std::filesystem::path>& runs, const View
                       ViewReport* report = nullptr);
 std::string view_html(const std::filesystem::path& run_file, const ViewOptions& options = {},
                       ViewReport* report = nullptr);
+
+// view_html written to `page` as noether writes every output file (docs/user-guide.md, "Output
+// files"): an existing page only with `force`, never through a link or onto a run, built under a
+// hidden name and renamed into place.
+ViewReport write_view(const std::vector<std::filesystem::path>& runs, const std::filesystem::path& page,
+                      const ViewOptions& options, bool force);
 
 }  // namespace noether

@@ -10,6 +10,8 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <utility>
+
 namespace noether::io {
 
 namespace fs = std::filesystem;
@@ -112,5 +114,29 @@ void publish_file(const fs::path& partial, const fs::path& path, bool replace) {
   throw OutputError("cannot create the output file " + path.string() + ": " + std::strerror(e));
 }
 
+void write_whole_file(const fs::path& path, const std::string& bytes, bool overwrite, const std::vector<fs::path>& inputs) {
+  const int claimed = claim_output(path, overwrite, inputs);
+  const fs::path partial = partial_name(path);
+  int fd = -1;
+  bool created = false;  // the hidden file is ours to remove
+  try {
+    fd = create_partial(partial, path);
+    created = true;
+    for (std::size_t done = 0; done < bytes.size();) {
+      const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) throw OutputError("cannot write " + path.string() + ": " + std::strerror(errno));
+      done += static_cast<std::size_t>(n);
+    }
+    if (::close(std::exchange(fd, -1)) != 0) throw OutputError("cannot write " + path.string() + ": " + std::strerror(errno));
+    publish_file(partial, path, claimed >= 0);
+  } catch (...) {
+    if (fd >= 0) ::close(fd);
+    if (created) ::unlink(partial.c_str());
+    if (claimed >= 0) ::close(claimed);
+    throw;
+  }
+  if (claimed >= 0) ::close(claimed);
+}
 
 }  // namespace noether::io

@@ -9,8 +9,10 @@
 // the files noether writes: HDF5_USE_FILE_LOCKING=FALSE unless the user set it.)
 //
 // Used by every file noether writes for a user: run output (output.cpp), ensembles
-// (ensemble.cpp) and saved simulations (continuation.cpp).
+// (ensemble.cpp), saved simulations (continuation.cpp), views and exports (view.cpp,
+// export_vtk.cpp: write_whole_file).
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace noether::io {
@@ -29,5 +31,10 @@ int create_partial(const std::filesystem::path& partial, const std::filesystem::
 // Moves the finished file to `path`: replacing the claimed file (`replace`), or only if no other
 // process created `path` meanwhile.
 void publish_file(const std::filesystem::path& partial, const std::filesystem::path& path, bool replace);
+
+// A file made in one piece (a page, a collection) by the rules above: claimed, written under its
+// hidden name, published. OutputError (nothing changed at `path`) when it cannot be.
+void write_whole_file(const std::filesystem::path& path, const std::string& bytes, bool overwrite,
+                      const std::vector<std::filesystem::path>& inputs = {});
 
 }  // namespace noether::io
