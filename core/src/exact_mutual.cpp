@@ -1,11 +1,32 @@
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
+#include <noether/solid_harmonics.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
 
 namespace noether {
+
+namespace {
+
+// The change from `a` to `b` relative to b: of U, of ∂U/∂R, and of the torques against |R||∂U/∂R|.
+double relative_change(const MutualTerms& a, const MutualTerms& b, const Vec3& R) {
+  const double F = std::max(b.dU_dR.norm(), 1e-300);
+  const double T = F * R.norm();
+  return std::max({std::abs(a.U - b.U) / std::abs(b.U), (a.dU_dR - b.dU_dR).norm() / F,
+                   (a.torque_A - b.torque_A).norm() / T, (a.torque_B - b.torque_B).norm() / T});
+}
+
+}  // namespace
+
+// What the expansion (§37) keeps between evaluations: the surface body's moments and the
+// sphere rules of the degrees used (neither changes a result).
+struct ExactMutual::Expansion {
+  SolidHarmonicMoments moments;
+  std::map<int, SphereProjection> projections;
+};
 
 // One body in one of the two roles: its field, or its surface at each quadrature level.
 struct ExactMutual::Side {
@@ -27,17 +48,21 @@ struct ExactMutual::Side {
     v.inside = !(r > 0.0);
     return v;
   }
+  // Polyhedra: n × n points a face; ellipsoids: n × 2n points (14.7).
+  int points_a_side(int level) const {
+    static const int points[] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
+    return solid->kind == Solid::Kind::Polyhedron ? points[std::min(level, 9)] : 12 * (level + 1);
+  }
+  std::size_t rule_size(int level) const {
+    const auto n = static_cast<std::size_t>(points_a_side(level));
+    return solid->kind == Solid::Kind::Polyhedron ? solid->mesh.faces.size() * n * n : 2 * n * n;
+  }
   const SurfaceRule& rule(int level) {
     auto it = rules.find(level);
     if (it != rules.end()) return it->second;
-    SurfaceRule r;
-    if (solid->kind == Solid::Kind::Polyhedron) {
-      static const int points[] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
-      r = polyhedron_surface_rule(solid->mesh, points[std::min(level, 9)]);
-    } else {
-      const int n = 12 * (level + 1);
-      r = ellipsoid_surface_rule(solid->semi_axes, n, 2 * n);
-    }
+    const int n = points_a_side(level);
+    SurfaceRule r = solid->kind == Solid::Kind::Polyhedron ? polyhedron_surface_rule(solid->mesh, n)
+                                                           : ellipsoid_surface_rule(solid->semi_axes, n, 2 * n);
     return rules.emplace(level, std::move(r)).first->second;
   }
 };
@@ -79,6 +104,7 @@ ExactMutual::ExactMutual(double G, std::shared_ptr<const Solid> A, double mass_A
   };
   surface_ = make_side(surface_is_A_ ? A : B, surface_is_A_ ? mass_A : mass_B, false);
   field_ = make_side(surface_is_A_ ? B : A, surface_is_A_ ? mass_B : mass_A, true);
+  expansion_ = std::make_unique<Expansion>();
 }
 
 // In the surface body's frame: R_s the field body's centre, C_s its frame → surface frame. With
@@ -167,15 +193,11 @@ MutualTerms ExactMutual::refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian
     last_error_ = 0.0;
     return evaluate_level(0, R_s, C_s, J);
   }
-  auto difference = [&](const MutualTerms& a, const MutualTerms& b) {
-    const double F = std::max(b.dU_dR.norm(), 1e-300);
-    const double T = F * R_s.norm();
-    return std::max({std::abs(a.U - b.U) / std::abs(b.U), (a.dU_dR - b.dU_dR).norm() / F,
-                     (a.torque_A - b.torque_A).norm() / T, (a.torque_B - b.torque_B).norm() / T});
-  };
   // With J, each level's derivatives come with its terms (a few products per point beside the
-  // field's evaluation there); those of the level that meets the tolerance are kept.
-  int level = std::max(0, level_ - 1);
+  // field's evaluation there); those of the level that meets the tolerance are kept. Every
+  // evaluation starts from level 0, so its result is a function of the configuration alone (a
+  // continued run is the uninterrupted one bit for bit).
+  int level = 0;
   MutualTerms coarse = evaluate_level(level, R_s, C_s, J);
   for (;;) {
     if (level + 1 > options_.max_level) {
@@ -186,7 +208,7 @@ MutualTerms ExactMutual::refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian
       throw Error(msg.str());
     }
     MutualTerms fine = evaluate_level(level + 1, R_s, C_s, J);
-    last_error_ = difference(coarse, fine);
+    last_error_ = relative_change(coarse, fine, R_s);
     if (last_error_ <= options_.tolerance) {
       level_ = level + 1;
       return fine;
@@ -196,11 +218,105 @@ MutualTerms ExactMutual::refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian
   }
 }
 
+// (37.3)–(37.5): Φ_B and its derivatives sampled on the sphere of radius a (A's circumscribed
+// sphere) about A's centre of mass, projected on the solid harmonics of degree ≤ N and
+// contracted with A's moments; N raised until the sums to N − 2 and to N agree. False where it
+// cannot converge by degree 40 or — method automatic — would not be the faster.
+bool ExactMutual::expand(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J, MutualTerms& out) {
+  const Solid& body = *surface_->solid;
+  const double a = body.radius;
+  const double d = R_s.norm() - (field_->solid ? field_->solid->radius : 0.0);  // ≤ distance to B
+  if (!(d > a)) return false;
+  const double q = a / d;
+  constexpr int kMaxDegree = harmonic::kMaxDegree;
+  // Degree n adds about qⁿ (37.5): the first guess, raised by 2 until the sums to N − 2 and to
+  // N agree. From the configuration alone, as the quadrature's levels.
+  const double guess = std::ceil(std::log(options_.tolerance) / std::log(q));
+  if (!(guess <= kMaxDegree)) return false;
+  if (options_.method == ExactMutualOptions::Method::Automatic) {
+    // Where it pays: a polyhedron's field (a sum over all its faces and edges; an ellipsoid's or a
+    // point mass's is cheap enough for the quadrature), sampled at fewer points than the
+    // quadrature's first two levels hold.
+    const int n = static_cast<int>(guess);
+    const std::size_t nodes = static_cast<std::size_t>((n + 2) * (2 * n + 2));
+    if (!field_->polyhedron || nodes >= surface_->rule_size(1) + surface_->rule_size(2)) return false;
+  }
+  const Side& field = *field_;
+  const Mat3 Ct = C_s.transpose();
+  for (int N = std::max(4, static_cast<int>(guess)); N <= kMaxDegree; N += 2) {
+    // A sphere's projection holds (N+1)² × (N+2)(2N+2) numbers (46 MB at N = 40): a few kept.
+    if (expansion_->projections.size() >= 3 && !expansion_->projections.count(N)) expansion_->projections.clear();
+    const SphereProjection& sphere = expansion_->projections.try_emplace(N, N).first->second;
+    SolidHarmonicMoments& moments = expansion_->moments;
+    if (moments.degree < N) moments = solid_harmonic_moments(body.integrals(N), a, solid_harmonic_polynomials(N));
+    // Φ at the nodes; with J also ∂Φ/∂R_s = gᵀ and ∂Φ/∂φ = ((y − R_s) × g)ᵀ (26.3).
+    const auto K = static_cast<Eigen::Index>(sphere.nodes().size());
+    Eigen::MatrixXd samples(K, J ? 7 : 1);
+    bool inside = false;
+#pragma omp parallel for schedule(dynamic, 8) reduction(|| : inside)
+    for (Eigen::Index k = 0; k < K; ++k) {
+      const Vec3 y = a * sphere.nodes()[static_cast<std::size_t>(k)];
+      const FieldValue v = field.field(Ct * (y - R_s));
+      inside = inside || v.inside;
+      samples(k, 0) = v.phi;
+      if (J) {
+        const Vec3 g = C_s * v.g;
+        samples.block<1, 3>(k, 1) = g.transpose();
+        samples.block<1, 3>(k, 4) = (y - R_s).cross(g).transpose();
+      }
+    }
+    if (inside) return false;
+    const Eigen::MatrixXd c = sphere.project(samples);  // one row per harmonic
+    auto terms = [&](int degree) {
+      const Eigen::Index n = harmonic::count(degree);
+      MutualTerms t;
+      t.U = c.col(0).head(n).dot(moments.mass.head(n));
+      t.dU_dR = -(moments.gradient.leftCols(n) * c.col(0).head(n));
+      t.torque_A = -(moments.moment.leftCols(n) * c.col(0).head(n));
+      t.torque_B = R_s.cross(t.dU_dR) - t.torque_A;
+      return t;
+    };
+    const MutualTerms fine = terms(N);
+    last_error_ = relative_change(terms(N - 2), fine, R_s);
+    if (last_error_ > options_.tolerance) continue;
+    if (J) {  // the same contractions of the derivatives' coefficients, then (26.4)
+      const Eigen::Index n = harmonic::count(N);
+      J->g_R = -(moments.gradient.leftCols(n) * c.block(0, 1, n, 3));
+      J->g_phi = -(moments.gradient.leftCols(n) * c.block(0, 4, n, 3));
+      J->tauA_R = -(moments.moment.leftCols(n) * c.block(0, 1, n, 3));
+      J->tauA_phi = -(moments.moment.leftCols(n) * c.block(0, 4, n, 3));
+      J->tauB_R = hat(R_s) * J->g_R - hat(fine.dU_dR) - J->tauA_R;
+      J->tauB_phi = hat(R_s) * J->g_phi - J->tauA_phi;
+    }
+    last_degree_ = N;
+    out = fine;
+    return true;
+  }
+  return false;
+}
+
+MutualTerms ExactMutual::evaluate_in_surface_frame(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J) {
+  last_degree_ = -1;
+  if (surface_->solid && options_.method != ExactMutualOptions::Method::Quadrature) {
+    MutualTerms t;
+    if (expand(R_s, C_s, J, t)) return t;
+    if (options_.method == ExactMutualOptions::Method::Expansion) {
+      std::ostringstream msg;
+      msg << "the expansion does not reach the tolerance " << options_.tolerance
+          << " by degree " << harmonic::kMaxDegree << ": the surface body's circumscribed sphere (radius "
+          << surface_->solid->radius << ") is too close to the other body (centres " << R_s.norm()
+          << " apart); use method: quadrature";
+      throw Error(msg.str());
+    }
+  }
+  return refine(R_s, C_s, J);
+}
+
 MutualTerms ExactMutual::evaluate(const Vec3& R, const Mat3& C) {
   // Into the surface body's frame, and back: R_s = −Cᵀ R ⇒ ∂U/∂R = −C ∂U/∂R_s, roles swapped.
   const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
   const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
-  const MutualTerms s = refine(R_s, C_s, nullptr);
+  const MutualTerms s = evaluate_in_surface_frame(R_s, C_s, nullptr);
   if (surface_is_A_) return s;
   MutualTerms t;
   t.U = s.U;
@@ -214,7 +330,7 @@ MutualTerms ExactMutual::jacobian(const Vec3& R, const Mat3& C, MutualJacobian& 
   const Vec3 R_s = surface_is_A_ ? R : Vec3(-(C.transpose() * R));
   const Mat3 C_s = surface_is_A_ ? C : Mat3(C.transpose());
   MutualJacobian Js;
-  const MutualTerms s = refine(R_s, C_s, &Js);
+  const MutualTerms s = evaluate_in_surface_frame(R_s, C_s, &Js);
   if (surface_is_A_) {
     J = Js;
     return s;

@@ -1,7 +1,10 @@
 #pragma once
 // The exact mutual potential of two homogeneous bodies (docs/equations.md §14): one body's
 // exact exterior field integrated over the other's surface, refined until two successive
-// quadrature levels agree to a tolerance. Same frames and outputs as MutualSeries.
+// quadrature levels agree to a tolerance; or, when the surface body's circumscribed sphere is
+// far enough from the field body, the exact field sampled on that sphere, expanded in solid
+// harmonics and integrated through the surface body's moments, its degree raised until two
+// agree (§37). Same frames and outputs as MutualSeries.
 #include <noether/gravity_field.hpp>
 #include <noether/mutual_series.hpp>
 #include <noether/solid.hpp>
@@ -17,6 +20,10 @@ struct ExactMutualOptions {
   double tolerance = 1e-12;  // relative change of U, ∂U/∂R and torques between two levels
   int max_level = 7;         // polyhedra: 2, 3, 4, 6, 8, 12, 16, 24 points a side
   enum class Surface { Automatic, A, B } surface = Surface::Automatic;  // whose surface
+  // Automatic: the expansion (§37) where the field is a polyhedron's and the expansion converges
+  // by degree 40 at fewer field evaluations than the quadrature's first two levels, else the
+  // quadrature; Expansion: wherever it converges by degree 40, an error elsewhere.
+  enum class Method { Automatic, Quadrature, Expansion } method = Method::Automatic;
 };
 
 class ExactMutual {
@@ -34,7 +41,8 @@ class ExactMutual {
   // same quadrature, at the level at which the terms meet the tolerance.
   MutualTerms jacobian(const Vec3& R, const Mat3& C, MutualJacobian& J);
   double last_error_estimate() const { return last_error_; }
-  int last_level() const { return level_; }
+  int last_level() const { return level_; }  // the quadrature's
+  int last_degree() const { return last_degree_; }  // the expansion's; −1: the quadrature was used
   bool surface_is_A() const { return surface_is_A_; }
 
  private:
@@ -42,7 +50,13 @@ class ExactMutual {
   MutualTerms evaluate_level(int level, const Vec3& R_s, const Mat3& C_s, MutualJacobian* J = nullptr);
   // Levels from the last one reached until two agree to the tolerance, in the surface's frame.
   MutualTerms refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J);
+  // The expansion (§37), or false where it does not converge to the tolerance by degree 40.
+  bool expand(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J, MutualTerms& out);
+  MutualTerms evaluate_in_surface_frame(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J);
+  struct Expansion;
   std::unique_ptr<Side> surface_, field_;
+  std::unique_ptr<Expansion> expansion_;
+  int last_degree_ = -1;
   bool surface_is_A_ = true;
   ExactMutualOptions options_;
   int level_ = 0;

@@ -25,9 +25,11 @@
 // with a workspace) replaces Potential::position_hessian; State::tangent,
 // Integrator::tangent_map_unavailable and Integrator::carry_parameters (derivatives).
 // Version 8: Body::field (a body given by its Stokes coefficients) added to System.
-// Version 9 (current): forces beyond the potential — PluginKind::Force, ForceModel
+// Version 9: forces beyond the potential — PluginKind::Force, ForceModel
 // (force_model.hpp), PluginDescriptor::make_force, Integrator::add_forcing and
 // State::force_balance.
+// Version 10 (current): ExactMutualOptions::method and ExactMutual's expansion (its layout
+// changed); solid_harmonics.hpp added.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -45,7 +47,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 9u
+#define NOETHER_PLUGIN_API_VERSION 10u
 
 namespace noether {
 

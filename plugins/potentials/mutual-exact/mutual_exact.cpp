@@ -1,8 +1,10 @@
 // mutual-exact: the exact mutual potential, force and torques of every pair of bodies: one
 // body's exact exterior field (Werner–Scheeres polyhedron, MacMillan ellipsoid, or a point
 // mass) integrated over the other's surface, refined until two quadrature levels agree to
-// `tolerance` (docs/equations.md §14), and its force Jacobian from the same quadrature (§26). Slow; the oracle of the series, and a model for close
-// encounters of coarse shapes. Bodies must not overlap.
+// `tolerance` (docs/equations.md §14) — or, where the surface body's circumscribed sphere is far
+// enough from the other body, sampled on that sphere and expanded in solid harmonics until two
+// degrees agree (§37) — and its force Jacobian from the same numbers (§26). The oracle of the
+// series, and a model for close encounters of coarse shapes. Bodies must not overlap.
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
 #include <noether/mutual_pair.hpp>
@@ -32,6 +34,17 @@ class MutualExactPotential final : public noether::Potential {
     noether::ExactMutualOptions options;
     options.tolerance = params.at("tolerance").as_double();
     options.max_level = static_cast<int>(params.at("max_level").as_int());
+    const std::string method = params.at("method").as_string();
+    if (method == "automatic") options.method = noether::ExactMutualOptions::Method::Automatic;
+    else if (method == "quadrature") options.method = noether::ExactMutualOptions::Method::Quadrature;
+    else if (method == "expansion") options.method = noether::ExactMutualOptions::Method::Expansion;
+    else {
+      std::string msg = params.at("method").here();
+      msg += "mutual-exact: method must be automatic, quadrature or expansion, not '";
+      msg += method;
+      msg += "'";
+      throw SceneError(msg);
+    }
     if (!(options.tolerance > 0.0))
       throw SceneError(params.at("tolerance").here() + "mutual-exact: tolerance must be positive");
     if (options.max_level < 1 || options.max_level > 9)
@@ -114,7 +127,7 @@ class MutualExactPotential final : public noether::Potential {
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params& params) {
-  params.check_keys({"plugin", "tolerance", "max_level"}, "the mutual-exact potential");
+  params.check_keys({"plugin", "tolerance", "max_level", "method"}, "the mutual-exact potential");
   return std::make_unique<MutualExactPotential>(system, params);
 }
 
@@ -122,7 +135,11 @@ const noether::ParamDoc kParams[] = {
     {"tolerance", "number", "1e-12",
      "relative change of U, force and torques between two quadrature levels at which to stop"},
     {"max_level", "integer", "7",
-     "finest quadrature level (polyhedra 2,3,4,6,8,12,16,24,32,48 points a side; ellipsoids 12(k+1) x 24(k+1))"}};
+     "finest quadrature level (polyhedra 2,3,4,6,8,12,16,24,32,48 points a side; ellipsoids 12(k+1) x 24(k+1))"},
+    {"method", "string", "automatic",
+     "automatic: the solid-harmonic expansion of the field over the surface body's circumscribed sphere where it "
+     "converges by degree 40 (far pairs; hundreds of times faster), else the surface quadrature; quadrature; "
+     "expansion (an error where it does not converge)"}};
 
 }  // namespace
 
@@ -132,6 +149,6 @@ NOETHER_PLUGIN_DESCRIPTOR = {
     "mutual-exact",
     "exact mutual potential of ellipsoids, polyhedra and point masses by surface quadrature (slow; the reference)",
     kParams,
-    2,
+    3,
     &make,
     nullptr};
