@@ -366,7 +366,9 @@ TEST(ExactMutual, TheExpansionReproducesTheQuadratureAlongKw4sOrbit) {
   Errors worst{0, 0, 0};
   int lowest = 99, highest = 0;
 #ifdef NOETHER_TEST_SANITIZED
-  const std::size_t stride = 5;  // 10 of them: a Werner–Scheeres field costs ~10× more there
+  // Two of them, and no determinism checks: the field costs ~35× more there (10 configurations
+  // and the checks took 199 s of the sanitizer job).
+  const std::size_t stride = 25;
 #else
   const std::size_t stride = 1;
 #endif
@@ -376,6 +378,7 @@ TEST(ExactMutual, TheExpansionReproducesTheQuadratureAlongKw4sOrbit) {
     worst = {std::max(worst.U, d.U), std::max(worst.F, d.F), std::max(worst.M, d.M)};
     lowest = std::min(lowest, e.last_degree()), highest = std::max(highest, e.last_degree());
   }
+#ifndef NOETHER_TEST_SANITIZED
   // The nodes are shared among threads, the projection made on one: the same bits on 1 or 2.
   const int threads = omp_get_max_threads();
   const auto& [R0, C0] = cached.configs[7];
@@ -395,6 +398,7 @@ TEST(ExactMutual, TheExpansionReproducesTheQuadratureAlongKw4sOrbit) {
   EXPECT_EQ(one.dU_dR, two.dU_dR);
   EXPECT_EQ(one.torque_A, two.torque_A);
   EXPECT_EQ(one.torque_B, two.torque_B);
+#endif
   std::printf("KW4 radar meshes, 50 configurations: expansion (degrees %d to %d) against the cached quadrature: "
               "U %.1e, F %.1e, torques %.1e\n", lowest, highest, worst.U, worst.F, worst.M);
   EXPECT_LT(worst.U, 1e-12);
