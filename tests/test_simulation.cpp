@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 #include <unistd.h>
 
 using namespace noether;
@@ -21,6 +22,27 @@ bool same_bits(const State& a, const State& b) {
   for (std::size_t k = 0; k < a.R.size(); ++k)
     if (a.R[k] != b.R[k]) return false;
   return true;
+}
+
+// The scene run whole to t_end, and run to t_save, saved, loaded (a fresh simulation: its own
+// potential, integrator and workspaces) and continued to t_end.
+struct SavedAndContinued {
+  std::unique_ptr<Simulation> whole, continued;
+};
+SavedAndContinued run_whole_and_continued(const Scene& scene, PluginRegistry& registry, double t_save, double t_end,
+                                          const std::filesystem::path& file) {
+  SavedAndContinued r;
+  r.whole = std::make_unique<Simulation>(scene, registry);
+  r.whole->integrate(t_end);
+  {
+    Simulation first(scene, registry);
+    first.integrate(t_save);
+    first.save(file);
+  }
+  r.continued = Simulation::load(file, registry);
+  EXPECT_EQ(r.continued->time(), t_save);
+  r.continued->integrate(t_end);
+  return r;
 }
 
 const char* const kIntegrators[] = {"{plugin: lgvi, step: 0.0002}", "{plugin: lgvi, step: 0.0002, order: 4}",
@@ -52,18 +74,9 @@ TEST(Simulation, SaveAndLoadContinueBitwise) {
   // relative-frame and Lagrangian forms from their own variables (Integrator::checkpoint).
   for (const char* integrator : kIntegrators) {
     const Scene scene = test::dumbbell_scene({std::string("integrator=") + integrator, "run.t_end=1"});
-    Simulation whole(scene, registry);
-    whole.integrate(1.0);
-    {
-      Simulation first(scene, registry);
-      first.integrate(0.4002);
-      first.save(file);
-    }
-    auto second = Simulation::load(file, registry);
-    EXPECT_EQ(second->time(), 0.4002);
-    second->integrate(1.0);
-    EXPECT_TRUE(same_bits(whole.state(), second->state())) << integrator;
-    const RunSummary a = whole.summary(), b = second->summary();
+    const auto [whole, second] = run_whole_and_continued(scene, registry, 0.4002, 1.0, file);
+    EXPECT_TRUE(same_bits(whole->state(), second->state())) << integrator;
+    const RunSummary a = whole->summary(), b = second->summary();
     EXPECT_EQ(a.max_abs_energy_error, b.max_abs_energy_error);
     EXPECT_EQ(a.max_rel_angular_momentum_error, b.max_rel_angular_momentum_error);
     EXPECT_EQ(a.min_distance, b.min_distance);
@@ -84,17 +97,9 @@ TEST(Simulation, TheExactModelContinuesBitwise) {
     const Scene scene = load_scene(test::source_path("examples/kw4-ellipsoids.yaml"),
                                    {std::string("potential={plugin: mutual-exact, method: ") + method + "}",
                                     "run.t_end=1200", "run.output_every=600"});
-    Simulation whole(scene, registry);
-    whole.integrate(1200.0);
-    {
-      Simulation first(scene, registry);
-      first.integrate(420.0);
-      first.save(file);
-    }
-    auto second = Simulation::load(file, registry);
-    second->integrate(1200.0);
-    EXPECT_TRUE(same_bits(whole.state(), second->state())) << method;
-    EXPECT_EQ(whole.summary().max_abs_energy_error, second->summary().max_abs_energy_error) << method;
+    const auto [whole, second] = run_whole_and_continued(scene, registry, 420.0, 1200.0, file);
+    EXPECT_TRUE(same_bits(whole->state(), second->state())) << method;
+    EXPECT_EQ(whole->summary().max_abs_energy_error, second->summary().max_abs_energy_error) << method;
   }
   std::filesystem::remove(file);
 }

@@ -141,20 +141,13 @@ SolidHarmonicMoments solid_harmonic_moments(const InertiaIntegrals& T, double a,
 
 SphereProjection::SphereProjection(int N) : degree_(N) {
   check_degree(N, "sphere projection");
-  // Gauss–Legendre in u = cos θ with N + 2 nodes integrates R_i R_j (degree ≤ 2N) exactly, and
-  // 2N + 2 values of φ integrate cos(mφ) cos(m'φ) for m + m' ≤ 2N exactly (37.3).
-  std::vector<double> s, w;
-  gauss_legendre01(N + 2, s, w);
-  const int Q = 2 * N + 2;
+  // The unit sphere's rule of (14.7): Gauss–Legendre in u = cos θ with N + 2 nodes integrates
+  // R_i R_j (degree ≤ 2N) exactly, and 2N + 2 values of φ integrate cos(mφ) cos(m'φ) for
+  // m + m' ≤ 2N exactly (37.3). On the unit sphere n dS = ξ dΩ, so the weight is ξ · (n dS).
+  SurfaceRule sphere = ellipsoid_surface_rule(Vec3::Ones(), N + 2, 2 * N + 2);
+  nodes_ = std::move(sphere.points);
   std::vector<double> weight;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const double u = 2.0 * s[i] - 1.0, st = std::sqrt(std::max(0.0, 1.0 - u * u));
-    for (int k = 0; k < Q; ++k) {
-      const double phi = 2.0 * M_PI * k / Q;
-      nodes_.emplace_back(st * std::cos(phi), st * std::sin(phi), u);
-      weight.push_back(2.0 * w[i] * 2.0 * M_PI / Q);
-    }
-  }
+  for (std::size_t k = 0; k < nodes_.size(); ++k) weight.push_back(nodes_[k].dot(sphere.areas[k]));
   const int J = harmonic::count(N), K = static_cast<int>(nodes_.size());
   Eigen::MatrixXd values(J, K);
   for (int k = 0; k < K; ++k) solid_harmonic_values(nodes_[static_cast<std::size_t>(k)], N, values.col(k).data());

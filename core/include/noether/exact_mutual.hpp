@@ -48,7 +48,7 @@ class ExactMutual {
  private:
   struct Side;
   MutualTerms evaluate_level(int level, const Vec3& R_s, const Mat3& C_s, MutualJacobian* J = nullptr);
-  // Levels from the last one reached until two agree to the tolerance, in the surface's frame.
+  // Levels from 0 until two agree to the tolerance, in the surface's frame.
   MutualTerms refine(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J);
   // The expansion (§37), or false where it does not converge to the tolerance by degree 40.
   bool expand(const Vec3& R_s, const Mat3& C_s, MutualJacobian* J, MutualTerms& out);
