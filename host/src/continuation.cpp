@@ -38,6 +38,8 @@ void refuse_unsupported(const Scene& scene, const std::string& doing, const std:
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
+  if (!scene.particles.empty())
+    throw Error(doing + " a run whose scene has massless particles (particles:) is not supported yet" + advice);
   if (!continuing && !scene.forces.empty())
     throw Error(doing + " a run whose scene has forces beyond the potential (forces:) is not supported yet" + advice);
 }

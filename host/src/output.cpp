@@ -102,12 +102,16 @@ H5Writer::~H5Writer() {
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
-                           const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos) {
+                           const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos,
+                           const Eigen::Matrix3Xd* particles) {
   Impl& m = *impl_;
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
   const io::FrameInput in{*m.system, m.primary, m.secondary, state, d, work, interpolated_frames, wall_seconds,
-                          integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos};
+                          integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos,
+                          particles};
+  if (m.layout.particles > 0 && (!particles || static_cast<std::size_t>(particles->cols()) != m.layout.particles))
+    throw OutputError("the frame does not hold the recorded particles' positions");
   // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
   // seeded with the frame's index (the bytes a continued run reads back).
   const std::uint64_t seed = m.handed + m.buffered;

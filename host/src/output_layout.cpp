@@ -1,6 +1,7 @@
 // The output file's layout (docs/user-guide.md, "Output"): every group, attribute and series,
 // created once when the file is made; and /parameters/pair_models.
 #include <noether/output.hpp>
+#include <noether/particles.hpp>
 #include <noether/version.hpp>
 
 #include "h5_helpers.hpp"
@@ -61,7 +62,7 @@ void H5Writer::create_layout(const Scene& scene) {
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
   m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size(),
-                           options.chaos, options.force_names.size());
+                           options.chaos, options.force_names.size(), options.recorded_particles);
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
@@ -320,6 +321,70 @@ void H5Writer::write_pair_models(const std::vector<PairModel>& models) {
       numeric_attribute<double>(g, "exceeded_error", H5T_NATIVE_DOUBLE, {p.exceeded_error});
     }
   }
+  m.flush_file("flushing the output file");
+}
+
+namespace {
+
+// A [rows][columns] dataset of `type` from row-major values, with its description and unit.
+template <class T>
+void table_dataset(hid_t parent, const char* name, hid_t type, const std::vector<T>& values, hsize_t columns,
+                   const std::string& description, const std::string& unit) {
+  const hsize_t dims[2] = {columns ? values.size() / columns : 0, columns};
+  const io::H5Handle space(H5Screate_simple(columns > 1 ? 2 : 1, dims, nullptr));
+  const io::H5Handle d(check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), name));
+  if (!values.empty()) check(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), name);
+  string_attribute(d, "description", description);
+  if (!unit.empty()) string_attribute(d, "unit", unit);
+}
+
+}  // namespace
+
+// /test_particles: each particle's start, end and fate (docs/user-guide.md, "Particles").
+void H5Writer::write_particles(const ParticleSwarm& swarm, const Scene& scene) {
+  Impl& m = *impl_;
+  settle();
+  if (H5Lexists(m.file, "test_particles", H5P_DEFAULT) > 0) H5Ldelete(m.file, "test_particles", H5P_DEFAULT);
+  const io::H5Handle group(make_group(m.file, "test_particles"));
+  const std::size_t n = swarm.size();
+  std::vector<double> x0, v0, x, v, t, point, velocity;
+  std::vector<int> fate, body;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<Eigen::Index>(i);
+    const ParticleOutcome& o = swarm.outcomes()[i];
+    for (int k = 0; k < 3; ++k) {
+      x0.push_back(swarm.initial_positions()[i][k]);
+      v0.push_back(swarm.initial_velocities()[i][k]);
+      x.push_back(swarm.positions()(k, c));
+      v.push_back(swarm.velocities()(k, c));
+      point.push_back(o.point[k]);
+      velocity.push_back(o.velocity[k]);
+    }
+    t.push_back(o.t);
+    fate.push_back(static_cast<int>(o.fate));
+    body.push_back(o.body);
+  }
+  const Units& u = scene.units;
+  table_dataset(group, "initial_position", H5T_NATIVE_DOUBLE, x0, 3, "each particle's position at t0, inertial", u.of_length());
+  table_dataset(group, "initial_velocity", H5T_NATIVE_DOUBLE, v0, 3, "each particle's velocity at t0, inertial", u.of_velocity());
+  table_dataset(group, "position", H5T_NATIVE_DOUBLE, x, 3,
+                "each particle's position where the run ended, or where it landed or escaped", u.of_length());
+  table_dataset(group, "velocity", H5T_NATIVE_DOUBLE, v, 3,
+                "each particle's velocity where the run ended, or when it landed or escaped (inertial)", u.of_velocity());
+  table_dataset(group, "fate", H5T_NATIVE_INT, fate, 1, "0: in flight at the end, 1: landed on a body, 2: escaped", "");
+  table_dataset(group, "time", H5T_NATIVE_DOUBLE, t, 1, "the time of the landing or escape (NaN: in flight)", u.of_time());
+  table_dataset(group, "body", H5T_NATIVE_INT, body, 1, "the body landed on, by its index in /particles/bodies/name (-1: none)", "");
+  table_dataset(group, "impact_point", H5T_NATIVE_DOUBLE, point, 3,
+                "where it landed, in the body's frame (centre of mass, principal axes)", u.of_length());
+  table_dataset(group, "impact_velocity", H5T_NATIVE_DOUBLE, velocity, 3,
+                "its velocity relative to the spinning surface where it landed, body frame", u.of_velocity());
+  string_list_dataset(group, "fields", swarm.fields());
+  std::vector<std::string> names;
+  for (const Body& b : scene.system.bodies()) names.push_back(b.name);
+  string_attribute(group, "description",
+                   "massless particles (the scene's particles:), each body's field as they felt it in 'fields' (" +
+                       std::to_string(names.size()) + " bodies)");
+  numeric_attribute<std::int64_t>(group, "verlet_steps", H5T_NATIVE_INT64, {swarm.particle_steps()});
   m.flush_file("flushing the output file");
 }
 

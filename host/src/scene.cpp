@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
 #include <cmath>
 #include <optional>
 #include <limits>
@@ -338,6 +339,31 @@ double scene_gravitational_constant(const Params& root, const Units& units) {
   return G;
 }
 
+// An `orbit:` mapping's osculating elements (a, e, i, Omega, omega, nu | M; angles in degrees)
+// for `who` ("body 'moon'", "particle 3"): bound orbits only.
+OrbitalElements orbit_elements(const Params& o, const std::string& who) {
+  const double deg = M_PI / 180.0;
+  OrbitalElements el;
+  el.a = o.at("a").as_double();
+  el.e = o.get("e", 0.0);
+  el.i = o.get("i", 0.0) * deg;
+  el.Omega = o.get("Omega", 0.0) * deg;
+  el.omega = o.get("omega", 0.0) * deg;
+  if (!(std::isfinite(el.a) && el.a > 0.0))
+    throw SceneError(o.at("a").here() + "the orbit of " + who + ": 'a' must be positive (bound orbits only; "
+                     "give position and velocity for others)");
+  if (!(el.e >= 0.0 && el.e < 1.0))
+    throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
+                     "only; give position and velocity for others)");
+  if (o.has("nu") && o.has("M"))
+    throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
+                     "'M' (degrees), not both (neither: M = 0, at periapsis)");
+  el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.get("M", 0.0) * deg, el.e);
+  if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
+    throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
+  return el;
+}
+
 // Each body's initial position and velocity (docs/user-guide.md, "Initial states"): absolute,
 // relative to another body (`relative_to`), or osculating elements about another body
 // (`orbit`, eqs. 17.2–17.4, angles in degrees); then, with `barycentric: true`, shifted so
@@ -357,7 +383,6 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
     throw SceneError(name_node.here() + who + " refers to body '" + name + "', which the scene does not "
                      "have (bodies: " + known + ")");
   };
-  const double deg = M_PI / 180.0;
   // The body whose state body i's is given relative to, if any (keys checked here).
   auto reference_of = [&](std::size_t i) -> std::optional<std::size_t> {
     const Params& b = bodies.items()[i];
@@ -390,25 +415,7 @@ std::pair<std::vector<Vec3>, std::vector<Vec3>> initial_translation(const Params
       if (c) x[i] += x[*c], v[i] += v[*c];
       return;
     }
-    const Params& o = b.at("orbit");
-    OrbitalElements el;
-    el.a = o.at("a").as_double();
-    el.e = o.get("e", 0.0);
-    el.i = o.get("i", 0.0) * deg;
-    el.Omega = o.get("Omega", 0.0) * deg;
-    el.omega = o.get("omega", 0.0) * deg;
-    if (!(std::isfinite(el.a) && el.a > 0.0))
-      throw SceneError(o.at("a").here() + "the orbit of " + who + ": 'a' must be positive (bound orbits only; "
-                       "give position and velocity for others)");
-    if (!(el.e >= 0.0 && el.e < 1.0))
-      throw SceneError(o.at("e").here() + "the orbit of " + who + ": 'e' must be in [0, 1) (bound orbits "
-                       "only; give position and velocity for others)");
-    if (o.has("nu") && o.has("M"))
-      throw SceneError(o.here() + "the orbit of " + who + ": give the true anomaly 'nu' or the mean anomaly "
-                       "'M' (degrees), not both (neither: M = 0, at periapsis)");
-    el.nu = o.has("nu") ? o.at("nu").as_double() * deg : true_from_mean_anomaly(o.get("M", 0.0) * deg, el.e);
-    if (!std::isfinite(el.i + el.Omega + el.omega + el.nu))
-      throw SceneError(o.here() + "the orbit of " + who + ": angles must be finite numbers (degrees)");
+    const OrbitalElements el = orbit_elements(b.at("orbit"), who);
     const double mu = sys.G() * (sys.body(i).mass + sys.body(*c).mass);
     const RelativeState rel = state_from_elements(el, mu);  // (17.2)–(17.4)
     x[i] = x[*c] + rel.r;
@@ -546,6 +553,78 @@ Escape parse_escape(const Params& e, const System& system) {
 
 }  // namespace
 
+// particles: {around, states | file | orbits, step, degree, tolerance, escape, record}
+// (docs/user-guide.md, "Particles"): each source adds particles, in the order states, file, orbits.
+ParticleSettings parse_particles(const Params& p, const System& sys, const State& initial,
+                                 const std::filesystem::path& folder) {
+  p.check_keys({"around", "states", "file", "orbits", "step", "degree", "tolerance", "escape", "record"}, "'particles'");
+  ParticleSettings out;
+  Vec3 x0 = Vec3::Zero(), v0 = Vec3::Zero();
+  if (p.has("around")) {
+    const std::size_t c = body_named(p.at("around"), sys);
+    out.around = c;
+    x0 = initial.x.col(static_cast<Eigen::Index>(c));
+    v0 = initial.p.col(static_cast<Eigen::Index>(c)) / sys.body(c).mass;
+  }
+  auto add = [&](const std::vector<double>& z, const std::string& where) {
+    if (z.size() != 6 || !std::all_of(z.begin(), z.end(), [](double u) { return std::isfinite(u); }))
+      throw SceneError(where + "a particle's state is six finite numbers: x, y, z, vx, vy, vz");
+    out.position.push_back(x0 + Vec3(z[0], z[1], z[2]));
+    out.velocity.push_back(v0 + Vec3(z[3], z[4], z[5]));
+  };
+  if (p.has("states")) {
+    const Params& list = p.at("states");
+    if (!list.is_sequence()) throw SceneError(list.here() + "'particles.states' must be a list of [x, y, z, vx, vy, vz]");
+    for (const Params& z : list.items()) add(z.as_doubles(), z.here());
+  }
+  if (p.has("file")) {  // six numbers a line (commas or blanks); '#' starts a comment
+    const std::filesystem::path path = scene_file(p.at("file"), folder, "'particles'", "file of particle states");
+    std::ifstream in(path);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+      std::replace(line.begin(), line.end(), ',', ' ');
+      std::istringstream fields(line);
+      std::vector<double> z;
+      std::string word;
+      const std::string where = path.string() + ":" + std::to_string(number) + ": ";
+      while (fields >> word) {
+        char* end = nullptr;
+        const double u = std::strtod(word.c_str(), &end);
+        if (*end != '\0') throw SceneError(where + "'" + word + "' is not a number");
+        z.push_back(u);
+      }
+      if (!z.empty()) add(z, where);
+    }
+  }
+  if (p.has("orbits")) {  // osculating elements about `around` (17.2)–(17.4), angles in degrees
+    if (!out.around) throw SceneError(p.at("orbits").here() + "'particles.orbits' needs 'particles.around': the body they orbit");
+    const double mu = sys.G() * sys.body(*out.around).mass;
+    for (const Params& o : p.at("orbits").items()) {
+      o.check_keys({"a", "e", "i", "Omega", "omega", "nu", "M"}, "a particle's orbit");
+      const RelativeState rel = state_from_elements(orbit_elements(o, "particle " + std::to_string(out.position.size())), mu);
+      add({rel.r.x(), rel.r.y(), rel.r.z(), rel.v.x(), rel.v.y(), rel.v.z()}, o.here());
+    }
+  }
+  if (out.empty()) throw SceneError(p.here() + "'particles' gives no particle: list 'states', a 'file' or 'orbits'");
+  out.step = p.get("step", 0.0);
+  out.degree = static_cast<int>(p.get("degree", 16L));
+  out.tolerance = p.get("tolerance", out.tolerance);
+  out.escape = p.get("escape", 0.0);
+  const long record = p.get("record", 100L);
+  if (record < 0) throw SceneError(p.at("record").here() + "'particles.record' must be a count ≥ 0");
+  out.record = std::min(static_cast<std::size_t>(record), out.position.size());
+  if (!(out.step > 0.0 && std::isfinite(out.step)) && p.has("step"))
+    throw SceneError(p.at("step").here() + "'particles.step' must be a positive time (the particles' longest Verlet step)");
+  if (out.degree < 0 || out.degree > multi_index::kMaxDegree)
+    throw SceneError(p.at("degree").here() + "'particles.degree' must be 0.." + std::to_string(multi_index::kMaxDegree));
+  if (!(out.tolerance > 0.0 && out.tolerance < 1.0))
+    throw SceneError(p.at("tolerance").here() + "'particles.tolerance' must be in (0, 1)");
+  if (!(out.escape >= 0.0) || !std::isfinite(out.escape))
+    throw SceneError(p.at("escape").here() + "'particles.escape' must be a distance ≥ 0 (0: never)");
+  return out;
+}
+
 Scene parse_scene(const std::string& text, const std::string& file,
                   const std::vector<std::string>& overrides) {
   Scene scene;
@@ -556,7 +635,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (!root.is_map()) throw SceneError(file + ": a scene must be a YAML mapping (G, bodies, ...)");
   for (const auto& o : overrides) apply_override(root, o);
   root.set_path("");
-  root.check_keys({"description", "units", "G", "bodies", "potential", "forces", "integrator", "run", "barycentric", "impulses"},
+  root.check_keys({"description", "units", "G", "bodies", "potential", "forces", "integrator", "run", "barycentric", "impulses",
+                   "particles"},
                   "the scene");
   if (root.has("units")) scene.units = parse_units(root.at("units"));
   const double G = scene_gravitational_constant(root, scene.units);
@@ -691,6 +771,9 @@ Scene parse_scene(const std::string& text, const std::string& file,
     scene.initial.force_balance = Eigen::MatrixXd::Zero(kBalanceRows, static_cast<Eigen::Index>(scene.forces.size()));
   scene.integrator = plugin_config(root.at("integrator"), "integrator");
   if (root.has("impulses")) scene.impulses = parse_impulses(root.at("impulses"), scene.system, scene.initial.t);
+  if (root.has("particles"))
+    scene.particles = parse_particles(root.at("particles"), scene.system, scene.initial,
+                                      std::filesystem::path(file).parent_path());
   const Params& run = root.at("run");
   run.check_keys({"t_end", "output_every", "close_approach", "collisions", "escape", "trust", "stm", "sensitivities",
                   "chaos"},

@@ -112,6 +112,13 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   if (const double h = m.integrator->fixed_step(); h > 0)
     for (std::size_t k = 0; k < sc.impulses.size(); ++k)
       whole_steps(sc.impulses[k].time - sc.initial.t, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
+  if (!sc.particles.empty()) {
+    if (!(m.integrator->fixed_step() > 0.0) && !(sc.particles.step > 0.0))
+      throw SceneError(sc.root.at("particles").here() + "particles: integrator '" + sc.integrator.plugin +
+                       "' chooses its own steps, which may be long for the particles: give particles.step (their "
+                       "longest Verlet step)");
+    m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state);
+  }
   m.make_observer();
   // Frame 0: the integrator started at the initial state (which also tells the size of its
   // checkpoint, for the output's layout), its forces there.
@@ -213,6 +220,14 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
     schedule.after_step = [&m, column = m.deviation_column()](const State& reached) {
       m.chaos->step(reached.t, reached.tangent.col(column));
     };
+  if (m.particles) {  // carried over each step the bodies take (particles.hpp)
+    m.particle_bodies = m.state;
+    schedule.after_step = [&m, chaos = std::move(schedule.after_step)](const State& reached) {
+      if (chaos) chaos(reached);
+      m.particles->advance(m.particle_bodies, reached, m.threads);
+      m.particle_bodies = reached;
+    };
+  }
   StopInfo stop;
   const EvaluationThreads evaluation_threads(m.threads);  // the potential's, on this thread, while it integrates
   try {
@@ -378,6 +393,7 @@ Eigen::MatrixXd Simulation::mass_sensitivities() const {
   return dm;
 }
 const Potential& Simulation::potential() const { return *impl_->potential; }
+const ParticleSwarm* Simulation::particles() const { return impl_->particles.get(); }
 
 void Simulation::set_state(const State& s) {
   Impl& m = *impl_;
@@ -400,6 +416,9 @@ void Simulation::set_state(const State& s) {
     }
   }
   const Eigen::Index N = State::tangent_rows(sys);
+  if (m.particles)
+    throw Error("set_state: this run carries massless particles (particles:), which a new state of the bodies would "
+                "leave behind; make a Simulation for the new state instead");
   if (!m.scene.run.sensitivities.empty())
     throw Error("set_state: this run carries sensitivities to its scene's initial state (run.sensitivities), which "
                 "a state set here would no longer start from; make a Simulation for the new state instead");
@@ -435,6 +454,7 @@ RunSummary Simulation::summary() const {
   s.final_state = m.state;
   s.pair_models = m.pair_models();
   s.spin_states = m.observer->spin_states();
+  s.particles = m.particle_summary();
   if (m.chaos) {
     s.chaos = true;
     s.chaos_values = m.chaos->values();

@@ -2,6 +2,7 @@
 // Simulation::Impl: what a run held open consists of (internal to libnoether; simulation.cpp
 // drives it, continuation.cpp resumes, saves and loads it).
 #include <noether/output.hpp>
+#include <noether/particles.hpp>
 #include <noether/simulation.hpp>
 
 #include "chaos_indicators.hpp"
@@ -47,6 +48,10 @@ struct Simulation::Impl {
   // The scene's impulses in the order of their times, and the next one to apply.
   std::vector<std::size_t> impulse_order;
   std::size_t next_impulse = 0;
+  // The scene's massless particles (particles.hpp) and the bodies' state they were last carried to.
+  std::unique_ptr<ParticleSwarm> particles;
+  State particle_bodies;
+  Eigen::Matrix3Xd recorded_particles;  // their first particles.record at the frame being written
 
   // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
   bool carries_tangent() const { return scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos; }
@@ -111,6 +116,22 @@ struct Simulation::Impl {
     return forces;
   }
 
+  ParticleSummary particle_summary() const {
+    ParticleSummary s;
+    if (!particles) return s;
+    s.count = particles->size();
+    s.impacts.assign(scene.system.size(), 0);
+    for (const Body& b : scene.system.bodies()) s.bodies.push_back(b.name);
+    for (const ParticleOutcome& o : particles->outcomes()) {
+      if (o.fate == ParticleFate::impact) ++s.impacts[static_cast<std::size_t>(o.body)];
+      if (o.fate == ParticleFate::escape) ++s.escaped;
+      if (o.fate == ParticleFate::in_flight) ++s.in_flight;
+    }
+    s.steps = particles->particle_steps();
+    s.seconds = particles->seconds();
+    s.fields = particles->fields();
+    return s;
+  }
   WorkCounters work() const { return base_work + integrator->work(); }
   double wall_now() const {
     return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
@@ -147,9 +168,10 @@ struct Simulation::Impl {
   }
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
-      if (writer)
-        writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
-                            chaos ? chaos->values() : ChaosValues{});
+      if (!writer) return;
+      if (particles) particles->recorded_positions(s.t, recorded_particles);
+      writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
+                          chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr);
     });
   }
   // The output file's options; `continuation`: a resumed run's new file, which replaces the
@@ -166,6 +188,7 @@ struct Simulation::Impl {
     output.sensitivity_names = sensitivity_names;
     output.chaos = scene.run.chaos;
     for (const auto& f : summary.forces) output.force_names.push_back(f.name);
+    output.recorded_particles = scene.particles.empty() ? 0 : scene.particles.record;
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;
@@ -181,6 +204,7 @@ struct Simulation::Impl {
     auto records = integrator->take_step_series();
     if (!records.empty()) writer->append_step_series(records);
     writer->write_pair_models(pair_models());
+    if (particles) writer->write_particles(*particles, scene);
     RunSummary judged = summary;
     judged.work = work();
     judge(judged, scene);

@@ -4,6 +4,7 @@
 #include <noether/stepping.hpp>
 
 #include "event_watch.hpp"
+#include "regula_falsi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -79,8 +80,6 @@ class OutputTimes {
 
 }  // namespace
 
-namespace {
-
 // The state at t ∈ [s0.t, s1.t] for integrators without dense output: positions and momenta
 // by cubic Hermite interpolation of x and v = γ/m (16.2), attitudes along the geodesic
 // R0 exp(s log(R0ᵀR1)) (what the event functions read; spins are not filled).
@@ -104,7 +103,6 @@ void hermite_state(const System& system, const State& s0, const State& s1, doubl
   out.t = t;
 }
 
-}  // namespace
 
 StopInfo advance(Integrator& integrator, const Potential& potential, const System& system,
                  State& state, const Schedule& schedule, Observer& observer) {
@@ -219,21 +217,8 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
           continue;
         }
         if (g1 > 0) continue;
-        double a = t_prev, b = t, ga = w.gap(system, *previous), gb = g1;
-        int side = 0;
-        for (int it = 0; it < 200 && b - a > 1e-14 * std::max(1.0, std::abs(b)); ++it) {
-          const double c = (a * gb - b * ga) / (gb - ga);
-          const double gc = w.gap(system, positions_at(c));
-          if (gc > 0) {
-            a = c, ga = gc;
-            if (side == -1) gb *= 0.5;
-            side = -1;
-          } else {
-            b = c, gb = gc;
-            if (side == 1) ga *= 0.5;
-            side = 1;
-          }
-        }
+        const double b = detail::illinois_root([&](double c) { return w.gap(system, positions_at(c)); }, t_prev, t,
+                                               w.gap(system, *previous), g1, 1e-14);
         // A method that passed t_end (jm-hybrid, dense dopri5) reports no event beyond it.
         if (b < t_event && b <= t_end) t_event = b, hit = &w;
       }

@@ -77,6 +77,21 @@ std::string format_summary(const RunSummary& s) {
                   s.energy_unit.empty() ? "" : (" " + s.angular_momentum_unit).c_str());
     optional += line;
   }
+  if (s.particles.count > 0) {  // docs/user-guide.md, "Particles"
+    const ParticleSummary& p = s.particles;
+    std::string landed;
+    for (std::size_t b = 0; b < p.impacts.size(); ++b)
+      if (p.impacts[b] > 0) {
+        landed += ", ";
+        landed += std::to_string(p.impacts[b]);
+        landed += " landed on ";
+        landed += p.bodies[b];
+      }
+    std::snprintf(line, sizeof line, "particles                     %zu: %zu in flight, %zu escaped%s; %.3g us a particle-step\n",
+                  p.count, p.in_flight, p.escaped, landed.c_str(),
+                  p.steps > 0 ? 1e6 * p.seconds / static_cast<double>(p.steps) : 0.0);
+    optional += line;
+  }
   if (!s.mutual_pair.empty()) {
     if (s.mutual_revolutions > 0) {
       std::snprintf(line, sizeof line, "mutual orbit period           %.10g %s%s (%s, %d revolution%s of the trajectory)\n",
@@ -211,13 +226,40 @@ std::string format_summary_json(const RunSummary& s) {
   field("impulse_energy", json_number(s.impulse_energy));
   std::string forces = "[";
   auto vector = [](const Vec3& v) {
-    return "[" + json_number(v.x()) + ", " + json_number(v.y()) + ", " + json_number(v.z()) + "]";
+    std::string out = "[";
+    out += json_number(v.x());
+    out += ", ";
+    out += json_number(v.y());
+    out += ", ";
+    out += json_number(v.z());
+    return out + "]";
   };
   for (const ForceSummary& f : s.forces)
     forces += std::string(forces.size() > 1 ? ", " : "") + "{\"name\": " + json_string(f.name) +
               ", \"work\": " + json_number(f.work) + ", \"linear_momentum\": " + vector(f.linear_momentum) +
               ", \"angular_momentum\": " + vector(f.angular_momentum) + "}";
   field("forces", forces + "]");
+  if (s.particles.count > 0) {  // docs/user-guide.md, "Particles"
+    const ParticleSummary& p = s.particles;
+    std::string landed = "{";
+    for (std::size_t b = 0; b < p.bodies.size(); ++b) {
+      landed += b ? ", " : "";
+      landed += json_string(p.bodies[b]);
+      landed += ": ";
+      landed += std::to_string(p.impacts[b]);
+    }
+    std::string fields = "[";
+    for (const std::string& f : p.fields) {
+      fields += fields.size() > 1 ? ", " : "";
+      fields += json_string(f);
+    }
+    field("particles", "{\"count\": " + std::to_string(p.count) + ", \"in_flight\": " + std::to_string(p.in_flight) +
+                           ", \"escaped\": " + std::to_string(p.escaped) + ", \"landed\": " + landed +
+                           "}, \"verlet_steps\": " + std::to_string(p.steps) + ", \"seconds\": " + json_number(p.seconds) +
+                           ", \"fields\": " + fields + "]}");
+  } else {
+    field("particles", "null");
+  }
   std::string spins = "[";
   for (const SpinState& spin : s.spin_states)
     spins += std::string(spins.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +

@@ -17,6 +17,8 @@ class Output:
     …); out.description(name) what it is; out.names the bodies; out.frames the number of complete
     frames (a killed run's file holds only those: the rest is cut off). Names: see SERIES, or
     out.keys(). out.outcome is "completed", "stopped: …", "failed: …", or None for a killed run.
+    out.particles: the scene's massless particles' arrays (fate, time, body, position, …; empty
+    without particles).
     """
 
     def __init__(self, path):
@@ -50,6 +52,11 @@ class Output:
                     self._arrays[name] = d[: self.frames]
                     self._units[name] = d.attrs.get("unit", "")
                     self._descriptions[name] = d.attrs.get("description", "")
+            # The massless particles (docs/user-guide.md, "Particles"): fate, time, body, position, …
+            self.particles = {}
+            if "test_particles" in f:
+                for name, d in f["test_particles"].items():
+                    self.particles[name] = [_text(v) for v in d[()]] if name == "fields" else d[()]
             if "particles/bodies/inertia" in f:
                 self.inertias = f["particles/bodies/inertia"][()]
             # Each solid body's shape in its body frame: {"kind": "ellipsoid", "semi_axes": [a, b, c]}

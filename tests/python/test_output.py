@@ -57,7 +57,9 @@ def _frame_series(f):
       "an integrator with variables of its own"}),
     ("figure-eight.yaml", ["integrator.plugin=rk", "integrator.method=rk4", "integrator.step=0.001"], set()),
     ("didymos-spacecraft.yaml", ["integrator.step=0.01", "run.output_every=0.01"],
-     {"rigid bodies", "a binary", "a binary with a rigid primary", "a binary with a rigid secondary"})])
+     {"rigid bodies", "a binary", "a binary with a rigid primary", "a binary with a rigid secondary"}),
+    ("didymos-particles.yaml", ["integrator.step=0.01", "run.output_every=0.01", "particles.record=3"],
+     {"rigid bodies", "a binary", "a binary with a rigid primary", "a binary with a rigid secondary", "particles"})])
 def test_the_files_series_are_the_schema_table(source, tmp_path, scene, overrides, has):
     """The writer, the reader and noether.output_series() are one table: a file holds exactly
     the schema's series (the rigid bodies' only with rigid bodies, the integrator's own only when
@@ -88,6 +90,27 @@ def test_the_files_series_are_the_schema_table(source, tmp_path, scene, override
             "/" + p for p, s in schema.items() if s["checkpointed"])
     reader = noether.read(out)
     assert set(reader.keys()) == {schema[p]["name"] for p in expected}
+
+
+def test_the_particles_are_read_with_their_fates(source, tmp_path):
+    """A run with massless particles: the reader's particle_positions hold the recorded ones at
+    every frame, ending where /test_particles says each one ended (docs/user-guide.md, "Particles")."""
+    out = tmp_path / "particles.h5"
+    sim = noether.Simulation(source / "examples" / "didymos-particles.yaml", output=out,
+                             set=["run.t_end=3600", "run.output_every=600", "particles.record=5"])
+    sim.integrate(sim.run["t_end"])
+    sim.finish()
+    run = noether.read(out)
+    p = run.particles
+    assert p["fate"].shape == (24,) and set(p["fate"]) <= {0, 1, 2}
+    assert len(p["fields"]) == 2 and p["fields"][1].startswith("exact (ellipsoid")
+    track = run["particle_positions"]
+    assert track.shape == (7, 5, 3)
+    np.testing.assert_array_equal(track[0], p["initial_position"][:5])
+    np.testing.assert_array_equal(track[-1], p["position"][:5])
+    landed = p["fate"] == 1
+    assert np.all(p["body"][landed] >= 0) and np.all(p["body"][~landed & (p["fate"] == 0)] == -1)
+    assert np.all(np.isnan(p["time"][p["fate"] == 0]))
 
 
 def test_the_user_guide_names_every_series(source):

@@ -22,6 +22,8 @@
 
 namespace noether {
 
+class ParticleSwarm;
+
 struct OutputOptions {
   std::size_t block_frames = 1024; // write a block at least every this many frames
   double block_seconds = 1.0;      // and at least this often in wall time
@@ -41,6 +43,7 @@ struct OutputOptions {
   std::vector<std::string> sensitivity_names;
   bool chaos = false;  // /derivatives/megno and /derivatives/fli (run.chaos)
   std::vector<std::string> force_names;  // the scene's forces: /observables/force_balance, /parameters/forces
+  std::size_t recorded_particles = 0;    // /particles/test_particles/position: particles.record's
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
   // Build the file under its hidden name until publish() (a continued run: the old file stays
   // as it is until its frames have been read back, verified and copied).
@@ -62,7 +65,8 @@ class H5Writer {
   // checkpoint a continued run starts from); the chaos indicators there (options.chaos).
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
                    double wall_seconds, std::int64_t interpolated_frames = 0,
-                   const std::vector<double>& integrator_checkpoint = {}, const ChaosValues& chaos = {});
+                   const std::vector<double>& integrator_checkpoint = {}, const ChaosValues& chaos = {},
+                   const Eigen::Matrix3Xd* particles = nullptr);
   // Moves the file from its hidden name to its path (done by the constructor unless
   // options.defer_publish); until then the path holds what it held before.
   void publish();
@@ -72,6 +76,8 @@ class H5Writer {
   // /parameters/pair_models/<a>–<b>: the model chosen for each pair (rewritten when called
   // again, e.g. at the end of the run with what the run saw).
   void write_pair_models(const std::vector<PairModel>& models);
+  // /test_particles: the scene's massless particles, where they started and what became of them.
+  void write_particles(const ParticleSwarm& swarm, const Scene& scene);
   void finish(const WorkCounters& work, double wall_seconds, const std::string& outcome);
   // The run's verdict, written with /work by finish().
   void set_verdict(const std::string& verdict, const std::string& reasons, double relative_energy_error,

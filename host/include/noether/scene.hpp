@@ -63,6 +63,24 @@ struct Impulse {
   std::size_t around = 0;  // for rtn: the body orbited (default: the heaviest other body)
 };
 
+// Massless particles (the scene's `particles:`; docs/user-guide.md, "Particles"): their initial
+// states and how they are carried (particles.hpp).
+struct ParticleSettings {
+  std::vector<Vec3> position, velocity;  // initial, inertial, in the scene's units
+  // `around`: the body the states are given relative to (`states`, `file`) or about (`orbits`),
+  // and that `escape` is measured from (else the bodies' barycentre).
+  std::optional<std::size_t> around;
+  // The particles' longest Verlet step (38.3): each step of the bodies is cut into equal
+  // substeps no longer than this. 0: one Verlet step per step of the bodies (fixed-step
+  // integrators only: one that chooses its steps needs a particle step).
+  double step = 0.0;
+  int degree = 16;           // of the bodies' series fields (BodyFieldOptions)
+  double tolerance = 1e-10;  // of the series against a polyhedron's exact field (38.2)
+  double escape = 0.0;       // a particle farther than this has escaped (0: never)
+  std::size_t record = 100;  // the first this many particles' positions at every output frame
+  bool empty() const { return position.empty(); }
+};
+
 struct Scene {
   std::string file;                      // as given, for messages
   std::string text;                      // the scene text as read (before overrides)
@@ -76,6 +94,7 @@ struct Scene {
   PluginConfig integrator;
   RunSettings run;
   std::vector<Impulse> impulses;  // in the scene's order (keys impulses.K.…), times after t0
+  ParticleSettings particles;     // none unless the scene has `particles:`
 };
 
 // The scene as run (its resolved tree, after the overrides) as YAML text: load_scene on it

@@ -19,6 +19,8 @@
 
 namespace noether {
 
+class ParticleSwarm;
+
 struct RunOptions {
   std::optional<std::filesystem::path> output;  // HDF5 file, none if empty
   bool overwrite = false;                       // replace an existing output file (--force)
@@ -85,6 +87,17 @@ struct ForceSummary {
   Vec3 linear_momentum = Vec3::Zero(), angular_momentum = Vec3::Zero();
 };
 
+// What became of the scene's massless particles (`particles:`; docs/user-guide.md, "Particles").
+struct ParticleSummary {
+  std::size_t count = 0;
+  std::vector<std::string> bodies;   // the scene's bodies
+  std::vector<std::size_t> impacts;  // landed on each body, in the scene's order
+  std::size_t escaped = 0, in_flight = 0;
+  std::int64_t steps = 0;  // Verlet steps, all particles
+  double seconds = 0.0;    // wall time spent carrying them
+  std::vector<std::string> fields;  // each body's field as the particles feel it (BodyField::describe)
+};
+
 struct RunSummary {
   std::string potential;            // plugin names, "+"-joined
   std::string integrator;
@@ -144,6 +157,7 @@ struct RunSummary {
   WorkCounters work;
   double wall_seconds = 0.0;
   int threads = 1;  // threads inside each evaluation of the potential (RunOptions::threads)
+  ParticleSummary particles;  // count 0: the scene has none
 };
 
 // The scene's forces beyond the potential (`forces:`), made by name: each named by its plugin and
@@ -199,6 +213,8 @@ class Simulation {
   // v ∂m/∂key) / m.
   Eigen::MatrixXd mass_sensitivities() const;
   const Potential& potential() const;
+  // The scene's massless particles where the run stands (null: the scene has none).
+  const ParticleSwarm* particles() const;
   // The summary so far, judged against run.trust.
   RunSummary summary() const;
   // Saves the simulation where it stands (the scene, the exact state, t0 and the step count,

@@ -91,6 +91,11 @@ struct StopInfo {
 StopInfo advance(Integrator& integrator, const Potential& potential, const System& system,
                  State& state, const Schedule& schedule, Observer& observer);
 
+// The state at t ∈ [s0.t, s1.t] for integrators without dense output: positions and momenta
+// by cubic Hermite interpolation of x and v = γ/m (16.2), attitudes along the geodesic
+// R0 exp(s log(R0ᵀR1)); spins are not filled. Events and particles read it.
+void hermite_state(const System& system, const State& s0, const State& s1, double t, State& out);
+
 // For fixed-step methods: the number of steps of size h in `interval`. Throws SceneError
 // (naming `what`) when the interval is not a whole number of steps.
 std::int64_t whole_steps(double interval, double h, const char* what);

@@ -58,6 +58,7 @@ void force_balance(const FrameInput& in, void* out) {  // [force][7]: Eigen's co
   std::copy(in.state.force_balance.data(), in.state.force_balance.data() + in.state.force_balance.size(), doubles(out));
 }
 void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
+void particle_position(const FrameInput& in, void* out) { copy(*in.particles, out); }
 void velocity(const FrameInput& in, void* out) {  // v = γ/m
   double* v = doubles(out);
   for (std::size_t i = 0; i < in.system.size(); ++i)
@@ -292,6 +293,10 @@ const FrameQuantity kFrameSchema[] = {
      "(docs/equations.md eq. 33.3), in the units of energy, momentum and angular momentum; E − ΣW, P − ΣΔP and "
      "L − ΣΔL are what the forced flow conserves",
      9, force_balance, restore_force_balance},
+    {"particle_positions", "/particles/test_particles/position/value", E::kParticleVector, D::kLength, kH5md,
+     "position of each recorded massless particle (the scene's first particles.record particles, docs/user-guide.md "
+     "\"Particles\"), inertial frame [frame][particle][xyz]; a landed particle stays where it landed",
+     -1, particle_position, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -336,6 +341,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kSensitivity: return l.sensitivity_columns > 0;
     case E::kChaos: return l.chaos;
     case E::kForceBalance: return l.forces > 0;
+    case E::kParticleVector: return l.particles > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -368,13 +374,15 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kTangent: return {6 * (l.bodies + l.rigid), l.stm_columns};
     case E::kSensitivity: return {6 * (l.bodies + l.rigid), l.sensitivity_columns};
     case E::kForceBalance: return {l.forces, 7};
+    case E::kParticleVector: return {l.particles, 3};
   }
   return {};
 }
 
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
-                      std::size_t sensitivity_columns, bool chaos, std::size_t forces) {
+                      std::size_t sensitivity_columns, bool chaos, std::size_t forces, std::size_t particles) {
   FrameLayout l;
+  l.particles = particles;
   l.forces = forces;
   l.chaos = chaos;
   l.stm_columns = stm_columns;
@@ -396,7 +404,7 @@ bool rigid_only(const FrameQuantity& q) {
 }
 bool optional(const FrameQuantity& q) {
   return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos ||
-         q.extent == E::kForceBalance;
+         q.extent == E::kForceBalance || q.extent == E::kParticleVector;
 }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
@@ -413,6 +421,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kSensitivity: return "run.sensitivities";
     case E::kChaos: return "run.chaos";
     case E::kForceBalance: return "forces";
+    case E::kParticleVector: return "particles";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -458,6 +467,7 @@ std::string describe_extent(Extent e) {
     case E::kTangent: return "[frame][coordinate][coordinate]";
     case E::kSensitivity: return "[frame][coordinate][parameter]";
     case E::kForceBalance: return "[frame][force][7]";
+    case E::kParticleVector: return "[frame][particle][3]";
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:

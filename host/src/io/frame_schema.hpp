@@ -34,6 +34,8 @@ struct FrameInput {
   std::size_t stm_columns = 0;  // the state-transition matrix's columns of State::tangent (first), 0: none
   std::size_t sensitivity_columns = 0;  // the sensitivities' columns of State::tangent (last), 0: none
   const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
+  // The recorded massless particles' positions at the frame's time (particles.record; none: null).
+  const Eigen::Matrix3Xd* particles = nullptr;
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
@@ -69,6 +71,7 @@ enum class Extent {
   kSensitivity,      // [coordinate][parameter]: State::tangent's last columns (run.sensitivities)
   kChaos,            // []: a chaos indicator (run.chaos)
   kForceBalance,     // [force][7]: State::force_balance (the scene's `forces:`)
+  kParticleVector,   // [recorded particle][3]: the scene's first particles.record particles
 };
 
 // What decides which series a file has, and their shapes.
@@ -78,6 +81,7 @@ struct FrameLayout {
   std::size_t sensitivity_columns = 0;  // its last columns (run.sensitivities)
   bool chaos = false;                   // the chaos indicators (run.chaos)
   std::size_t forces = 0;               // forces beyond the potential (State::force_balance's columns)
+  std::size_t particles = 0;            // massless particles recorded at every frame (particles.record)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -117,7 +121,8 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
 // The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
 // a tangent of `stm_columns` + (δ of the chaos indicators) + `sensitivity_columns` columns.
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
-                      std::size_t sensitivity_columns = 0, bool chaos = false, std::size_t forces = 0);
+                      std::size_t sensitivity_columns = 0, bool chaos = false, std::size_t forces = 0,
+                      std::size_t particles = 0);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

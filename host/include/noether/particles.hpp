@@ -1,0 +1,80 @@
+#pragma once
+// Massless particles in a run (the scene's `particles:`; docs/user-guide.md, "Particles";
+// docs/equations.md §38): test particles — ejecta, boulders, spacecraft — that feel every body's
+// field (BodyField) and exert nothing. For each step the bodies' integrator takes, every particle
+// in flight takes steps of velocity Verlet (38.3), no longer than `step`, in the field of the bodies
+// at the substeps' ends (the step's own states at its ends, the cubic Hermite interpolant (16.2) between
+// them). The bodies' integration is untouched (the LGVI stays symplectic for them); each particle's
+// map is symplectic in the field of the bodies at those times, of order 2. A particle that ends a
+// substep inside a body's surface (its real shape, eq. 16.5) has landed: the time is found on the
+// substep's cubic Hermite path by regula falsi (38.4), with where and how fast it hit, in the body
+// frame. A particle farther than `escape` from the centre has escaped.
+#include <noether/body_field.hpp>
+#include <noether/scene.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace noether {
+
+enum class ParticleFate : int { in_flight = 0, impact = 1, escape = 2 };
+
+struct ParticleOutcome {
+  ParticleFate fate = ParticleFate::in_flight;
+  double t = std::numeric_limits<double>::quiet_NaN();  // of the impact or escape
+  int body = -1;                  // the body hit
+  Vec3 point = Vec3::Zero();      // impact: where, in the body frame (centre of mass, principal axes)
+  Vec3 velocity = Vec3::Zero();   // impact: the particle's velocity relative to the spinning surface there, body frame
+};
+
+class ParticleSwarm {
+ public:
+  // The particles of `settings` at their initial states, the bodies at `bodies` (the run's t0).
+  ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies);
+
+  // Carries every particle in flight from the bodies' state `from` to `to` (the ends of one step
+  // of their integrator, or of a shortened step at an event), on `threads` threads: each particle
+  // is independent, so the result is the same bit for bit for any number.
+  void advance(const State& from, const State& to, int threads);
+
+  std::size_t size() const { return outcomes_.size(); }
+  double time() const { return t_; }
+  const Eigen::Matrix3Xd& positions() const { return x_; }   // inertial; a landed particle's where it landed
+  const Eigen::Matrix3Xd& velocities() const { return v_; }
+  const std::vector<Vec3>& initial_positions() const { return settings_.position; }
+  const std::vector<Vec3>& initial_velocities() const { return settings_.velocity; }
+  const std::vector<ParticleOutcome>& outcomes() const { return outcomes_; }
+  // The positions of the first `settings.record` particles at t in [the last step's start, time()]:
+  // at time() where they stand; before it (an output frame between an adaptive method's steps) on
+  // the cubic Hermite path through their positions and velocities at the step's ends.
+  void recorded_positions(double t, Eigen::Matrix3Xd& out) const;
+  // Particle i's energy per unit mass in the bodies' field at `bodies`: ½ v² + Σ Φ_b (38.1).
+  double energy(std::size_t i, const State& bodies);
+  // What each body's field is (BodyField::describe), in the scene's order of bodies.
+  std::vector<std::string> fields() const;
+  std::int64_t particle_steps() const { return particle_steps_; }  // Verlet steps taken, all particles
+  double seconds() const { return seconds_; }                      // wall time spent in advance()
+
+  struct Placement;  // the bodies' positions and attitudes at one time
+
+ private:
+  Vec3 acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const;
+  void carry(std::size_t i, const std::vector<Placement>& ends, const State& from, const State& to,
+             std::vector<BodyField>& fields, State& probe);
+  ParticleOutcome landing(std::size_t body, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,
+                          const Vec3& vb, const State& from, const State& to, State& probe) const;
+
+  const System& system_;
+  ParticleSettings settings_;
+  std::vector<std::vector<BodyField>> fields_;  // one copy per thread (the series holds scratch)
+  Eigen::Matrix3Xd x_, v_, a_;                  // a: the acceleration at x, at time t_
+  Eigen::Matrix3Xd x_before_, v_before_;        // the recorded particles at the last step's start
+  double t_before_ = 0.0;
+  std::vector<ParticleOutcome> outcomes_;
+  double t_ = 0.0;
+  std::int64_t particle_steps_ = 0;
+  double seconds_ = 0.0;
+};
+
+}  // namespace noether

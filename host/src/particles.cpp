@@ -1,0 +1,240 @@
+// Massless particles carried with a run's bodies (particles.hpp; docs/equations.md §38).
+#include <noether/error.hpp>
+#include <noether/evaluation_threads.hpp>
+#include <noether/particles.hpp>
+#include <noether/stepping.hpp>
+
+#include "regula_falsi.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace noether {
+
+struct ParticleSwarm::Placement {
+  double t = 0.0;
+  std::vector<Vec3> x;  // the bodies' centres
+  std::vector<Mat3> R;  // their attitudes (identity for a point mass)
+};
+
+namespace {
+
+ParticleSwarm::Placement placement_of(const System& system, const State& s) {
+  ParticleSwarm::Placement at;
+  at.t = s.t;
+  for (std::size_t b = 0; b < system.size(); ++b) {
+    at.x.push_back(s.x.col(static_cast<Eigen::Index>(b)));
+    const int k = system.rigid_index(b);
+    at.R.push_back(k >= 0 ? s.R[static_cast<std::size_t>(k)] : Mat3::Identity());
+  }
+  return at;
+}
+
+// The cubic Hermite path of a particle over [0, h] from (xa, va) to (xb, vb), at s ∈ [0, 1]:
+// its position and velocity.
+void hermite_path(const Vec3& xa, const Vec3& va, const Vec3& xb, const Vec3& vb, double h, double s, Vec3& x,
+                  Vec3& v) {
+  const double s2 = s * s, s3 = s2 * s;
+  x = (2 * s3 - 3 * s2 + 1) * xa + (s3 - 2 * s2 + s) * h * va + (-2 * s3 + 3 * s2) * xb + (s3 - s2) * h * vb;
+  v = ((6 * s2 - 6 * s) * xa + (-6 * s2 + 6 * s) * xb) / h + (3 * s2 - 4 * s + 1) * va + (3 * s2 - 2 * s) * vb;
+}
+
+}  // namespace
+
+ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies)
+    : system_(system), settings_(settings) {
+  if (!(settings_.step >= 0.0)) throw SceneError("particles.step must be positive (0: the bodies' steps)");
+  const auto n = static_cast<Eigen::Index>(settings_.position.size());
+  x_.resize(3, n);
+  v_.resize(3, n);
+  a_.resize(3, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    x_.col(i) = settings_.position[static_cast<std::size_t>(i)];
+    v_.col(i) = settings_.velocity[static_cast<std::size_t>(i)];
+  }
+  outcomes_.assign(static_cast<std::size_t>(n), {});
+  t_ = bodies.t;
+  fields_.emplace_back();
+  for (const Body& b : system.bodies()) fields_[0].emplace_back(b, system.G(), BodyFieldOptions{settings_.degree, settings_.tolerance});
+  // A particle that starts inside a body is refused (where it stands it would land at once).
+  const Placement at = placement_of(system, bodies);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (std::size_t b = 0; b < system.size(); ++b) {
+      const BodyField& f = fields_[0][b];
+      if (!f.has_surface()) continue;
+      const Vec3 r = at.R[b].transpose() * (x_.col(i) - at.x[b]);
+      if (r.norm() <= f.bounding_radius() && f.surface_gap(r) <= 0.0)
+        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, then orbits) starts "
+                         "inside body '" + system.body(b).name + "' (its surface, eq. 16.5); start it outside");
+    }
+    a_.col(i) = acceleration(x_.col(i), at, fields_[0]);
+  }
+}
+
+void ParticleSwarm::recorded_positions(double t, Eigen::Matrix3Xd& out) const {
+  const auto recorded = static_cast<Eigen::Index>(settings_.record);
+  out = x_.leftCols(recorded);
+  if (t >= t_ || x_before_.cols() != recorded) return;  // at the last step's end (or t0)
+  for (Eigen::Index i = 0; i < recorded; ++i) {
+    const ParticleOutcome& o = outcomes_[static_cast<std::size_t>(i)];
+    // The path from the step's start to where the particle stands: the step's end, its landing or escape.
+    const double end = o.fate != ParticleFate::in_flight && o.t <= t_ && o.t > t_before_ ? o.t : t_;
+    if (t >= end) continue;
+    Vec3 x, v;
+    hermite_path(x_before_.col(i), v_before_.col(i), x_.col(i), v_.col(i), end - t_before_,
+                 (t - t_before_) / (end - t_before_), x, v);
+    out.col(i) = x;
+  }
+}
+
+std::vector<std::string> ParticleSwarm::fields() const {
+  std::vector<std::string> out;
+  for (const BodyField& f : fields_[0]) out.push_back(f.describe());
+  return out;
+}
+
+// (38.1): Σ_b R_b g_b(R_bᵀ (x − x_b)).
+Vec3 ParticleSwarm::acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const {
+  Vec3 a = Vec3::Zero();
+  for (std::size_t b = 0; b < fields.size(); ++b)
+    a += at.R[b] * fields[b](at.R[b].transpose() * (x - at.x[b])).acceleration;
+  return a;
+}
+
+double ParticleSwarm::energy(std::size_t i, const State& bodies) {
+  const Placement at = placement_of(system_, bodies);
+  double phi = 0.0;
+  for (std::size_t b = 0; b < fields_[0].size(); ++b)
+    phi += fields_[0][b](at.R[b].transpose() * (x_.col(static_cast<Eigen::Index>(i)) - at.x[b])).potential;
+  return 0.5 * v_.col(static_cast<Eigen::Index>(i)).squaredNorm() + phi;
+}
+
+void ParticleSwarm::advance(const State& from, const State& to, int threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto recorded = static_cast<Eigen::Index>(settings_.record);
+  x_before_ = x_.leftCols(recorded);
+  v_before_ = v_.leftCols(recorded);
+  t_before_ = t_;
+  // Equal substeps no longer than particles.step (one: the bodies' step).
+  const double span = to.t - from.t;
+  const int n = settings_.step > 0.0 ? std::max(1, static_cast<int>(std::ceil(span / settings_.step - 1e-9))) : 1;
+  // The bodies at the substeps' ends: the step's own states at its ends, Hermite between (16.2).
+  std::vector<Placement> ends;
+  ends.reserve(static_cast<std::size_t>(n) + 1);
+  ends.push_back(placement_of(system_, from));
+  State probe;
+  for (int s = 1; s < n; ++s) {
+    hermite_state(system_, from, to, from.t + (to.t - from.t) * s / n, probe);
+    ends.push_back(placement_of(system_, probe));
+  }
+  ends.push_back(placement_of(system_, to));
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(size())));
+  while (fields_.size() < static_cast<std::size_t>(threads)) fields_.push_back(fields_[0]);
+  std::vector<State> probes(static_cast<std::size_t>(threads));
+  std::vector<std::int64_t> steps(static_cast<std::size_t>(threads), 0);
+  parallel_for_each(size(), threads, [&](std::size_t i, int thread) {
+    if (outcomes_[i].fate != ParticleFate::in_flight) return;
+    carry(i, ends, from, to, fields_[static_cast<std::size_t>(thread)], probes[static_cast<std::size_t>(thread)]);
+    steps[static_cast<std::size_t>(thread)] += n;
+  });
+  for (const std::int64_t s : steps) particle_steps_ += s;
+  // Escapes, at the step's end: farther than `escape` from `around` (or the bodies' barycentre).
+  if (settings_.escape > 0.0) {
+    Vec3 centre = Vec3::Zero();
+    if (settings_.around) {
+      centre = to.x.col(static_cast<Eigen::Index>(*settings_.around));
+    } else {
+      double m = 0.0;
+      for (std::size_t b = 0; b < system_.size(); ++b) {
+        centre += system_.body(b).mass * to.x.col(static_cast<Eigen::Index>(b));
+        m += system_.body(b).mass;
+      }
+      centre /= m;
+    }
+    for (std::size_t i = 0; i < size(); ++i)
+      if (outcomes_[i].fate == ParticleFate::in_flight &&
+          (x_.col(static_cast<Eigen::Index>(i)) - centre).norm() > settings_.escape) {
+        outcomes_[i].fate = ParticleFate::escape;
+        outcomes_[i].t = to.t;
+      }
+  }
+  t_ = to.t;
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// (38.3): kick, drift, kick through each substep; a landing ends the particle's flight (38.4).
+void ParticleSwarm::carry(std::size_t i, const std::vector<Placement>& ends, const State& from, const State& to,
+                          std::vector<BodyField>& fields, State& probe) {
+  const auto c = static_cast<Eigen::Index>(i);
+  Vec3 x = x_.col(c), v = v_.col(c), a = a_.col(c);
+  for (std::size_t s = 1; s < ends.size(); ++s) {
+    const double h = ends[s].t - ends[s - 1].t;
+    const Vec3 half = v + 0.5 * h * a;
+    const Vec3 x1 = x + h * half;
+    const Vec3 a1 = acceleration(x1, ends[s], fields);
+    const Vec3 v1 = half + 0.5 * h * a1;
+    for (std::size_t b = 0; b < fields.size(); ++b) {
+      const BodyField& f = fields[b];
+      if (!f.has_surface()) continue;
+      const Vec3 r = ends[s].R[b].transpose() * (x1 - ends[s].x[b]);
+      if (r.squaredNorm() > f.bounding_radius() * f.bounding_radius() || f.surface_gap(r) > 0.0) continue;
+      ParticleOutcome landed = landing(b, ends[s - 1].t, ends[s].t, x, v, x1, v1, from, to, probe);
+      // Of two bodies hit in one substep, the first.
+      if (outcomes_[i].fate == ParticleFate::in_flight || landed.t < outcomes_[i].t) outcomes_[i] = landed;
+    }
+    if (outcomes_[i].fate == ParticleFate::impact) {
+      // The particle stays where it landed, with the velocity it landed with (inertial).
+      const double u = (outcomes_[i].t - ends[s - 1].t) / h;
+      Vec3 xl, vl;
+      hermite_path(x, v, x1, v1, h, u, xl, vl);
+      x_.col(c) = xl;
+      v_.col(c) = vl;
+      a_.col(c) = a1;
+      return;
+    }
+    x = x1, v = v1, a = a1;
+  }
+  x_.col(c) = x;
+  v_.col(c) = v;
+  a_.col(c) = a;
+}
+
+// (38.4): the time in [ta, tb] where the particle's Hermite path meets body b's surface, which
+// it is outside of at ta and inside of at tb, by the Illinois variant of regula falsi on the gap
+// (16.5) between the path and the body at its interpolated place (16.2).
+ParticleOutcome ParticleSwarm::landing(std::size_t b, double ta, double tb, const Vec3& xa, const Vec3& va,
+                                       const Vec3& xb, const Vec3& vb, const State& from, const State& to,
+                                       State& probe) const {
+  const BodyField& f = fields_[0][b];
+  const double h = tb - ta;
+  const int k = system_.rigid_index(b);
+  // The particle relative to the body at time t: its place in the body frame, and (when `rel`)
+  // its velocity relative to the spinning surface there.
+  auto relative = [&](double t, Vec3* rel) {
+    Vec3 x, v;
+    hermite_path(xa, va, xb, vb, h, (t - ta) / h, x, v);
+    hermite_state(system_, from, to, t, probe);
+    const auto c = static_cast<Eigen::Index>(b);
+    const Mat3 R = k >= 0 ? probe.R[static_cast<std::size_t>(k)] : Mat3::Identity();
+    const Vec3 r = R.transpose() * (x - probe.x.col(c));
+    if (rel) {
+      *rel = R.transpose() * (v - probe.p.col(c) / system_.body(b).mass);
+      if (k >= 0) {  // Ω = J⁻¹ Π, Π linear in time over the step
+        const double u = (t - from.t) / (to.t - from.t);
+        const Vec3 Pi = (1 - u) * from.Pi.col(k) + u * to.Pi.col(k);
+        *rel -= (system_.body(b).inertia_inverse * Pi).cross(r);
+      }
+    }
+    return r;
+  };
+  auto gap = [&](double t) { return f.surface_gap(relative(t, nullptr)); };
+  const double c = detail::illinois_root(gap, ta, tb, gap(ta), gap(tb), 1e-15);
+  ParticleOutcome out;
+  out.fate = ParticleFate::impact;
+  out.t = c;
+  out.body = static_cast<int>(b);
+  out.point = relative(c, &out.velocity);
+  return out;
+}
+
+}  // namespace noether
