@@ -279,6 +279,7 @@ TEST(Particles, ARunWritesEachParticlesFate) {
   sim.integrate(scene.run.t_end);
   const std::vector<ParticleOutcome> outcomes = sim.particles()->outcomes();
   const Eigen::Matrix3Xd x = sim.particles()->positions();
+  const State bodies = sim.state();
   const RunSummary s = sim.finish();
   ASSERT_EQ(s.particles.count, 5u);
   EXPECT_EQ(s.particles.impacts[1], 1u) << "the first lands on dimorphos";
@@ -308,8 +309,15 @@ TEST(Particles, ARunWritesEachParticlesFate) {
   for (std::size_t i = 0; i < 5; ++i)
     for (std::size_t k = 0; k < 3; ++k) {
       EXPECT_EQ(track[3 * i + k], scene.particles.position[i][static_cast<Eigen::Index>(k)]) << "frame 0: the start";
-      EXPECT_EQ(track[6 * 15 + 3 * i + k], x(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i))) << "the last frame";
+      if (outcomes[i].fate != ParticleFate::impact)
+        EXPECT_EQ(track[6 * 15 + 3 * i + k], x(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i))) << "the last frame";
     }
+  {  // the landed one rides on Dimorphos at its impact point
+    const Vec3 last(track[6 * 15], track[6 * 15 + 1], track[6 * 15 + 2]);
+    const Vec3 riding = bodies.x.col(1) + bodies.R[1] * outcomes[0].point;
+    EXPECT_LT((last - riding).norm(), 1e-9 * riding.norm());
+    EXPECT_GT((last - x.col(0)).norm(), 1.0) << "Dimorphos moved on since the landing";
+  }
   read("/test_particles/fate", H5T_NATIVE_INT, 5, fate.data());
   read("/test_particles/body", H5T_NATIVE_INT, 5, body.data());
   read("/test_particles/time", H5T_NATIVE_DOUBLE, 5, t.data());
@@ -345,11 +353,11 @@ TEST(Particles, RecordedPositionsBetweenStepsFollowThePath) {
   stepped.advance(turned(scene, 0.0), turned(scene, 30.0), 1);
   exact.advance(turned(scene, 0.0), turned(scene, 17.0), 1);
   Eigen::Matrix3Xd between, at;
-  stepped.recorded_positions(17.0, between);
-  exact.recorded_positions(17.0, at);
+  stepped.recorded_positions(turned(scene, 17.0), between);
+  exact.recorded_positions(turned(scene, 17.0), at);
   ASSERT_EQ(between.cols(), 1);
   std::printf("between the steps: %.3e m from the particle carried to t = 17 s\n", (between - at).norm());
   EXPECT_LT((between - at).norm(), 1e-7);
-  stepped.recorded_positions(30.0, between);
+  stepped.recorded_positions(turned(scene, 30.0), between);
   EXPECT_EQ(between.col(0), stepped.positions().col(0));
 }

@@ -71,13 +71,22 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   }
 }
 
-void ParticleSwarm::recorded_positions(double t, Eigen::Matrix3Xd& out) const {
+void ParticleSwarm::recorded_positions(const State& bodies, Eigen::Matrix3Xd& out) const {
   const auto recorded = static_cast<Eigen::Index>(settings_.record);
+  const double t = bodies.t;
   out = x_.leftCols(recorded);
-  if (t >= t_ || x_before_.cols() != recorded) return;  // at the last step's end (or t0)
   for (Eigen::Index i = 0; i < recorded; ++i) {
     const ParticleOutcome& o = outcomes_[static_cast<std::size_t>(i)];
-    // The path from the step's start to where the particle stands: the step's end, its landing or escape.
+    if (o.fate == ParticleFate::impact && o.t <= t) {  // on its body: x_b + R_b r
+      const auto b = static_cast<std::size_t>(o.body);
+      const int k = system_.rigid_index(b);
+      out.col(i) = bodies.x.col(static_cast<Eigen::Index>(b)) +
+                   (k >= 0 ? bodies.R[static_cast<std::size_t>(k)] : Mat3::Identity()) * o.point;
+      continue;
+    }
+    if (t >= t_ || x_before_.cols() != recorded) continue;  // at the last step's end (or t0)
+    // The path from the step's start to where the particle stands: the step's end, or its
+    // landing or escape within the step.
     const double end = o.fate != ParticleFate::in_flight && o.t <= t_ && o.t > t_before_ ? o.t : t_;
     if (t >= end) continue;
     Vec3 x, v;

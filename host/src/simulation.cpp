@@ -117,7 +117,11 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
       throw SceneError(sc.root.at("particles").here() + "particles: integrator '" + sc.integrator.plugin +
                        "' chooses its own steps, which may be long for the particles: give particles.step (their "
                        "longest Verlet step)");
-    m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state);
+    try {
+      m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state);
+    } catch (const SceneError& e) {  // where in the scene: the particles' block
+      throw SceneError(sc.root.at("particles").here() + e.what());
+    }
   }
   m.make_observer();
   // Frame 0: the integrator started at the initial state (which also tells the size of its

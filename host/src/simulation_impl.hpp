@@ -169,7 +169,7 @@ struct Simulation::Impl {
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
       if (!writer) return;
-      if (particles) particles->recorded_positions(s.t, recorded_particles);
+      if (particles) particles->recorded_positions(s, recorded_particles);
       writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
                           chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr);
     });

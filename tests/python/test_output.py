@@ -107,8 +107,12 @@ def test_the_particles_are_read_with_their_fates(source, tmp_path):
     track = run["particle_positions"]
     assert track.shape == (7, 5, 3)
     np.testing.assert_array_equal(track[0], p["initial_position"][:5])
-    np.testing.assert_array_equal(track[-1], p["position"][:5])
     landed = p["fate"] == 1
+    flying = ~landed[:5]
+    np.testing.assert_array_equal(track[-1][flying], p["position"][:5][flying])
+    for i in np.flatnonzero(landed[:5]):  # rides on its body: as far from its centre as where it landed
+        centre = run["positions"][-1][p["body"][i]]
+        assert abs(np.linalg.norm(track[-1][i] - centre) - np.linalg.norm(p["impact_point"][i])) < 1e-9
     assert np.all(p["body"][landed] >= 0) and np.all(p["body"][~landed & (p["fate"] == 0)] == -1)
     assert np.all(np.isnan(p["time"][p["fate"] == 0]))
 

@@ -45,10 +45,12 @@ class ParticleSwarm {
   const std::vector<Vec3>& initial_positions() const { return settings_.position; }
   const std::vector<Vec3>& initial_velocities() const { return settings_.velocity; }
   const std::vector<ParticleOutcome>& outcomes() const { return outcomes_; }
-  // The positions of the first `settings.record` particles at t in [the last step's start, time()]:
-  // at time() where they stand; before it (an output frame between an adaptive method's steps) on
-  // the cubic Hermite path through their positions and velocities at the step's ends.
-  void recorded_positions(double t, Eigen::Matrix3Xd& out) const;
+  // The positions of the first `settings.record` particles when the bodies are at `bodies`, at a
+  // time in [the last step's start, time()]: at time() where they stand; before it (an output
+  // frame between an adaptive method's steps) on the cubic Hermite path through their positions
+  // and velocities at the step's ends. A particle that has landed rides on its body, at the point
+  // where it landed.
+  void recorded_positions(const State& bodies, Eigen::Matrix3Xd& out) const;
   // Particle i's energy per unit mass in the bodies' field at `bodies`: ½ v² + Σ Φ_b (38.1).
   double energy(std::size_t i, const State& bodies);
   // What each body's field is (BodyField::describe), in the scene's order of bodies.

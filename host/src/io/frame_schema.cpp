@@ -295,7 +295,8 @@ const FrameQuantity kFrameSchema[] = {
      9, force_balance, restore_force_balance},
     {"particle_positions", "/particles/test_particles/position/value", E::kParticleVector, D::kLength, kH5md,
      "position of each recorded massless particle (the scene's first particles.record particles, docs/user-guide.md "
-     "\"Particles\"), inertial frame [frame][particle][xyz]; a landed particle stays where it landed",
+     "\"Particles\"), inertial frame [frame][particle][xyz]; a landed particle rides on its body at the point "
+     "where it landed",
      -1, particle_position, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},

@@ -126,7 +126,8 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   }
   if (frames < 1)
     throw OutputError(path.string() + " holds no complete frame (the run was killed before its first block "
-                                      "was written); start it again");
+                                      "was written); start it again (noether run SCENE -o FILE --force, Python force=True: the file "
+                                      "exists)");
   // The shapes the frame schema gives (io/frame_schema.hpp), each series with at least
   // /frames_complete frames (exactly that many once the run ended and wrote /work).
   const auto n = static_cast<hsize_t>(frames);
