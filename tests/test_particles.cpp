@@ -254,6 +254,17 @@ TEST(Particles, SceneErrorsNameTheField) {
   refused("{file: no-such-file.csv}", "not found");
   const Scene inside = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 400, 300]}}", 0.0,
                                        "{states: [[2000, 0, 0, 0, 0, 0], [100, 0, 0, 0, 0, 0]]}");
+  {  // a bodies' step of 10^9 particle steps: an error, not an overflowing count
+    const Scene far = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 400, 300]}}", 0.0,
+                                      "{states: [[2000, 0, 0, 0, 0, 0]], step: 1.0e-3}");
+    ParticleSwarm swarm(far.system, far.particles, far.initial);
+    try {
+      swarm.advance(turned(far, 0.0), turned(far, 1.0e6), 1);
+      ADD_FAILURE() << "10^9 substeps were taken";
+    } catch (const IntegrationError& e) {
+      EXPECT_NE(std::string(e.what()).find("raise particles.step"), std::string::npos) << e.what();
+    }
+  }
   try {
     ParticleSwarm swarm(inside.system, inside.particles, inside.initial);
     ADD_FAILURE() << "a particle inside the body was accepted";

@@ -8,8 +8,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 namespace noether {
+
+namespace {
+constexpr double kMaxSubsteps = 1e7;  // particle steps in one step of the bodies
+}  // namespace
 
 struct ParticleSwarm::Placement {
   double t = 0.0;
@@ -125,8 +130,15 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
   v_before_ = v_.leftCols(recorded);
   t_before_ = t_;
   // Equal substeps no longer than particles.step (one: the bodies' step).
-  const double span = to.t - from.t;
-  const int n = settings_.step > 0.0 ? std::max(1, static_cast<int>(std::ceil(span / settings_.step - 1e-9))) : 1;
+  const double span = to.t - from.t, substeps = settings_.step > 0.0 ? std::ceil(span / settings_.step - 1e-9) : 1.0;
+  if (!(substeps <= kMaxSubsteps)) {
+    std::ostringstream why;
+    why << "particles: the bodies' step from t = " << from.t << " to " << to.t << " is " << substeps
+        << " particle steps of " << settings_.step << " (at most " << kMaxSubsteps
+        << "); raise particles.step or limit the integrator's step";
+    throw IntegrationError(why.str(), from.t);
+  }
+  const int n = std::max(1, static_cast<int>(substeps));
   // The bodies at the substeps' ends: the step's own states at its ends, Hermite between (16.2).
   std::vector<Placement> ends;
   ends.reserve(static_cast<std::size_t>(n) + 1);
