@@ -252,6 +252,25 @@ TEST(Particles, SceneErrorsNameTheField) {
   refused("{states: [[2000, 0, 0, 0, 0, 0]], step: 0}", "'particles.step' must be");
   refused("{states: [[2000, 0, 0, 0, 0, 0]], speed: 1}", "speed");
   refused("{file: no-such-file.csv}", "not found");
+  const std::string cloud = "{ejecta: {body: rock, site: [10, 20], count: 10, speed: [0.1, 0.5]";
+  refused(cloud + ", cone: 90}}", "'particles.ejecta.cone'");
+  refused(cloud + ", exponent: 0}}", "'particles.ejecta.exponent'");
+  refused("{ejecta: {body: rock, site: [10, 20], count: 10, speed: [0.5, 0.1]}}", "'particles.ejecta.speed' is [min, max]");
+  refused("{ejecta: {body: rock, site: [100, 20], count: 10, speed: [0.1, 0.5]}}", "latitude in [-90, 90]");
+  refused("{ejecta: {body: rock, site: [10, 20], count: 0, speed: [0.1, 0.5]}}", "'particles.ejecta.count' must be");
+  refused("{ejecta: {body: rock, count: 10, speed: [0.1, 0.5]}}", "'particles.ejecta' needs 'site'");
+  refused("{ejecta: {body: stone, site: [10, 20], count: 10, speed: [0.1, 0.5]}}", "no body 'stone'");
+  refused(cloud + ", angle: 30}}", "angle");
+  try {  // a point mass has no surface to leave
+    parse_scene("units: SI\nG: 6.674e-11\nbodies:\n  - {name: rock, mass: 1.0e12, position: [0, 0, 0]}\n"
+                "potential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 10}\nrun: {t_end: 100}\n"
+                "particles: " + cloud + "}}\n",
+                source_path("examples/particles-test.yaml"));
+    ADD_FAILURE() << "ejecta from a point mass were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("'rock' has no surface to throw ejecta from"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("particles-test.yaml:"), std::string::npos) << e.what();
+  }
   const Scene inside = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 400, 300]}}", 0.0,
                                        "{states: [[2000, 0, 0, 0, 0, 0], [100, 0, 0, 0, 0, 0]]}");
   {  // a bodies' step of 10^9 particle steps: an error, not an overflowing count
@@ -269,7 +288,7 @@ TEST(Particles, SceneErrorsNameTheField) {
     ParticleSwarm swarm(inside.system, inside.particles, inside.initial);
     ADD_FAILURE() << "a particle inside the body was accepted";
   } catch (const SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("particle 1 (from 0: particles.states, then file, then orbits) starts inside body 'rock'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("particle 1 (from 0: particles.states, then file, orbits, ejecta) starts inside body 'rock'"), std::string::npos) << e.what();
   }
 }
 
@@ -371,4 +390,108 @@ TEST(Particles, RecordedPositionsBetweenStepsFollowThePath) {
   EXPECT_LT((between - at).norm(), 1e-7);
   stepped.recorded_positions(turned(scene, 30.0), between);
   EXPECT_EQ(between.col(0), stepped.positions().col(0));
+}
+
+// Ejecta (39.1)–(39.2): every particle leaves from the site on the real surface (a spinning
+// ellipsoid's and a polyhedron's), at the cone's angle from the normal (the gap's gradient there,
+// found independently), with its speed relative to the spinning surface distributed as the power
+// law says; azimuths uniform; the first k particles of a larger cloud are the same k particles.
+TEST(Particles, EjectaLeaveTheSiteAtTheConeWithThePowerLawsSpeeds) {
+  const double vmin = 0.05, vmax = 5.0, gamma = 1.2, cone = 45.0;
+  const auto cloud = [&](int count) {
+    return "{ejecta: {body: rock, site: [20, 60], count: " + std::to_string(count) +
+           ", speed: [0.05, 5.0], exponent: 1.2, cone: 45, height: 1.0, seed: 7}}";
+  };
+  for (const std::string shape : {"density: 2200, shape: {ellipsoid: {semi_axes: [103.16, 79.35, 66.13]}}",
+                                  "density: 2000, shape: {polyhedron: {file: shapes/hou2017_B.obj, units: km}}"}) {
+    SCOPED_TRACE(shape);
+    const int n = 20000;
+    const double spin = 1.46e-4;
+    const Scene scene = lone_body_scene(shape, spin, cloud(n));
+    ASSERT_EQ(scene.particles.position.size(), static_cast<std::size_t>(n));
+    const Body& body = scene.system.body(0);
+    const Solid& solid = *body.solid;
+    const Vec3 Omega = body.inertia_inverse * scene.initial.Pi.col(0);
+    const Mat3& R = scene.initial.R[0];
+    const Vec3 s0 = R.transpose() * (scene.particles.position[0] - scene.initial.x.col(0));
+    // The outward normal at the site: the gap's gradient (distance to the face or the ellipsoid).
+    Vec3 normal;
+    const double d = 0.01;  // outside the surface on either side (the height is 1)
+    for (int k = 0; k < 3; ++k)
+      normal[k] = (surface_gap(solid, s0 + d * Vec3::Unit(k)) - surface_gap(solid, s0 - d * Vec3::Unit(k))) / (2 * d);
+    normal.normalize();
+    EXPECT_NEAR(surface_gap(solid, s0), 1.0, 1e-9 * solid.radius) << "the height above the surface";
+    const double lat = 20 * M_PI / 180, lon = 60 * M_PI / 180;
+    const Vec3 site = s0 - normal;  // 1 below, along the normal
+    EXPECT_NEAR(surface_gap(solid, site), 0.0, 1e-9 * solid.radius) << "on the surface";
+    EXPECT_NEAR(site.normalized().dot(Vec3(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat))),
+                1.0, 1e-12) << "on the ray of the site's latitude and longitude";
+    std::array<int, 3> faster{};
+    const std::array<double, 3> v_test{0.1, 0.5, 2.0};
+    Vec3 mean_tangent = Vec3::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 s = R.transpose() * (scene.particles.position[static_cast<std::size_t>(i)] - scene.initial.x.col(0));
+      ASSERT_EQ(s, s0);
+      const Vec3 v = R.transpose() * (scene.particles.velocity[static_cast<std::size_t>(i)] - scene.initial.p.col(0) / body.mass) -
+                     Omega.cross(s);
+      const double speed = v.norm();
+      ASSERT_GE(speed, vmin * (1 - 1e-12));
+      ASSERT_LE(speed, vmax * (1 + 1e-12));
+      ASSERT_NEAR(std::acos(std::clamp(v.dot(normal) / speed, -1.0, 1.0)) * 180 / M_PI, cone, 1e-5);
+      mean_tangent += (v / speed - v.dot(normal) / speed * normal) / std::sin(cone * M_PI / 180);
+      for (std::size_t k = 0; k < 3; ++k) faster[k] += speed > v_test[k];
+    }
+    // N(>v) ∝ v^-γ truncated to [vmin, vmax] (39.1): each fraction within 4σ of its binomial spread.
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double p = (std::pow(v_test[k], -gamma) - std::pow(vmax, -gamma)) / (std::pow(vmin, -gamma) - std::pow(vmax, -gamma));
+      EXPECT_NEAR(faster[k] / double(n), p, 4 * std::sqrt(p * (1 - p) / n)) << "faster than " << v_test[k];
+    }
+    EXPECT_LT((mean_tangent / n).norm(), 4 * std::sqrt(1.0 / n)) << "azimuths uniform about the normal";
+    const Scene first = lone_body_scene(shape, spin, cloud(100));
+    for (std::size_t i = 0; i < 100; ++i) {
+      EXPECT_EQ(first.particles.position[i], scene.particles.position[i]);
+      EXPECT_EQ(first.particles.velocity[i], scene.particles.velocity[i]);
+    }
+  }
+}
+
+// A particle thrown straight up from a sphere below the escape speed falls back where it left,
+// when the radial Kepler orbit says: r = a (1 − cos η), t = √(a³/μ) (η − sin η), 2a the apex; the
+// time's error falls as the step's square (Verlet's order).
+TEST(Particles, AThrowStraightUpFallsBackWhenKeplerSays) {
+  const double R = 500.0, v0 = 0.3;
+  double errors[2];
+  for (int halving = 0; halving < 2; ++halving) {
+    const double h = 5.0 / (1 << halving);  // 2 and 4 Verlet steps a step of the bodies (10 s)
+    const Scene scene = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}", 0.0,
+                                        "{ejecta: {body: rock, site: [30, 40], count: 1, speed: [0.3, 0.3], cone: 0}, "
+                                        "step: " + std::to_string(h) + "}");
+    const double mu = scene.system.G() * scene.system.body(0).mass;
+    const Vec3 x0 = scene.particles.position[0];
+    const double r0 = x0.norm();
+    ASSERT_NEAR(r0, R * (1 + 1e-6), 1e-9);
+    ASSERT_NEAR(scene.particles.velocity[0].dot(x0 / r0), v0, 1e-15);
+    const double a = -mu / (2 * (0.5 * v0 * v0 - mu / r0));
+    auto t_of = [&](double r) {
+      const double eta = std::acos(1 - r / a);
+      return std::sqrt(a * a * a / mu) * (eta - std::sin(eta));
+    };
+    const double flight = 2 * std::sqrt(a * a * a / mu) * M_PI - t_of(r0) - t_of(R);
+    ParticleSwarm swarm(scene.system, scene.particles, scene.initial);
+    State from = turned(scene, 0.0);
+    for (int k = 1; k <= static_cast<int>(flight / 10) + 2 && swarm.outcomes()[0].fate == ParticleFate::in_flight; ++k) {
+      const State to = turned(scene, 10.0 * k);
+      swarm.advance(from, to, 1);
+      from = to;
+    }
+    const ParticleOutcome& o = swarm.outcomes()[0];
+    ASSERT_EQ(o.fate, ParticleFate::impact);
+    errors[halving] = std::abs(o.t - flight);
+    std::printf("h = %g: lands after %.9f s, Kepler %.9f s (%.3e s); %.3e m from the site\n", h, o.t, flight,
+                errors[halving], (o.point - R * x0 / r0).norm());
+    EXPECT_LT(errors[halving], 1e-5 * flight);
+    EXPECT_LT((o.point - R * x0 / r0).norm(), 1e-6 * R) << "straight down onto the site";
+    EXPECT_NEAR(o.velocity.norm(), std::sqrt(v0 * v0 + 2 * mu * (1 / R - 1 / r0)), 1e-4 * v0);
+  }
+  EXPECT_NEAR(std::log2(errors[0] / errors[1]), 2.0, 0.2) << "order 2";
 }

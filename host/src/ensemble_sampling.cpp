@@ -5,6 +5,8 @@
 #include <noether/params.hpp>
 #include <noether/scene.hpp>
 
+#include "portable_random.hpp"
+
 #include <Eigen/Cholesky>
 
 #include <algorithm>
@@ -30,19 +32,6 @@ double number(const std::string& text, const std::string& where) {
   if (used != text.size() || text.empty() || !std::isfinite(v))
     throw SceneError(where + ": '" + text + "' is not a finite number");
   return v;
-}
-
-// splitmix64: a stateless, portable hash of (seed, index, k) to 64 random bits.
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-// A uniform double in (0, 1) from (seed, index, stream): 53 bits, never 0.
-double uniform01(std::uint64_t seed, std::uint64_t index, std::uint64_t stream) {
-  const std::uint64_t bits = mix(mix(mix(seed) ^ index) ^ (stream * 0x632be59bd9b4e019ULL));
-  return (static_cast<double>(bits >> 11) + 0.5) * 0x1p-53;
 }
 
 }  // namespace

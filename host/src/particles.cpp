@@ -69,7 +69,7 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
       if (!f.has_surface()) continue;
       const Vec3 r = at.R[b].transpose() * (x_.col(i) - at.x[b]);
       if (r.norm() <= f.bounding_radius() && f.surface_gap(r) <= 0.0)
-        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, then orbits) starts "
+        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
                          "inside body '" + system.body(b).name + "' (its surface, eq. 16.5); start it outside");
     }
     a_.col(i) = acceleration(x_.col(i), at, fields_[0]);

@@ -1,5 +1,6 @@
 // parse_scene: the scene's tree (scene_yaml.cpp) checked and built into bodies, shapes, initial
 // states, plugins and run settings (docs/user-guide.md, "Scenes").
+#include <noether/ejecta.hpp>
 #include <noether/error.hpp>
 #include <noether/euler_angles.hpp>
 #include <noether/force_model.hpp>
@@ -551,13 +552,62 @@ Escape parse_escape(const Params& e, const System& system) {
   return out;
 }
 
+// particles.ejecta: {body, site: [latitude, longitude], count, speed: [min, max], exponent, cone,
+// height, seed} (ejecta.hpp; docs/equations.md §39).
+EjectaSettings parse_ejecta(const Params& e, const System& sys) {
+  e.check_keys({"body", "site", "count", "speed", "exponent", "cone", "height", "seed"}, "'particles.ejecta'");
+  for (const char* key : {"body", "site", "count", "speed"})
+    if (!e.has(key))
+      throw SceneError(e.here() + "'particles.ejecta' needs '" + key +
+                       "' (body, site: [latitude, longitude], count, speed: [min, max])");
+  EjectaSettings out;
+  out.body = body_named(e.at("body"), sys);
+  const std::vector<double> site = e.at("site").as_doubles();
+  if (site.size() != 2 || !(std::abs(site[0]) <= 90.0) || !std::isfinite(site[1]))
+    throw SceneError(e.at("site").here() + "'particles.ejecta.site' is [latitude, longitude] in degrees, in the body "
+                     "frame, latitude in [-90, 90]");
+  out.latitude = site[0];
+  out.longitude = site[1];
+  const long count = e.get("count", 0L);
+  if (count < 1 || count > 10000000L)  // 10^7 particles hold ~0.5 GB of states
+    throw SceneError(e.at("count").here() + "'particles.ejecta.count' must be 1..10^7");
+  out.count = static_cast<std::size_t>(count);
+  const std::vector<double> speed = e.at("speed").as_doubles();
+  if (speed.size() != 2 || !(speed[0] > 0.0) || !(speed[1] >= speed[0]) || !std::isfinite(speed[1]))
+    throw SceneError(e.at("speed").here() + "'particles.ejecta.speed' is [min, max], 0 < min <= max: launch speeds "
+                     "relative to the surface");
+  out.speed_min = speed[0];
+  out.speed_max = speed[1];
+  out.exponent = e.get("exponent", out.exponent);
+  if (!(out.exponent > 0.0) || !std::isfinite(out.exponent))
+    throw SceneError(e.at("exponent").here() + "'particles.ejecta.exponent' (gamma of N(>v) ∝ v^-gamma) must be > 0");
+  out.cone = e.get("cone", out.cone);
+  if (!(out.cone >= 0.0 && out.cone < 90.0))
+    throw SceneError(e.at("cone").here() + "'particles.ejecta.cone' (degrees from the surface's normal) must be in "
+                     "[0, 90)");
+  out.height = e.get("height", out.height);
+  if (!(out.height >= 0.0) || !std::isfinite(out.height))
+    throw SceneError(e.at("height").here() + "'particles.ejecta.height' must be a distance ≥ 0");
+  const long seed = e.get("seed", 1L);
+  if (seed < 0) throw SceneError(e.at("seed").here() + "'particles.ejecta.seed' must be ≥ 0");
+  out.seed = static_cast<std::uint64_t>(seed);
+  try {
+    surface_point_along(sys.body(out.body), Vec3::UnitX());
+  } catch (const SceneError& error) {
+    throw SceneError(e.at("body").here() + error.what());
+  }
+  return out;
+}
+
 }  // namespace
 
-// particles: {around, states | file | orbits, step, degree, tolerance, escape, record}
-// (docs/user-guide.md, "Particles"): each source adds particles, in the order states, file, orbits.
+// particles: {around, states | file | orbits | ejecta, step, degree, tolerance, escape, record}
+// (docs/user-guide.md, "Particles"): each source adds particles, in the order states, file, orbits,
+// ejecta.
 ParticleSettings parse_particles(const Params& p, const System& sys, const State& initial,
                                  const std::filesystem::path& folder) {
-  p.check_keys({"around", "states", "file", "orbits", "step", "degree", "tolerance", "escape", "record"}, "'particles'");
+  p.check_keys({"around", "states", "file", "orbits", "ejecta", "step", "degree", "tolerance", "escape", "record"},
+               "'particles'");
   ParticleSettings out;
   Vec3 x0 = Vec3::Zero(), v0 = Vec3::Zero();
   if (p.has("around")) {
@@ -606,7 +656,13 @@ ParticleSettings parse_particles(const Params& p, const System& sys, const State
       add({rel.r.x(), rel.r.y(), rel.r.z(), rel.v.x(), rel.v.y(), rel.v.z()}, o.here());
     }
   }
-  if (out.empty()) throw SceneError(p.here() + "'particles' gives no particle: list 'states', a 'file' or 'orbits'");
+  if (p.has("ejecta")) {  // a cloud thrown from a surface, or a list of them (39.1)–(39.2)
+    const Params& list = p.at("ejecta");
+    const auto clouds = list.is_sequence() ? list.items() : std::vector<Params>{list};
+    for (const Params& e : clouds) launch_ejecta(parse_ejecta(e, sys), sys, initial, out.position, out.velocity);
+  }
+  if (out.empty())
+    throw SceneError(p.here() + "'particles' gives no particle: list 'states', a 'file', 'orbits' or 'ejecta'");
   out.step = p.get("step", 0.0);
   out.degree = static_cast<int>(p.get("degree", 16L));
   out.tolerance = p.get("tolerance", out.tolerance);

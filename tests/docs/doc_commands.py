@@ -49,6 +49,10 @@ COVERED_ELSEWHERE = {
     "v/bin/noether run examples/dumbbells.yaml": PIP,
     'v/bin/python -c "import noether"': PIP,
     "v/bin/pip uninstall -y noether": PIP,
+    "noether run examples/didymos-ejecta-cloud.yaml -o ejecta-cloud.h5 --threads 2":
+        "tests/cli/ejecta_cloud.py runs the cloud's first 300 particles (the 10^4 take 2 min on CI's 2 cores)",
+    "tools/plot_ejecta.py ejecta-cloud.h5 docs/img/ejecta-cloud.png":
+        "tests/cli/ejecta_cloud.py draws the 300 particles' run and checks its counts",
     "mpirun -n 8 noether ensemble examples/didymos.yaml --vary 'bodies.dimorphos.velocity.1=normal(0.1714158386581219, 0.0001)' --samples 10000 -o dart.h5":
         "tests/cli/ensemble.py runs an ensemble under mpirun -n 2 (8 ranks and 10^4 samples do not fit a 2-core CI)",
 }
