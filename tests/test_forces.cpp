@@ -225,7 +225,7 @@ TEST(Tides, RefusalsSayWhy) {
   refused({"integrator={plugin: cvode, form: lagrangian}"},
           "forces: integrator 'cvode' cannot take them: cvode takes forces beyond the potential in its inertial "
           "Hamiltonian equations only");
-  refused({"run.stm=true"}, "has no tangent map yet");
+  refused({"run.sensitivities=[bodies.moon.mass]"}, "carries no sensitivities to parameters yet");
   refused({"forces.0.body=moon"}, "is a point mass");
   refused({"forces.0.k2=-1"}, "k2 must be");
   refused({"forces.0.plugin=point-mass"}, "is a potential, not a force");

@@ -1,5 +1,8 @@
 #include <noether/error.hpp>
 #include <noether/force_model.hpp>
+#include <noether/lie.hpp>
+
+#include <cmath>
 
 namespace noether {
 
@@ -80,6 +83,56 @@ void ForcingEvaluator::add_to_inertial_hamiltonian(const State& state, double* d
   for (std::size_t j = 0; j < terms_.size(); ++j)
     Eigen::Map<Eigen::Matrix<double, kBalanceRows, 1>>(balance_rates + kBalanceRows * j) =
         balance_rate(system_, state, terms_[j]);
+}
+
+void ForcingEvaluator::jacobian(const State& state, Eigen::MatrixXd& J) {
+  const auto n = static_cast<Eigen::Index>(system_.size()), m = static_cast<Eigen::Index>(system_.rigid_count());
+  saved_terms_ = terms_;
+  saved_total_ = total_;
+  // (33.5): each coordinate's step is ε^{1/3} of its scale, where central differences' truncation
+  // (∝ step²) and round-off (∝ ε/step) balance: lengths of the largest separation (or of the
+  // largest distance from the origin), momenta of a body's at the fastest speed, angular
+  // momenta of the largest |Π| (none spinning: of turning at that speed over that length),
+  // attitudes of a radian. A scale that is still zero falls back to 1.
+  double L = 0.0, V = 0.0, S = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    L = std::max(L, state.x.col(i).norm());
+    for (Eigen::Index j = 0; j < i; ++j) L = std::max(L, (state.x.col(i) - state.x.col(j)).norm());
+    V = std::max(V, state.p.col(i).norm() / system_.body(static_cast<std::size_t>(i)).mass);
+  }
+  for (Eigen::Index k = 0; k < m; ++k) S = std::max(S, state.Pi.col(k).norm());
+  if (!(S > 0.0) && L > 0.0)  // no body spins: the angular momentum of turning at V / L
+    for (Eigen::Index k = 0; k < m; ++k)
+      S = std::max(S, system_.body(system_.body_of_rigid(static_cast<std::size_t>(k))).inertia.norm() * V / L);
+  const double step = std::cbrt(std::numeric_limits<double>::epsilon());
+  const auto scale = [](double u) { return u > 0.0 && std::isfinite(u) ? u : 1.0; };
+  J.setZero(3 * n + 3 * m, 6 * n + 6 * m);
+  Eigen::VectorXd plus(3 * n + 3 * m);
+  const auto column = [&](Eigen::Index c, double h, const auto& shift) {
+    for (const double sign : {1.0, -1.0}) {
+      shifted_ = state;
+      shift(shifted_, sign * h);
+      (*this)(shifted_);
+      Eigen::VectorXd value(3 * n + 3 * m);
+      value << Eigen::Map<const Eigen::VectorXd>(total_.f.data(), 3 * n), Eigen::Map<const Eigen::VectorXd>(total_.M.data(), 3 * m);
+      if (sign > 0) plus = value;
+      else J.col(c) = (plus - value) / (2.0 * h);
+    }
+  };
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) {
+      const double mass = system_.body(static_cast<std::size_t>(i)).mass;
+      column(3 * i + a, step * scale(L), [&](State& z, double d) { z.x(a, i) += d; });
+      column(3 * n + 3 * m + 3 * i + a, step * mass * scale(V), [&](State& z, double d) { z.p(a, i) += d; });
+    }
+  for (Eigen::Index k = 0; k < m; ++k)
+    for (int a = 0; a < 3; ++a) {
+      const auto r = static_cast<std::size_t>(k);
+      column(3 * n + 3 * k + a, step, [&](State& z, double d) { z.R[r] = z.R[r] * exp_so3(d * Vec3::Unit(a)); });
+      column(6 * n + 3 * m + 3 * k + a, step * scale(S), [&](State& z, double d) { z.Pi(a, k) += d; });
+    }
+  terms_ = saved_terms_;
+  total_ = saved_total_;
 }
 
 }  // namespace noether

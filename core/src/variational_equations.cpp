@@ -29,4 +29,12 @@ void variational_rhs(const System& system, const State& state, const Eigen::Matr
   }
 }
 
+void add_forcing_tangent(const System& system, const Eigen::MatrixXd& KF, double tau,
+                         Eigen::Ref<const Eigen::MatrixXd> V, Eigen::Ref<Eigen::MatrixXd> out) {
+  const auto n = static_cast<Eigen::Index>(system.size()), m = static_cast<Eigen::Index>(system.rigid_count());
+  const Eigen::MatrixXd KV = KF * V;  // before `out` (perhaps V) changes
+  out.middleRows(3 * n + 3 * m, 3 * n) += tau * KV.topRows(3 * n);  // δγ: δf^F
+  out.middleRows(6 * n + 3 * m, 3 * m) += tau * KV.bottomRows(3 * m);  // δΠ: δM^F (body frame)
+}
+
 }  // namespace noether

@@ -72,6 +72,10 @@ class ForcingEvaluator {
   // [x | γ | R (9 each) | Π]): evaluates them at `state`, adds f^F to γ̇ and M^F to Π̇ in `dydt`,
   // and writes each force's balance rate (33.3), kBalanceRows numbers per force, to `balance_rates`.
   void add_to_inertial_hamiltonian(const State& state, double* dydt, double* balance_rates);
+  // The Jacobian of the total force (f^F, M^F) at `state` with respect to z = (x, θ, γ, Π) of
+  // (21.1) — rows f^F_1 … f^F_n, M^F_1 … M^F_m; 6n + 6m columns — by central differences (33.5),
+  // 2 (6n + 6m) evaluations. Leaves term() and total() as they were.
+  void jacobian(const State& state, Eigen::MatrixXd& J);
 
  private:
   System system_;
@@ -79,7 +83,9 @@ class ForcingEvaluator {
   std::vector<std::unique_ptr<Workspace>> workspaces_;
   std::vector<Forces> terms_;
   Forces total_;
-  State mean_;
+  State mean_, shifted_;
+  std::vector<Forces> saved_terms_;
+  Forces saved_total_;
   bool depends_on_momenta_ = false;
 };
 

@@ -17,6 +17,13 @@ namespace noether {
 void variational_rhs(const System& system, const State& state, const Eigen::MatrixXd& K,
                      Eigen::Ref<const Eigen::MatrixXd> V, Eigen::Ref<Eigen::MatrixXd> dV);
 
+// out += τ B K^F V: the forces beyond the potential, K^F = ∂(f^F, M^F)/∂z ((3n + 3m) × (6n + 6m),
+// ForcingEvaluator::jacobian, 33.5), placed in the rows of γ and Π — in the variational
+// equations with τ = 1 (33.8), in the forced LGVI's kicks with τ = ±h/2 (33.6)–(33.7). `out` may
+// be V itself.
+void add_forcing_tangent(const System& system, const Eigen::MatrixXd& KF, double tau,
+                         Eigen::Ref<const Eigen::MatrixXd> V, Eigen::Ref<Eigen::MatrixXd> out);
+
 }  // namespace noether
 
 #pragma GCC visibility pop

@@ -91,9 +91,7 @@ class Cvode final : public noether::Integrator {
     form_ = p.at("frame").as_string() + " " + p.at("form").as_string();
   }
 
-  std::string tangent_map_unavailable() const override {
-    return forcing_ ? "cvode with forces beyond the potential carries no tangent yet" : tangent_unavailable_;
-  }
+  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
   std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
     if (form_ != "inertial hamiltonian")
       return "cvode takes forces beyond the potential in its inertial Hamiltonian equations only: use frame: "
@@ -104,6 +102,9 @@ class Cvode final : public noether::Integrator {
   // The parameters' terms (22.2) join the sensitivity right-hand side of the last columns.
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
+    if (forcing_)
+      return "cvode with forces beyond the potential carries no sensitivities to parameters yet (the "
+             "state-transition matrix and the chaos indicators it does carry)";
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
@@ -292,6 +293,10 @@ class Cvode final : public noether::Integrator {
         for (Eigen::Index r = 0; r < me->tangent_rows_; ++r) me->V_(r, c) = v[me->slots_[static_cast<std::size_t>(r)]];
       }
       noether::variational_rhs(me->equations_->system(), me->stage_, K, me->V_, me->dV_);
+      if (me->forcing_) {  // + B K^F V (33.8)
+        me->forcing_->jacobian(me->stage_, me->forcing_jacobian_);
+        noether::add_forcing_tangent(me->equations_->system(), me->forcing_jacobian_, 1.0, me->V_, me->dV_);
+      }
       if (me->parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
         auto& forces = *me->parameter_forces_;
         const Eigen::MatrixXd& G = forces(me->stage_);
@@ -390,6 +395,7 @@ class Cvode final : public noether::Integrator {
   std::string form_;  // "inertial hamiltonian", …
   // Forces beyond the potential (none: the potential alone) and their balance's numbers in y.
   std::optional<noether::ForcingEvaluator> forcing_;
+  Eigen::MatrixXd forcing_jacobian_;  // K^F at the state of a sensitivity evaluation (33.8)
   std::size_t balance_size_ = 0;
 };
 

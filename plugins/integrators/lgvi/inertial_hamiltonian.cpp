@@ -6,6 +6,9 @@
 #include "tangent_map.hpp"
 
 #include <noether/error.hpp>
+#include <noether/variational_equations.hpp>
+
+#include <Eigen/LU>
 
 #include <limits>
 #include <optional>
@@ -55,6 +58,7 @@ class InertialHamiltonian final : public DiscreteFlow {
       forcing_->check_balance(s_, "lgvi");
       (*forcing_)(s_);  // the forces of the first opening kick (33.1)
     }
+    forcing_jacobian_valid_ = false;
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
@@ -72,6 +76,11 @@ class InertialHamiltonian final : public DiscreteFlow {
     before_ = s_;
     before_forces_ = current_;
     try {
+      if (carries_tangent()) {  // V⁺ = (I + (h/2) B K^F_k) V_k                          (33.6)
+        if (!forcing_jacobian_valid_) forcing_->jacobian(s_, forcing_jacobian_);
+        forcing_jacobian_valid_ = false;
+        noether::add_forcing_tangent(system_, forcing_jacobian_, 0.5 * h, s_.tangent, s_.tangent);
+      }
       // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k,  the forces at z_k          (33.1)
       kick_from_ = s_;
       s_.p += (0.5 * h) * forcing_->total().f;
@@ -79,7 +88,16 @@ class InertialHamiltonian final : public DiscreteFlow {
       forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
       conservative_step(h);
       closing_kick(h);
+      if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻                   (33.7)
+        forcing_->jacobian(s_, forcing_jacobian_);
+        const Eigen::Index N = s_.tangent.rows();
+        closing_ = Eigen::MatrixXd::Identity(N, N);
+        noether::add_forcing_tangent(system_, forcing_jacobian_, -0.5 * h, closing_, closing_);
+        s_.tangent = closing_.partialPivLu().solve(s_.tangent);
+        forcing_jacobian_valid_ = true;  // the next opening kick's, at z_{k+1}
+      }
     } catch (...) {
+      forcing_jacobian_valid_ = false;
       s_ = before_;
       current_ = before_forces_;
       try {
@@ -206,6 +224,10 @@ class InertialHamiltonian final : public DiscreteFlow {
   State before_, kick_from_;
   Forces before_forces_;
   Eigen::Matrix3Xd trial_p_, trial_Pi_;
+  // The tangent map of the kicks (33.6)–(33.7): the forces' Jacobian (valid: at the current
+  // state, from the last closing kick), and the closing kick's matrix.
+  Eigen::MatrixXd forcing_jacobian_, closing_;
+  bool forcing_jacobian_valid_ = false;
 };
 
 }  // namespace

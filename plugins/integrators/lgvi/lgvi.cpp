@@ -106,11 +106,12 @@ class Lgvi final : public noether::Integrator {
   }
   double fixed_step() const override { return h_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
-  std::string tangent_map_unavailable() const override {
-    return forced_ ? "the lgvi with forces beyond the potential has no tangent map yet" : "";
-  }
+  // With forces, the kicks' derivatives (33.6)–(33.7) join it.
+  std::string tangent_map_unavailable() const override { return ""; }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    if (forced_) return tangent_map_unavailable();
+    if (forced_)
+      return "the lgvi with forces beyond the potential carries no sensitivities to parameters yet (the "
+             "state-transition matrix and the chaos indicators it does carry)";
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";
   }

@@ -90,9 +90,7 @@ class Rk final : public noether::Integrator {
                              "controlled; give rk a positive atol";
   }
 
-  std::string tangent_map_unavailable() const override {
-    return forcing_ ? "rk with forces beyond the potential carries no tangent yet" : tangent_unavailable_;
-  }
+  std::string tangent_map_unavailable() const override { return tangent_unavailable_; }
   std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
     if (form_ != "inertial hamiltonian")
       return "rk takes forces beyond the potential in its inertial Hamiltonian equations only: use frame: inertial, "
@@ -103,6 +101,9 @@ class Rk final : public noether::Integrator {
   // The parameters' terms (22.2) join the variational equations of the last columns.
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
+    if (forcing_)
+      return "rk with forces beyond the potential carries no sensitivities to parameters yet (the state-transition "
+             "matrix and the chaos indicators it does carry)";
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
@@ -319,8 +320,12 @@ class Rk final : public noether::Integrator {
     if (!analytic) differenced_evaluations_ += 2 * K.rows();
     const auto s = static_cast<std::ptrdiff_t>(equations_->size());
     Eigen::Map<Eigen::MatrixXd> dV(dydt.data() + s, tangent_rows_, tangent_columns_);
-    noether::variational_rhs(equations_->system(), stage_, K,
-                             Eigen::Map<const Eigen::MatrixXd>(y.data() + s, tangent_rows_, tangent_columns_), dV);
+    const Eigen::Map<const Eigen::MatrixXd> V(y.data() + s, tangent_rows_, tangent_columns_);
+    noether::variational_rhs(equations_->system(), stage_, K, V, dV);
+    if (forcing_) {  // + B K^F V (33.8)
+      forcing_->jacobian(stage_, forcing_jacobian_);
+      noether::add_forcing_tangent(equations_->system(), forcing_jacobian_, 1.0, V, dV);
+    }
     if (parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
       const auto P = static_cast<Eigen::Index>(parameter_forces_->size());
       const Eigen::MatrixXd& G = (*parameter_forces_)(stage_);
@@ -362,6 +367,7 @@ class Rk final : public noether::Integrator {
   std::string form_;  // "inertial hamiltonian", …
   // Forces beyond the potential (none: the potential alone) and where their balance starts in y.
   std::optional<noether::ForcingEvaluator> forcing_;
+  Eigen::MatrixXd forcing_jacobian_;  // K^F at a stage, when a tangent is carried (33.8)
   std::size_t balance_offset_ = 0;
 };
 
