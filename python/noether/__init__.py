@@ -306,6 +306,16 @@ class Simulation:
         return self._sim.force_jacobian()
 
     @property
+    def particles(self):
+        """The scene's massless particles where the run stands (docs/user-guide.md, "Particles"):
+        a dict of position and velocity (inertial; a landed particle's at its landing),
+        initial_position, initial_velocity, fate (0 in flight, 1 landed, 2 escaped), time (of
+        the landing or escape; NaN in flight), body (landed on; -1 none), impact_point and
+        impact_velocity (body frame) and fields — the arrays /test_particles is written from;
+        None when the scene has no particles."""
+        return self._sim.particles
+
+    @property
     def stm(self):
         """The state-transition matrix ∂z(t)/∂z(t0) of the integrator's own map since the start
         (or the last set_state), a (6n + 6m)² array in the order of z = (x, θ, γ, Π)

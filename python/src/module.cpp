@@ -15,6 +15,7 @@
 #include <noether/conjunction.hpp>
 #include <noether/observations.hpp>
 #include <noether/output_schema.hpp>
+#include <noether/particles.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
 #include <noether/simulation.hpp>
@@ -267,6 +268,48 @@ class PySimulation {
     return V.col(V.cols() - static_cast<Eigen::Index>(names.size()) + (found - names.begin()));
   }
   std::vector<std::string> stm_coordinates() const { return State::tangent_coordinates(system()); }
+
+  // The massless particles where the run stands (docs/user-guide.md, "Particles"), the arrays of
+  // /test_particles as the run would write them now; None when the scene has none.
+  py::object particles() const {
+    const noether::ParticleSwarm* swarm = sim_->particles();
+    if (!swarm) return py::none();
+    const auto n = static_cast<py::ssize_t>(swarm->size());
+    py::array_t<int> fate(n), body(n);
+    py::array_t<double> time(n), point({n, py::ssize_t{3}}), impact({n, py::ssize_t{3}});
+    auto f = fate.mutable_unchecked<1>();
+    auto b = body.mutable_unchecked<1>();
+    auto t = time.mutable_unchecked<1>();
+    auto p = point.mutable_unchecked<2>();
+    auto v = impact.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const noether::ParticleOutcome& o = swarm->outcomes()[static_cast<std::size_t>(i)];
+      f(i) = static_cast<int>(o.fate);
+      b(i) = o.body;
+      t(i) = o.t;
+      for (py::ssize_t k = 0; k < 3; ++k) {
+        p(i, k) = o.point[static_cast<Eigen::Index>(k)];
+        v(i, k) = o.velocity[static_cast<Eigen::Index>(k)];
+      }
+    }
+    Eigen::Matrix3Xd x0(3, n), v0(3, n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      x0.col(i) = swarm->initial_positions()[static_cast<std::size_t>(i)];
+      v0.col(i) = swarm->initial_velocities()[static_cast<std::size_t>(i)];
+    }
+    py::dict out;
+    out["position"] = rows(swarm->positions());
+    out["velocity"] = rows(swarm->velocities());
+    out["initial_position"] = rows(x0);
+    out["initial_velocity"] = rows(v0);
+    out["fate"] = fate;
+    out["time"] = time;
+    out["body"] = body;
+    out["impact_point"] = point;
+    out["impact_velocity"] = impact;
+    out["fields"] = swarm->fields();
+    return out;
+  }
 
   std::string summary_json() const { return noether::format_summary_json(sim_->summary()); }
   std::string summary_text() const { return noether::format_summary(sim_->summary()); }
@@ -576,6 +619,7 @@ PYBIND11_MODULE(_noether, m) {
       .def("set_state", &PySimulation::set_state)
       .def("diagnostics", &PySimulation::diagnostics)
       .def("force_jacobian", &PySimulation::force_jacobian)
+      .def_property_readonly("particles", &PySimulation::particles)
       .def_property_readonly("stm", &PySimulation::stm)
       .def_property_readonly("stm_coordinates", &PySimulation::stm_coordinates)
       .def_property_readonly("sensitivities", &PySimulation::sensitivities)

@@ -99,9 +99,17 @@ def test_the_particles_are_read_with_their_fates(source, tmp_path):
     sim = noether.Simulation(source / "examples" / "didymos-particles.yaml", output=out,
                              set=["run.t_end=3600", "run.output_every=600", "particles.record=5"])
     sim.integrate(sim.run["t_end"])
+    live = sim.particles  # where the run stands: what /test_particles is written from
     sim.finish()
     run = noether.read(out)
     p = run.particles
+    assert set(live) == set(p), (set(live), set(p))
+    for key, value in live.items():
+        if key == "fields":
+            assert value == p[key]
+        else:  # NaN: the time of a particle still in flight
+            np.testing.assert_array_equal(value, p[key], err_msg=key)
+    assert noether.Simulation(source / "examples" / "dumbbells.yaml").particles is None
     assert p["fate"].shape == (24,) and set(p["fate"]) <= {0, 1, 2}
     assert len(p["fields"]) == 2 and p["fields"][1].startswith("exact (ellipsoid")
     track = run["particle_positions"]
