@@ -22,14 +22,7 @@ except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-
-
-def rotation(q):
-    """The matrix of a unit quaternion (w, x, y, z)."""
-    w, x, y, z = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+from plot_libration import rotation  # noqa: E402  (a quaternion's matrix; this script's folder is on the path)
 
 
 def main():
