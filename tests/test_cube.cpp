@@ -138,9 +138,15 @@ TEST(Cube, DiscreteFormsConvergeAtTheirOrder) {
     const RunSummary s = run_scene(test::dumbbell_scene({"integrator=" + integrator}), registry, {});
     return (s.final_state.x - ref.final_state.x).cwiseAbs().maxCoeff();
   };
+  // Under the sanitizers (65 s there) three step sizes: the smallest, half of the cost, is left out.
+#ifdef NOETHER_TEST_SANITIZED
+  const std::vector<double> steps{1e-3, 5e-4, 2.5e-4};
+#else
+  const std::vector<double> steps{1e-3, 5e-4, 2.5e-4, 1.25e-4};
+#endif
   for (const char* form : kForm) {
     std::vector<double> e;
-    for (double h : {1e-3, 5e-4, 2.5e-4, 1.25e-4}) e.push_back(error(lgvi(h, form)));
+    for (double h : steps) e.push_back(error(lgvi(h, form)));
     for (std::size_t k = 1; k < e.size(); ++k)
       EXPECT_NEAR(std::log2(e[k - 1] / e[k]), 2.0, 0.15) << form << " h/" << (1 << k);
   }

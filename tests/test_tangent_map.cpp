@@ -219,12 +219,22 @@ const char* kRkf78 = "integrator={plugin: rk, method: rkf78, rtol: 1e-13, atol: 
 const char* kAdams = "integrator={plugin: cvode, method: adams, rtol: 1e-13, atol: 1e-15}";
 const char* kBdf = "integrator={plugin: cvode, method: bdf, rtol: 1e-12, atol: 1e-14}";
 
+// Under the sanitizers (130 s there) one method of each kind on Kepler and the dumbbells: the
+// same code (rk's stages, CVODES' sensitivities) that the other methods and KW4 run again.
+#ifdef NOETHER_TEST_SANITIZED
+constexpr bool kEveryMethod = false;
+#else
+constexpr bool kEveryMethod = true;
+#endif
+
 TEST(TangentMap, ContinuousStmsAgreeWithDifferencesOfWholeRuns) {
   for (const char* integrator : {kRk4Kepler, kDopri5, kRkf78, kAdams, kBdf}) {
+    if (!kEveryMethod && integrator != kRk4Kepler && integrator != kAdams) continue;
     const Comparison c = compare_with_differences(test::kepler_scene({integrator}));
     EXPECT_LT(c.worst, 1e-6) << integrator;
     std::printf("kepler, %s: worst column %.3e\n", integrator, c.worst);
   }
+  if (!kEveryMethod) return;
   for (const char* integrator : {kRk4Dumbbells, kDopri5, kAdams}) {
     const Comparison c =
         compare_with_differences(test::dumbbell_scene({"run.t_end=1", "run.output_every=0.5", integrator}));
@@ -340,6 +350,7 @@ TEST(TangentMap, RefusedByAnIntegratorWithoutOne) {
 // kick implicit), at order 2 and in the order-4 composition, against differences of whole runs.
 TEST(TangentMap, ForcedLgviAgreesWithDifferencesOfWholeRuns) {
   for (const char* order : {"integrator.order=2", "integrator.order=4"}) {
+    if (!kEveryMethod && std::string(order) == "integrator.order=4") continue;  // the same kicks, composed
     const Scene scene = load_scene(test::source_path("examples/tidal-spin-down.yaml"),
                                    {"run.t_end=8", "run.output_every=8", order});
     const Comparison c = compare_with_differences(scene);
