@@ -447,6 +447,11 @@ TEST(Particles, EjectaLeaveTheSiteAtTheConeWithThePowerLawsSpeeds) {
       EXPECT_NEAR(faster[k] / double(n), p, 4 * std::sqrt(p * (1 - p) / n)) << "faster than " << v_test[k];
     }
     EXPECT_LT((mean_tangent / n).norm(), 4 * std::sqrt(1.0 / n)) << "azimuths uniform about the normal";
+    // Two clouds without seeds in one scene (the k-th's default seed k + 1) draw differently.
+    const Scene two = lone_body_scene(shape, spin, "{ejecta: [{body: rock, site: [20, 60], count: 3, speed: [0.05, 5.0]}, "
+                                                   "{body: rock, site: [20, 60], count: 3, speed: [0.05, 5.0]}]}");
+    ASSERT_EQ(two.particles.velocity.size(), 6u);
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_NE(two.particles.velocity[i], two.particles.velocity[3 + i]);
     const Scene first = lone_body_scene(shape, spin, cloud(100));
     for (std::size_t i = 0; i < 100; ++i) {
       EXPECT_EQ(first.particles.position[i], scene.particles.position[i]);

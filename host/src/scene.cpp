@@ -553,8 +553,9 @@ Escape parse_escape(const Params& e, const System& system) {
 }
 
 // particles.ejecta: {body, site: [latitude, longitude], count, speed: [min, max], exponent, cone,
-// height, seed} (ejecta.hpp; docs/equations.md §39).
-EjectaSettings parse_ejecta(const Params& e, const System& sys) {
+// height, seed} (ejecta.hpp; docs/equations.md §39). `index`: the cloud's place in the list, whose
+// default seed is index + 1, so that clouds without a seed draw different speeds and azimuths.
+EjectaSettings parse_ejecta(const Params& e, const System& sys, std::size_t index) {
   e.check_keys({"body", "site", "count", "speed", "exponent", "cone", "height", "seed"}, "'particles.ejecta'");
   for (const char* key : {"body", "site", "count", "speed"})
     if (!e.has(key))
@@ -588,7 +589,7 @@ EjectaSettings parse_ejecta(const Params& e, const System& sys) {
   out.height = e.get("height", out.height);
   if (!(out.height >= 0.0) || !std::isfinite(out.height))
     throw SceneError(e.at("height").here() + "'particles.ejecta.height' must be a distance ≥ 0");
-  const long seed = e.get("seed", 1L);
+  const long seed = e.get("seed", static_cast<long>(index) + 1);
   if (seed < 0) throw SceneError(e.at("seed").here() + "'particles.ejecta.seed' must be ≥ 0");
   out.seed = static_cast<std::uint64_t>(seed);
   try {
@@ -659,7 +660,8 @@ ParticleSettings parse_particles(const Params& p, const System& sys, const State
   if (p.has("ejecta")) {  // a cloud thrown from a surface, or a list of them (39.1)–(39.2)
     const Params& list = p.at("ejecta");
     const auto clouds = list.is_sequence() ? list.items() : std::vector<Params>{list};
-    for (const Params& e : clouds) launch_ejecta(parse_ejecta(e, sys), sys, initial, out.position, out.velocity);
+    for (std::size_t k = 0; k < clouds.size(); ++k)
+      launch_ejecta(parse_ejecta(clouds[k], sys, k), sys, initial, out.position, out.velocity);
   }
   if (out.empty())
     throw SceneError(p.here() + "'particles' gives no particle: list 'states', a 'file', 'orbits' or 'ejecta'");

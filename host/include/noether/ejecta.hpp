@@ -27,7 +27,7 @@ struct EjectaSettings {
   double exponent = 1.2;          // γ of (39.1)
   double cone = 45.0;             // degrees between the launch direction and the surface's normal
   double height = 0.0;            // above the surface along its normal at launch (0: 1e-6 of the body's radius)
-  std::uint64_t seed = 1;
+  std::uint64_t seed = 1;          // a scene's k-th cloud (from 0): k + 1 unless given
 };
 
 // Where the ray from the centre of mass along the body-frame direction u (unit) crosses the
