@@ -32,34 +32,51 @@ double position_step(const State& s) {
 
 }  // namespace
 
+Eigen::MatrixXd differenced_state_jacobian(const State& state, const Eigen::VectorXd& steps,
+                                          const std::function<Eigen::VectorXd(const State&)>& g) {
+  const Eigen::Index n = state.x.cols(), m = static_cast<Eigen::Index>(state.R.size());
+  State s = state;
+  // Moves coordinate c of (21.1) by d from the state's value (d = 0: back to it).
+  const auto shift = [&](Eigen::Index c, double d) {
+    const Eigen::Index kind = c < 3 * n ? 0 : c < 3 * n + 3 * m ? 1 : c < 6 * n + 3 * m ? 2 : 3;
+    const Eigen::Index offset = kind == 0 ? c : kind == 1 ? c - 3 * n : kind == 2 ? c - 3 * n - 3 * m : c - 6 * n - 3 * m;
+    const Eigen::Index item = offset / 3;
+    const int a = static_cast<int>(offset % 3);
+    switch (kind) {
+      case 0: s.x(a, item) = state.x(a, item) + d; break;
+      case 1: {
+        const auto r = static_cast<std::size_t>(item);
+        s.R[r] = d == 0.0 ? state.R[r] : Mat3(state.R[r] * exp_so3(d * Vec3::Unit(a)));
+        break;
+      }
+      case 2: s.p(a, item) = state.p(a, item) + d; break;
+      default: s.Pi(a, item) = state.Pi(a, item) + d; break;
+    }
+  };
+  Eigen::MatrixXd J;
+  for (Eigen::Index c = 0; c < steps.size(); ++c) {
+    shift(c, steps(c));
+    const Eigen::VectorXd plus = g(s);
+    shift(c, -steps(c));
+    const Eigen::VectorXd minus = g(s);
+    shift(c, 0.0);
+    if (c == 0) J.resize(plus.size(), steps.size());
+    J.col(c) = (plus - minus) / (2 * steps(c));
+  }
+  return J;
+}
+
 Eigen::MatrixXd differenced_force_jacobian(const Potential& potential, const State& state, Workspace& workspace) {
   const Eigen::Index n = state.x.cols(), m = static_cast<Eigen::Index>(state.R.size());
   Forces forces;
   forces.f.resize(3, n);
   forces.M.resize(3, m);
-  Eigen::MatrixXd K(3 * (n + m), 3 * (n + m));
-  const double hx = position_step(state), hR = 1e-5;
-  State s = state;
-  for (Eigen::Index i = 0; i < n; ++i)  // ∂/∂x_i: columns 3i + a
-    for (int a = 0; a < 3; ++a) {
-      s.x(a, i) = state.x(a, i) + hx;
-      const Eigen::VectorXd plus = generalised_forces(potential, s, workspace, forces);
-      s.x(a, i) = state.x(a, i) - hx;
-      const Eigen::VectorXd minus = generalised_forces(potential, s, workspace, forces);
-      s.x(a, i) = state.x(a, i);
-      K.col(3 * i + a) = (plus - minus) / (2 * hx);
-    }
-  for (Eigen::Index k = 0; k < m; ++k)  // ∂/∂θ_k along R_k exp(S(θ)): columns 3n + 3k + a
-    for (int a = 0; a < 3; ++a) {
-      const auto r = static_cast<std::size_t>(k);
-      s.R[r] = state.R[r] * exp_so3(hR * Vec3::Unit(a));
-      const Eigen::VectorXd plus = generalised_forces(potential, s, workspace, forces);
-      s.R[r] = state.R[r] * exp_so3(-hR * Vec3::Unit(a));
-      const Eigen::VectorXd minus = generalised_forces(potential, s, workspace, forces);
-      s.R[r] = state.R[r];
-      K.col(3 * n + 3 * k + a) = (plus - minus) / (2 * hR);
-    }
-  return K;
+  Eigen::VectorXd steps(3 * (n + m));
+  steps.head(3 * n).setConstant(position_step(state));  // positions, then attitudes by 1e-5 rad
+  steps.tail(3 * m).setConstant(1e-5);
+  return differenced_state_jacobian(state, steps, [&](const State& s) {
+    return generalised_forces(potential, s, workspace, forces);
+  });
 }
 
 ForceJacobian force_jacobian(const Potential& potential, const State& state, Workspace& workspace) {

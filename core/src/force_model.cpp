@@ -1,6 +1,6 @@
 #include <noether/error.hpp>
+#include <noether/force_jacobian.hpp>
 #include <noether/force_model.hpp>
-#include <noether/lie.hpp>
 
 #include <cmath>
 
@@ -106,31 +106,19 @@ void ForcingEvaluator::jacobian(const State& state, Eigen::MatrixXd& J) {
       S = std::max(S, system_.body(system_.body_of_rigid(static_cast<std::size_t>(k))).inertia.norm() * V / L);
   const double step = std::cbrt(std::numeric_limits<double>::epsilon());
   const auto scale = [](double u) { return u > 0.0 && std::isfinite(u) ? u : 1.0; };
-  J.setZero(3 * n + 3 * m, 6 * n + 6 * m);
-  Eigen::VectorXd plus(3 * n + 3 * m);
-  const auto column = [&](Eigen::Index c, double h, const auto& shift) {
-    for (const double sign : {1.0, -1.0}) {
-      shifted_ = state;
-      shift(shifted_, sign * h);
-      (*this)(shifted_);
-      Eigen::VectorXd value(3 * n + 3 * m);
-      value << Eigen::Map<const Eigen::VectorXd>(total_.f.data(), 3 * n), Eigen::Map<const Eigen::VectorXd>(total_.M.data(), 3 * m);
-      if (sign > 0) plus = value;
-      else J.col(c) = (plus - value) / (2.0 * h);
-    }
-  };
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double mass = system_.body(static_cast<std::size_t>(i)).mass;
-      column(3 * i + a, step * scale(L), [&](State& z, double d) { z.x(a, i) += d; });
-      column(3 * n + 3 * m + 3 * i + a, step * mass * scale(V), [&](State& z, double d) { z.p(a, i) += d; });
-    }
-  for (Eigen::Index k = 0; k < m; ++k)
-    for (int a = 0; a < 3; ++a) {
-      const auto r = static_cast<std::size_t>(k);
-      column(3 * n + 3 * k + a, step, [&](State& z, double d) { z.R[r] = z.R[r] * exp_so3(d * Vec3::Unit(a)); });
-      column(6 * n + 3 * m + 3 * k + a, step * scale(S), [&](State& z, double d) { z.Pi(a, k) += d; });
-    }
+  Eigen::VectorXd steps(6 * n + 6 * m);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    steps.segment(3 * i, 3).setConstant(step * scale(L));
+    steps.segment(3 * n + 3 * m + 3 * i, 3).setConstant(step * system_.body(static_cast<std::size_t>(i)).mass * scale(V));
+  }
+  steps.segment(3 * n, 3 * m).setConstant(step);
+  steps.segment(6 * n + 3 * m, 3 * m).setConstant(step * scale(S));
+  J = differenced_state_jacobian(state, steps, [&](const State& z) {
+    (*this)(z);
+    Eigen::VectorXd value(3 * n + 3 * m);
+    value << Eigen::Map<const Eigen::VectorXd>(total_.f.data(), 3 * n), Eigen::Map<const Eigen::VectorXd>(total_.M.data(), 3 * m);
+    return value;
+  });
   terms_ = saved_terms_;
   total_ = saved_total_;
 }

@@ -3,6 +3,7 @@
 #include <noether/error.hpp>
 #include <noether/solid.hpp>
 
+#include "orthonormal_basis.hpp"
 #include "portable_random.hpp"
 
 #include <cmath>
@@ -29,13 +30,6 @@ double ray_hits_triangle(const Vec3& u, const Vec3& a, const Vec3& b, const Vec3
   constexpr double slack = 1e-12;
   if (beta < -slack || gamma < -slack || beta + gamma > 1.0 + slack) return -1.0;
   return e2.dot(q) / det;
-}
-
-// Two unit vectors completing n to a right-handed orthonormal basis.
-void complete_basis(const Vec3& n, Vec3& e1, Vec3& e2) {
-  const Vec3 seed = std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  e1 = (seed - seed.dot(n) * n).normalized();
-  e2 = n.cross(e1);
 }
 
 }  // namespace

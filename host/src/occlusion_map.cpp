@@ -1,21 +1,11 @@
 // The occlusion map of docs/equations.md eq. 29.3.
 #include "occlusion_map.hpp"
+#include "orthonormal_basis.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace noether {
-
-namespace {
-
-// Two unit vectors completing ŵ to a right-handed orthonormal basis.
-void complete_basis(const Vec3& w, Vec3& e1, Vec3& e2) {
-  const Vec3 seed = std::abs(w.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY();
-  e1 = (seed - seed.dot(w) * w).normalized();
-  e2 = w.cross(e1);
-}
-
-}  // namespace
 
 OcclusionMap::OcclusionMap(const std::vector<Mesh>& surfaces, const Vec3& towards) : w_(towards.normalized()) {
   complete_basis(w_, e1_, e2_);

@@ -592,11 +592,6 @@ EjectaSettings parse_ejecta(const Params& e, const System& sys, std::size_t inde
   const long seed = e.get("seed", static_cast<long>(index) + 1);
   if (seed < 0) throw SceneError(e.at("seed").here() + "'particles.ejecta.seed' must be ≥ 0");
   out.seed = static_cast<std::uint64_t>(seed);
-  try {
-    surface_point_along(sys.body(out.body), Vec3::UnitX());
-  } catch (const SceneError& error) {
-    throw SceneError(e.at("body").here() + error.what());
-  }
   return out;
 }
 
@@ -660,8 +655,14 @@ ParticleSettings parse_particles(const Params& p, const System& sys, const State
   if (p.has("ejecta")) {  // a cloud thrown from a surface, or a list of them (39.1)–(39.2)
     const Params& list = p.at("ejecta");
     const auto clouds = list.is_sequence() ? list.items() : std::vector<Params>{list};
-    for (std::size_t k = 0; k < clouds.size(); ++k)
-      launch_ejecta(parse_ejecta(clouds[k], sys, k), sys, initial, out.position, out.velocity);
+    for (std::size_t k = 0; k < clouds.size(); ++k) {
+      const EjectaSettings cloud = parse_ejecta(clouds[k], sys, k);
+      try {
+        launch_ejecta(cloud, sys, initial, out.position, out.velocity);
+      } catch (const SceneError& error) {  // a body without a surface, named with the scene's line
+        throw SceneError(clouds[k].at("body").here() + error.what());
+      }
+    }
   }
   if (out.empty())
     throw SceneError(p.here() + "'particles' gives no particle: list 'states', a 'file', 'orbits' or 'ejecta'");

@@ -83,7 +83,7 @@ class ForcingEvaluator {
   std::vector<std::unique_ptr<Workspace>> workspaces_;
   std::vector<Forces> terms_;
   Forces total_;
-  State mean_, shifted_;
+  State mean_;
   std::vector<Forces> saved_terms_;
   Forces saved_total_;
   bool depends_on_momenta_ = false;
