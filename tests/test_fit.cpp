@@ -128,6 +128,49 @@ TEST(Fit, RecoversKnownValuesFromNoiseFreeData) {
     EXPECT_NE(json.find(field), std::string::npos) << field;
 }
 
+// A tide's Love number and time lag (parameters of the forces beyond the potential, docs/equations.md
+// eq. 33.9) from the moon's range and range rate over about four orbits of the tidal spin-down
+// example: observations made at k2 = 0.55, Δt = 0.12 and fitted from the scene's 0.5, 0.1. The
+// static bulge (∝ k2) and the lag (∝ k2 Δt) move the orbit differently, so both are determined.
+TEST(Fit, RecoversATidesLoveNumberAndTimeLagFromTheMoonsRange) {
+  PluginRegistry registry = test::bundled_plugins();
+  const std::string scene = test::source_path("examples/tidal-spin-down.yaml");
+  const std::vector<std::string> span{"run.t_end=36", "run.output_every=0.5"};
+  std::vector<Observation> obs;
+  for (int k = 1; k <= 36; ++k)
+    for (auto kind : {Observable::Kind::range, Observable::Kind::range_rate}) {
+      Observation o;
+      o.t = k;
+      o.observable.kind = kind;
+      o.observable.target = 1;
+      o.observable.center = 0;
+      o.sigma = 1e-4;
+      obs.push_back(o);
+    }
+  std::vector<std::string> truth = span;
+  truth.insert(truth.end(), {"forces.0.k2=0.55", "forces.0.time_lag=0.12"});
+  const Prediction at_truth = predict(scene, truth, obs, {"forces.0.k2"}, registry);
+  for (std::size_t i = 0; i < obs.size(); ++i) obs[i].value = at_truth.values[static_cast<Eigen::Index>(i)];
+  std::ostringstream text;
+  write_observations(text, obs, {"planet", "moon"});
+  const TempFile data("tides.csv", text.str());
+  FitOptions options;
+  options.free = {"forces.0.k2", "forces.0.time_lag"};
+  options.tolerance = 1e-6;
+  const FitResult r = fit(scene, span, data.path, options, registry);
+  ASSERT_TRUE(r.converged) << r.stop;
+  ASSERT_EQ(r.names, options.free);
+  EXPECT_NEAR(r.initial[0], 0.5, 0.0);
+  EXPECT_NEAR(r.initial[1], 0.1, 0.0);
+  const double known[] = {0.55, 0.12};
+  for (Eigen::Index k = 0; k < 2; ++k) {
+    std::printf("%s: %.12f ± %.2e (known %.2f)\n", r.names[static_cast<std::size_t>(k)].c_str(), r.estimate[k], r.sigma[k],
+                known[k]);
+    EXPECT_LT(std::abs(r.estimate[k] - known[k]), 1e-4 * r.sigma[k]) << r.names[static_cast<std::size_t>(k)];
+  }
+  EXPECT_LT(r.chi2, 1e-8);
+}
+
 std::string refusal(const std::string& observations, const std::vector<std::string>& free,
                     const std::vector<std::string>& overrides = {}) {
   const TempFile scene("planet.yaml", kPlanet);

@@ -209,8 +209,8 @@ TEST(Tides, TorqueOnACircularOrbitIsTheClosedForm) {
   EXPECT_NEAR((f.f.col(0) + f.f.col(1)).norm(), 0.0, 1e-18);
 }
 
-// What refuses forces, by name: methods and forms that do not take them, a tangent with them, a
-// point mass tidally deformed, a continued run.
+// What refuses forces, by name: methods and forms that do not take them, a sensitivity to what is
+// not a number of a force, a point mass tidally deformed, a bad Love number.
 TEST(Tides, RefusalsSayWhy) {
   auto refused = [](const std::vector<std::string>& overrides, const std::string& fragment) {
     SCOPED_TRACE(fragment);
@@ -225,7 +225,10 @@ TEST(Tides, RefusalsSayWhy) {
   refused({"integrator={plugin: cvode, form: lagrangian}"},
           "forces: integrator 'cvode' cannot take them: cvode takes forces beyond the potential in its inertial "
           "Hamiltonian equations only");
-  refused({"run.sensitivities=[bodies.moon.mass]"}, "carries no sensitivities to parameters yet");
+  refused({"run.sensitivities=[forces.0.body]"}, "is not a number of the force");
+  refused({"run.sensitivities=[forces.1.k2]"}, "names no force (the scene has 1)");
+  refused({"run.sensitivities=[forces.0.love]"}, "the force gives no 'love'");
+  refused({"run.sensitivities=[forces.k2]"}, "a force is named by its index");
   refused({"forces.0.body=moon"}, "is a point mass");
   refused({"forces.0.k2=-1"}, "k2 must be");
   refused({"forces.0.plugin=point-mass"}, "is a potential, not a force");

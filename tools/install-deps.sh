@@ -6,7 +6,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config bc
+  build-essential cmake ninja-build pkg-config bc ccache
   libeigen3-dev
   libsundials-dev
   libboost-dev libboost-filesystem-dev

@@ -8,11 +8,16 @@ ParameterForces::ParameterForces(std::shared_ptr<const ParameterDerivatives> der
     : derivatives_(std::move(derivatives)) {
   if (!derivatives_) throw Error("ParameterForces: no parameters");
   for (const DynamicsParameter& p : derivatives_->parameters) {
-    if (p.models.empty() || p.models.size() != p.weights.size())
-      throw Error("ParameterForces: parameter '" + p.name + "' has no stencil of models");
+    const bool models = !p.models.empty(), forces = !p.forcings.empty();
+    if ((!models && !forces) || (models && p.models.size() != p.weights.size()) ||
+        (forces && (p.forcings.size() != p.weights.size() || p.systems.size() != p.weights.size())))
+      throw Error("ParameterForces: parameter '" + p.name + "' has no stencil of models or forces");
     models_.emplace_back();
     for (const auto& model : p.models) models_.back().emplace_back(model);
     evaluations_per_call_ += static_cast<std::int64_t>(p.models.size());
+    forcings_.emplace_back();
+    for (std::size_t s = 0; s < p.forcings.size(); ++s) forcings_.back().emplace_back(p.systems[s], p.forcings[s]);
+    has_forcing_ = has_forcing_ || forces;
   }
 }
 
@@ -24,13 +29,35 @@ const Eigen::MatrixXd& ParameterForces::operator()(const State& state) {
   for (std::size_t j = 0; j < size(); ++j) {
     auto g = G_.col(static_cast<Eigen::Index>(j));
     const std::vector<double>& weights = derivatives_->parameters[j].weights;
-    for (std::size_t s = 0; s < weights.size(); ++s) {  // Σ_s w_s (f, M)(p_s)                (22.1)
+    for (std::size_t s = 0; s < models_[j].size(); ++s) {  // Σ_s w_s (f, M)(p_s)             (22.1)
       models_[j][s](state, forces_);
       for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += weights[s] * forces_.f.col(i);
       for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += weights[s] * forces_.M.col(k);
     }
   }
   return G_;
+}
+
+const Eigen::MatrixXd& ParameterForces::forcing(const State& state) {
+  const auto n = static_cast<Eigen::Index>(state.x.cols()), m = static_cast<Eigen::Index>(state.R.size());
+  G_forcing_.setZero(3 * n + 3 * m, static_cast<Eigen::Index>(size()));
+  for (std::size_t j = 0; j < size(); ++j) {
+    auto g = G_forcing_.col(static_cast<Eigen::Index>(j));
+    const std::vector<double>& weights = derivatives_->parameters[j].weights;
+    for (std::size_t s = 0; s < forcings_[j].size(); ++s) {  // Σ_s w_s (f^F, M^F)(p_s) at z   (33.9)
+      ForcingEvaluator& forces = forcings_[j][s];
+      forces(state);
+      for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += weights[s] * forces.total().f.col(i);
+      for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += weights[s] * forces.total().M.col(k);
+    }
+  }
+  return G_forcing_;
+}
+
+const Eigen::MatrixXd& ParameterForces::with_forcing(const State& state) {
+  G_sum_ = (*this)(state);
+  if (has_forcing_) G_sum_ += forcing(state);
+  return G_sum_;
 }
 
 void add_parameter_rhs(const System& system, const State& state, const ParameterDerivatives& derivatives,

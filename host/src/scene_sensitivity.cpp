@@ -26,7 +26,9 @@ std::string accepted() {
          "velocity.1), attitude (three right rotations about the body's axes, or attitude.x, .y, .z), "
          "orbit.a, .e, .i, .Omega, .omega, .nu, .M; and the parameters of the dynamics G, a body's mass or "
          "density, its inertia (three principal moments, or one: inertia.2), shape.ellipsoid.semi_axes "
-         "and shape.polyhedron.scale (whole or one of them); and an impulse's impulses.K.delta_v (whole or one component) or impulses.K.time";
+         "and shape.polyhedron.scale (whole or one of them); a number of a force beyond the potential, "
+         "forces.K.FIELD (forces.0.k2); and an impulse's impulses.K.delta_v (whole or one component) or "
+         "impulses.K.time";
 }
 
 // impulses.K.delta_v[.a] or impulses.K.time: the impulse's index and component (−1: all three
@@ -157,6 +159,52 @@ Key parse_key(const Scene& scene, const std::string& text) {
   return key;
 }
 
+// A parameter of the forces beyond the potential (docs/equations.md eq. 33.9): "forces.K.FIELD"
+// for the K-th of a list of forces (FIELD a number the force's plugin reads: "forces.0.k2",
+// "forces.1.time_lag"; dotted into a mapping: "forces.0.orbit.a"), or "forces.FIELD" when the
+// scene gives one mapping. The number as the scene writes it, or SceneError naming the key.
+double force_key_value(const Scene& scene, const std::string& text) {
+  const std::string where = "run.sensitivities: '" + text + "': ";
+  if (!scene.root.has("forces") || scene.forces.empty())
+    throw SceneError(where + "the scene has no forces beyond the potential (forces:)");
+  const Params& forces = scene.root.at("forces");
+  std::string rest = text.substr(7);  // after "forces."
+  const Params* node = &forces;
+  if (forces.is_sequence()) {
+    const std::size_t dot = rest.find('.');
+    std::size_t index = 0;
+    try {
+      std::size_t used = 0;
+      index = std::stoul(rest.substr(0, dot), &used);
+      if (used != dot || dot == std::string::npos) throw std::invalid_argument("index");
+    } catch (const std::exception&) {
+      throw SceneError(where + "a force is named by its index in the scene's forces and one of its numbers: "
+                       "forces.0.k2");
+    }
+    if (index >= forces.items().size())
+      throw SceneError(where + "names no force (the scene has " + std::to_string(forces.items().size()) + ")");
+    node = &forces.items()[index];
+    rest = rest.substr(dot + 1);
+  }
+  for (std::size_t start = 0;;) {
+    const std::size_t dot = rest.find('.', start);
+    const std::string name = rest.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (name.empty() || !node->is_map() || !node->has(name))
+      throw SceneError(where + "the force gives no '" + rest.substr(0, dot) +
+                       "'; sensitivities are taken to a number the scene writes for it (forces.0.k2)");
+    node = &node->at(name);
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  if (!node->is_scalar() || rest == "plugin")
+    throw SceneError(where + "is not a number of the force; sensitivities are taken to one (forces.0.k2)");
+  try {
+    return node->as_double();
+  } catch (const SceneError&) {
+    throw SceneError(where + "is not a number of the force; sensitivities are taken to one (forces.0.k2)");
+  }
+}
+
 // The key's value in the scene (a vector field's three numbers; 0 where the scene leaves it out).
 std::vector<double> value_of(const Scene& scene, const Key& key) {
   if (key.field == "G") return {scene.system.G()};
@@ -182,6 +230,7 @@ std::vector<double> value_of(const Scene& scene, const Key& key) {
 }  // namespace
 
 double sensitivity_key_value(const Scene& scene, const std::string& column) {
+  if (column.compare(0, 7, "forces.") == 0) return force_key_value(scene, column);
   if (column.compare(0, 9, "impulses.") == 0) {
     const auto [index, component] = parse_impulse_key(scene, column);
     if (component < 0)
@@ -212,7 +261,7 @@ std::vector<std::string> choices(const Potential& potential) {
 }  // namespace
 
 SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::string>& keys, const Potential& model,
-                                   const PotentialMaker& make_potential) {
+                                   const PotentialMaker& make_potential, const ForcingMaker& make_forcing) {
   const System& system = scene.system;
   const Eigen::Index rows = State::tangent_rows(system);
   const Eigen::Index n = static_cast<Eigen::Index>(system.size());
@@ -222,7 +271,71 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
   std::vector<Eigen::VectorXd> parameter_columns;
   auto parameters = std::make_shared<ParameterDerivatives>();
   std::optional<std::vector<std::string>> base_choices;  // the run's model's choices, once needed
+  // A parameter of the dynamics (§22): the start, masses, inertias, model and forces, each by
+  // the fourth-order central stencil (f(p−2d) − 8f(p−d) + 8f(p+d) − f(p+2d)) / 12d, d = 1e-4
+  // |p|: exact for polynomials of degree 4 (a series' inertia integrals in a semi-axis up to
+  // order 4), and the larger step keeps the round-off of a weak dependence (the orbit's speed on
+  // a light moon's mass, ∝ m/M) below 1e-9 (22.1). `moved(offset)`: the scene with p moved by
+  // offset, or nothing where it refuses that value; `potential_moves`: false for a parameter of
+  // the forces alone (a tide's k2), whose models would all be the run's.
+  auto add_parameter = [&](const std::string& name, double value, double scale,
+                           const std::function<std::optional<Scene>(double)>& moved, bool potential_moves) {
+    const double d = 1e-4 * scale;
+    DynamicsParameter p;
+    p.name = name;
+    p.mass = Eigen::VectorXd::Zero(n);
+    p.inertia.assign(system.rigid_count(), Mat3::Zero());
+    Eigen::VectorXd col = Eigen::VectorXd::Zero(rows);
+    for (const auto& [offset, weight] : {std::pair{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}) {
+      const auto other = moved(offset * d);
+      if (!other)
+        throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by " + number(offset * d) +
+                         " from " + number(value) + ", so its derivative cannot be taken there");
+      const double w = weight / (12.0 * d);
+      col += w * State::difference(scene.initial, other->initial);
+      for (std::size_t i = 0; i < system.size(); ++i) p.mass(static_cast<Eigen::Index>(i)) += w * other->system.body(i).mass;
+      for (std::size_t r = 0; r < system.rigid_count(); ++r)
+        p.inertia[r] += w * other->system.body(system.body_of_rigid(r)).inertia;
+      p.weights.push_back(w);
+      if (!scene.forces.empty()) {  // the forces at p_s, for the systems at p_s           (33.9)
+        p.forcings.push_back(make_forcing(*other));
+        p.systems.push_back(other->system);
+      }
+      if (!potential_moves) continue;
+      p.models.push_back(make_potential(*other));
+      if (!base_choices) base_choices = choices(model);
+      if (choices(*p.models.back()) != *base_choices) {
+        std::string was;
+        for (const std::string& c : *base_choices) was += (was.empty() ? "" : "; ") + c;
+        throw SceneError("run.sensitivities: '" + name + "': the model's choices (" + was +
+                         ") change when the key moves by " + number(offset * d) +
+                         ": fix the model's order instead of a tolerance for this run");
+      }
+    }
+    if (!col.allFinite())
+      throw SceneError("run.sensitivities: '" + name + "': the initial state's derivative is not finite");
+    parameters->parameters.push_back(std::move(p));
+    parameter_columns.push_back(col);
+    parameter_names.push_back(name);
+  };
   for (const std::string& text : keys) {
+    if (text.compare(0, 7, "forces.") == 0) {  // a parameter of the forces alone            (33.9)
+      const double value = force_key_value(scene, text);
+      if (!(std::abs(value) > 0.0))
+        throw SceneError("run.sensitivities: '" + text + "' is 0 in the scene: no scale to difference it on");
+      add_parameter(text, value, std::abs(value), [&](double offset) -> std::optional<Scene> {
+        std::vector<std::string> overrides = scene.overrides;
+        overrides.push_back(text + "=" + number(value + offset));
+        std::optional<Scene> other;
+        try {
+          other = parse_scene(scene.text, scene.file, overrides);
+        } catch (const SceneError&) {
+          return std::nullopt;
+        }
+        return other;
+      }, false);
+      continue;
+    }
     if (text.compare(0, 9, "impulses.") == 0) {  // 0 at t0: the run adds m e_a at the impulse (24.2)
       const auto [index, component] = parse_impulse_key(scene, text);
       if (component == 3) {  // the time: the run adds the jump of the vector field there (24.7)
@@ -302,43 +415,7 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
         out.names.push_back(name);
         continue;
       }
-      // A parameter of the dynamics (§22): the start, masses, inertias and model, each by the
-      // fourth-order central stencil (f(p−2d) − 8f(p−d) + 8f(p+d) − f(p+2d)) / 12d, d = 1e-4 |p|:
-      // exact for polynomials of degree 4 (a series' inertia integrals in a semi-axis up to order
-      // 4), and the larger step keeps the round-off of a weak dependence (the orbit's speed on a
-      // light moon's mass, ∝ m/M) below 1e-9.                                               (22.1)
-      const double d = 1e-4 * scale;
-      DynamicsParameter p;
-      p.name = name;
-      p.mass = Eigen::VectorXd::Zero(n);
-      p.inertia.assign(system.rigid_count(), Mat3::Zero());
-      Eigen::VectorXd col = Eigen::VectorXd::Zero(rows);
-      for (const auto& [offset, weight] : {std::pair{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}) {
-        const auto other = moved(offset * d);
-        if (!other)
-          throw SceneError("run.sensitivities: '" + name + "': the scene refuses the key moved by " + number(offset * d) +
-                           " from " + number(base[a]) + ", so its derivative cannot be taken there");
-        const double w = weight / (12.0 * d);
-        col += w * State::difference(scene.initial, other->initial);
-        for (std::size_t i = 0; i < system.size(); ++i) p.mass(static_cast<Eigen::Index>(i)) += w * other->system.body(i).mass;
-        for (std::size_t r = 0; r < system.rigid_count(); ++r)
-          p.inertia[r] += w * other->system.body(system.body_of_rigid(r)).inertia;
-        p.models.push_back(make_potential(*other));
-        p.weights.push_back(w);
-        if (!base_choices) base_choices = choices(model);
-        if (choices(*p.models.back()) != *base_choices) {
-          std::string was;
-          for (const std::string& c : *base_choices) was += (was.empty() ? "" : "; ") + c;
-          throw SceneError("run.sensitivities: '" + name + "': the model's choices (" + was +
-                           ") change when the key moves by " + number(offset * d) +
-                           ": fix the model's order instead of a tolerance for this run");
-        }
-      }
-      if (!col.allFinite())
-        throw SceneError("run.sensitivities: '" + name + "': the initial state's derivative is not finite");
-      parameters->parameters.push_back(std::move(p));
-      parameter_columns.push_back(col);
-      parameter_names.push_back(name);
+      add_parameter(name, base[a], scale, moved, true);
     }
   }
   out.names.insert(out.names.end(), parameter_names.begin(), parameter_names.end());

@@ -85,7 +85,7 @@ struct Simulation::Impl {
           throw SceneError("run.sensitivities: the model is given in code, so noether cannot make it at other "
                            "values of a parameter of the dynamics");
         return make_scene_potential(other, *registry);
-      });
+      }, [this](const Scene& other) { return make_scene_forcing(other, *registry); });
     if (s.parameters) {
       std::string names;
       for (const auto& p : s.parameters->parameters) names += (names.empty() ? "" : ", ") + p.name;

@@ -8,8 +8,10 @@
 # an install prefix, and that `pip uninstall noether` leaves no file of noether behind.
 #   pip_install.sh SOURCE_DIR BUILD_DIR
 # The copy holds git's tracked files as they are in the working tree (what a clone of the next
-# commit holds; nothing untracked or built can help). The wheel's build compiles noether from
-# scratch: ~4.5 min of two cores, hence the label slow (CI's budget, docs/reliability.md).
+# commit holds; nothing untracked or built can help). The wheel's build compiles every source of
+# the copy — through ccache when it is installed, which hits the release build's objects for the
+# files that are the same (~1 min), from scratch without it (~4.5 min of two cores) — hence the
+# label slow (CI's budget, docs/reliability.md).
 set -euo pipefail
 src=$1 build=$2
 work=$(mktemp -d)

@@ -4,7 +4,9 @@
 // carry columns ∂z/∂p of a tangent for parameters p that the equations of motion depend on —
 // a body's mass or density, G, a shape's semi-axes. For each p: how the bodies' masses and
 // inertias move with it, and the models at p ± d, p ± 2d, whose forces at a fixed configuration
-// give ∂(f, M)/∂p by a fourth-order central difference (22.1).
+// give ∂(f, M)/∂p by a fourth-order central difference (22.1); with forces beyond the potential,
+// the forces made at the same points (33.9).
+#include <noether/force_model.hpp>
 #include <noether/forces.hpp>
 #include <noether/lie.hpp>
 #include <noether/potential.hpp>
@@ -26,8 +28,14 @@ struct DynamicsParameter {
   std::vector<Mat3> inertia;  // ∂J_k/∂p, one per rigid body (body frame)
   // ∂(f, M)/∂p = Σ_s weights[s] (f, M)(models[s]): the models made with p moved by a stencil's
   // offsets (everything else as the run's), and its weights (22.1).
+  // Empty for a parameter of the forces alone (a tide's k2): the potential does not move.
   std::vector<std::shared_ptr<const Potential>> models;
   std::vector<double> weights;
+  // With forces beyond the potential (docs/equations.md §33): the scene's forces made with p
+  // moved by the same offsets, and the systems (masses, inertias) they were made for;
+  // ∂(f^F, M^F)/∂p = Σ_s weights[s] (f^F, M^F)(forcings[s]) at a fixed z (33.9). Empty without.
+  std::vector<std::shared_ptr<const Forcing>> forcings;
+  std::vector<System> systems;
 };
 
 // The parameters a run carries sensitivities to, in the order of the tangent's last columns.
@@ -46,6 +54,12 @@ class ParameterForces {
   // G at `state`, (3n + 3m) × P: evaluations_per_call() evaluations of the potential, one of
   // each parameter's models.
   const Eigen::MatrixXd& operator()(const State& state);
+  // G^F = ∂(f^F, M^F)/∂p at `state` (33.9), the rows as G's: the forces beyond the potential
+  // made at each parameter's stencil; zero when the parameters carry none (has_forcing()).
+  const Eigen::MatrixXd& forcing(const State& state);
+  bool has_forcing() const { return has_forcing_; }
+  // G + G^F: what the continuous variational equations add (22.2), (33.9).
+  const Eigen::MatrixXd& with_forcing(const State& state);
   const ParameterDerivatives& derivatives() const { return *derivatives_; }
   std::size_t size() const { return derivatives_->size(); }
   std::int64_t evaluations_per_call() const { return evaluations_per_call_; }
@@ -58,8 +72,10 @@ class ParameterForces {
  private:
   std::shared_ptr<const ParameterDerivatives> derivatives_;
   std::vector<std::vector<PotentialEvaluator>> models_;  // per parameter, its stencil's models
+  std::vector<std::vector<ForcingEvaluator>> forcings_;  // per parameter, its stencil's forces
+  bool has_forcing_ = false;
   Forces forces_;
-  Eigen::MatrixXd G_;
+  Eigen::MatrixXd G_, G_forcing_, G_sum_;
   std::int64_t evaluations_per_call_ = 0;
 };
 

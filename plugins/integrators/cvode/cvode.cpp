@@ -99,12 +99,10 @@ class Cvode final : public noether::Integrator {
     forcing_.emplace(equations_->system(), std::move(forcing));
     return "";
   }
-  // The parameters' terms (22.2) join the sensitivity right-hand side of the last columns.
+  // The parameters' terms (22.2) join the sensitivity right-hand side of the last columns, with
+  // the forces' own derivative G^F when there are forces beyond the potential (33.9).
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
-    if (forcing_)
-      return "cvode with forces beyond the potential carries no sensitivities to parameters yet (the "
-             "state-transition matrix and the chaos indicators it does carry)";
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
@@ -299,7 +297,7 @@ class Cvode final : public noether::Integrator {
       }
       if (me->parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
         auto& forces = *me->parameter_forces_;
-        const Eigen::MatrixXd& G = forces(me->stage_);
+        const Eigen::MatrixXd& G = forces.with_forcing(me->stage_);  // G + G^F (33.9)
         me->differenced_evaluations_ += forces.evaluations_per_call();
         noether::add_parameter_rhs(me->equations_->system(), me->stage_, forces.derivatives(), G,
                                    me->dV_.rightCols(static_cast<Eigen::Index>(forces.size())));

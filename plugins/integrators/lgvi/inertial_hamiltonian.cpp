@@ -76,10 +76,14 @@ class InertialHamiltonian final : public DiscreteFlow {
     before_ = s_;
     before_forces_ = current_;
     try {
-      if (carries_tangent()) {  // V⁺ = (I + (h/2) B K^F_k) V_k                          (33.6)
-        if (!forcing_jacobian_valid_) forcing_->jacobian(s_, forcing_jacobian_);
+      if (carries_tangent()) {  // V⁺ = (I + (h/2) B K^F_k) V_k  [+ (h/2) B G^F_k]        (33.6), (33.9)
+        if (!forcing_jacobian_valid_) {
+          forcing_->jacobian(s_, forcing_jacobian_);
+          tangent_.forcing_parameters_at(s_);
+        }
         forcing_jacobian_valid_ = false;
         noether::add_forcing_tangent(system_, forcing_jacobian_, 0.5 * h, s_.tangent, s_.tangent);
+        tangent_.add_forcing_parameters(0.5 * h, s_.tangent);
       }
       // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k,  the forces at z_k          (33.1)
       kick_from_ = s_;
@@ -88,13 +92,15 @@ class InertialHamiltonian final : public DiscreteFlow {
       forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
       conservative_step(h);
       closing_kick(h);
-      if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻                   (33.7)
+      if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻  [+ (h/2) B G^F_{k+1}]  (33.7), (33.9)
         forcing_->jacobian(s_, forcing_jacobian_);
+        tangent_.forcing_parameters_at(s_);
         const Eigen::Index N = s_.tangent.rows();
         closing_ = Eigen::MatrixXd::Identity(N, N);
         noether::add_forcing_tangent(system_, forcing_jacobian_, -0.5 * h, closing_, closing_);
+        tangent_.add_forcing_parameters(0.5 * h, s_.tangent);
         s_.tangent = closing_.partialPivLu().solve(s_.tangent);
-        forcing_jacobian_valid_ = true;  // the next opening kick's, at z_{k+1}
+        forcing_jacobian_valid_ = true;  // the next opening kick's (K^F, G^F), at z_{k+1}
       }
     } catch (...) {
       forcing_jacobian_valid_ = false;

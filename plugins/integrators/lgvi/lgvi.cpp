@@ -65,7 +65,6 @@ class Lgvi final : public noether::Integrator {
     if (!flow_->add_forcing(std::move(forcing)))
       return "the " + form_ + " form of the lgvi takes no forces beyond the potential yet: use frame: inertial, "
              "form: hamiltonian";
-    forced_ = true;
     return "";
   }
 
@@ -106,12 +105,10 @@ class Lgvi final : public noether::Integrator {
   }
   double fixed_step() const override { return h_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
-  // With forces, the kicks' derivatives (33.6)–(33.7) join it.
+  // With forces, the kicks' derivatives (33.6)–(33.7) join it, and for parameters the forces' own
+  // dependence on them (33.9).
   std::string tangent_map_unavailable() const override { return ""; }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
-    if (forced_)
-      return "the lgvi with forces beyond the potential carries no sensitivities to parameters yet (the "
-             "state-transition matrix and the chaos indicators it does carry)";
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";
   }
@@ -154,7 +151,6 @@ class Lgvi final : public noether::Integrator {
   int order_ = 2;
   std::vector<double> gamma_;  // composition coefficients (empty: the base map, order 2)
   std::string form_;           // "inertial hamiltonian", …
-  bool forced_ = false;        // forces beyond the potential were added
   double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
   std::int64_t k_ = 0;
   noether::State before_;

@@ -115,4 +115,14 @@ void TangentCarrier::advance(const noether::System& system, double h, const std:
   std::swap(G_, G_next_);
 }
 
+void TangentCarrier::forcing_parameters_at(const noether::State& s) {
+  if (carries_parameters(s) && parameter_forces_->has_forcing()) G_forcing_ = parameter_forces_->forcing(s);
+}
+
+void TangentCarrier::add_forcing_parameters(double tau, Eigen::MatrixXd& V) const {
+  if (G_forcing_.size() == 0 || V.size() == 0) return;
+  const Eigen::Index q = G_forcing_.rows();  // δγ, δΠ: V's last q rows, in G^F's row order (21.1)
+  V.bottomRows(q).rightCols(G_forcing_.cols()) += tau * G_forcing_;  //                   (33.9)
+}
+
 }  // namespace lgvi

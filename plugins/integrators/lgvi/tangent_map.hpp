@@ -50,13 +50,18 @@ class TangentCarrier {
   // z_{k+1} becomes z_k.
   void advance(const noether::System& system, double h, const std::vector<noether::Mat3>& F, const Eigen::Matrix3Xd& w,
                const Eigen::Matrix3Xd& displacement, Eigen::MatrixXd& V);
+  // The forced kicks' own dependence on the parameters (docs/equations.md 33.9): G^F =
+  // ∂(f^F, M^F)/∂p at `s`, kept (nothing when the parameters carry no forces); then, at a kick
+  // of duration τ, V's parameter columns' momentum rows += τ G^F.
+  void forcing_parameters_at(const noether::State& s);
+  void add_forcing_parameters(double tau, Eigen::MatrixXd& V) const;
 
  private:
   bool carries_parameters(const noether::State& s) const { return s.tangent.size() > 0 && parameter_forces_; }
   void evaluate_at(const noether::State& s, noether::PotentialEvaluator& evaluate, noether::WorkCounters& work,
                    Eigen::MatrixXd& K, Eigen::MatrixXd& G);
   std::optional<noether::ParameterForces> parameter_forces_;
-  Eigen::MatrixXd K_, K_next_, G_, G_next_;
+  Eigen::MatrixXd K_, K_next_, G_, G_next_, G_forcing_;
 };
 
 }  // namespace lgvi

@@ -98,12 +98,10 @@ class Rk final : public noether::Integrator {
     forcing_.emplace(equations_->system(), std::move(forcing));
     return "";
   }
-  // The parameters' terms (22.2) join the variational equations of the last columns.
+  // The parameters' terms (22.2) join the variational equations of the last columns, with the
+  // forces' own derivative G^F when there are forces beyond the potential (33.9).
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!tangent_map_unavailable().empty()) return tangent_map_unavailable();
-    if (forcing_)
-      return "rk with forces beyond the potential carries no sensitivities to parameters yet (the state-transition "
-             "matrix and the chaos indicators it does carry)";
     parameter_forces_.emplace(std::move(parameters));
     return "";
   }
@@ -328,7 +326,7 @@ class Rk final : public noether::Integrator {
     }
     if (parameter_forces_) {  // ∂z/∂p columns: + the parameters' terms (22.2)
       const auto P = static_cast<Eigen::Index>(parameter_forces_->size());
-      const Eigen::MatrixXd& G = (*parameter_forces_)(stage_);
+      const Eigen::MatrixXd& G = parameter_forces_->with_forcing(stage_);  // G + G^F (33.9)
       differenced_evaluations_ += parameter_forces_->evaluations_per_call();
       noether::add_parameter_rhs(equations_->system(), stage_, parameter_forces_->derivatives(), G, dV.rightCols(P));
     }
