@@ -89,6 +89,8 @@ run: {t_end: 1, output_every: 1}
 TEST(Particles, AnOrbitAboutASphereKeepsItsEnergy) {
   for (const double e : {0.0, 0.4}) {
   double errors[2];
+  Vec3 ends[2];
+  ParticleCheck checked;  // of the run at h: its particle carried again at h/2
   for (int halving = 0; halving < 2; ++halving) {
     const double h = 40.0 / (1 << halving);
     const Scene scene = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}", 3e-4,
@@ -96,7 +98,7 @@ TEST(Particles, AnOrbitAboutASphereKeepsItsEnergy) {
     ParticleSwarm swarm(scene.system, scene.particles, scene.initial);
     const double E0 = swarm.energy(0, scene.initial);
     const double mu = scene.system.G() * scene.system.body(0).mass, period = 2 * M_PI * std::sqrt(std::pow(1500.0, 3) / mu);
-    const int steps = static_cast<int>(std::round(20 * period / h));
+    const int steps = static_cast<int>(std::round(20 * period / 40.0)) << halving;  // both to the same time
     double worst = 0.0, late = 0.0;
     State from = turned(scene, 0.0);
     for (int k = 1; k <= steps; ++k) {
@@ -109,6 +111,8 @@ TEST(Particles, AnOrbitAboutASphereKeepsItsEnergy) {
     }
     ASSERT_EQ(swarm.outcomes()[0].fate, ParticleFate::in_flight);
     if (e == 0.0) EXPECT_NEAR((swarm.positions().col(0) - scene.initial.x.col(0)).norm(), 1500.0, 1e-6 * 1500.0);
+    ends[halving] = swarm.positions().col(0);
+    if (halving == 0) checked = swarm.check(from);
     std::printf("e = %g, h = %g (%d steps an orbit): max |dE/E| %.3e, in the second half %.3e\n", e, h,
                 static_cast<int>(period / h), worst, late);
     EXPECT_LT(worst, e == 0.0 ? 1e-9 : 1e-4);
@@ -116,6 +120,13 @@ TEST(Particles, AnOrbitAboutASphereKeepsItsEnergy) {
     EXPECT_LE(late, worst);
     errors[halving] = worst;
   }
+  // The step-halving check (particles.check) carried the particle at h/2 beside the run at h:
+  // it is the run at h/2 (whose bodies were turned exactly at the midpoints, where the check
+  // interpolates them: the same to round-off).
+  EXPECT_EQ(checked.checked, 1u);
+  EXPECT_EQ(checked.fates_differ, 0u);
+  EXPECT_NEAR(checked.position, (ends[0] - ends[1]).norm() / ends[0].norm(), 1e-6 * checked.position);
+  EXPECT_GT(checked.position, 0.0);
   // A circular orbit's error is of order 4 (the h² term of the modified energy is constant on it).
   const double order = std::log2(errors[0] / errors[1]);
   std::printf("e = %g: order %.3f\n", e, order);
@@ -186,7 +197,7 @@ TEST(Particles, ADropOntoKw4AlphaLandsWhereAndWhenRkf78Says) {
 #endif
   const double spin = 6.313486162248933e-4;
   const Scene scene = lone_body_scene("density: 1970, shape: {polyhedron: {file: shapes/a66391_1999kw4_primary.obj, units: km}}",
-                                      spin, "{states: [[700, 500, 400, -0.2, -0.15, -0.1]], step: 0.1}",
+                                      spin, "{states: [[700, 500, 400, -0.2, -0.15, -0.1]], step: 0.1, check: 0}",
                                       "{plugin: rk, method: rkf78, rtol: 1.0e-13, atol: 1.0e-13}",
                                       "{t_end: 3000, output_every: 100}");
   PluginRegistry registry = test::bundled_plugins();
@@ -463,9 +474,55 @@ TEST(Particles, EjectaLeaveTheSiteAtTheConeWithThePowerLawsSpeeds) {
 // A particle thrown straight up from a sphere below the escape speed falls back where it left,
 // when the radial Kepler orbit says: r = a (1 − cos η), t = √(a³/μ) (η − sin η), 2a the apex; the
 // time's error falls as the step's square (Verlet's order).
+// The verdict judges the particles by the step-halving check (particles.check): two orbits about
+// a sphere (a = 1500 m, e = 0.2; a = 2500 m), two revolutions. The check's measure is the
+// particles' own error (order 2: a quarter at each halving of the step); at 500 s (87 steps an
+// orbit) halving the step still moves them by 4 % of their distance — not resolved —, at 125 s
+// by 0.3 %. `check: 0` leaves the particles unjudged, and the particles at h are the same.
+TEST(Particles, TheVerdictHalvesTheirStep) {
+  PluginRegistry registry = test::bundled_plugins();
+  auto run = [&](const std::string& step, const std::string& check) {
+    const Scene scene = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}", 3e-4,
+                                        "{around: rock, orbits: [{a: 1500, e: 0.2, i: 30}, {a: 2500, e: 0.1}], step: " +
+                                            step + ", check: " + check + "}",
+                                        "{plugin: lgvi, step: 1000}", "{t_end: 88000, output_every: 88000}");
+    Simulation sim(scene, registry, RunOptions{});
+    sim.integrate(scene.run.t_end);
+    return std::make_pair(sim.finish(), Eigen::Matrix3Xd(sim.particles()->positions()));
+  };
+  const auto [coarse, x_coarse] = run("500", "32");
+  const auto [middle, x_middle] = run("250", "32");
+  const auto [fine, x_fine] = run("125", "32");
+  const auto [unchecked, x_unchecked] = run("500", "0");
+  const double p[] = {coarse.particles.check.position, middle.particles.check.position, fine.particles.check.position};
+  std::printf("the check at particle steps 500, 250, 125 s moves them by %.3e, %.3e, %.3e\n", p[0], p[1], p[2]);
+  EXPECT_EQ(coarse.particles.check.checked, 2u);  // of two particles, both
+  EXPECT_EQ(coarse.particles.check.fates_differ, 0u);
+  EXPECT_NEAR(std::log2(p[0] / p[1]), 2.0, 0.1);
+  EXPECT_NEAR(std::log2(p[1] / p[2]), 2.0, 0.1);
+  EXPECT_GT(p[0], 1e-2);
+  EXPECT_FALSE(coarse.verdict.trustworthy);
+  ASSERT_FALSE(coarse.verdict.reasons.empty());
+  EXPECT_NE(coarse.verdict.reasons.back().find("the particles are not resolved: halving their step moves the checked "
+                                               "ones in flight by up to 4.2"),
+            std::string::npos)
+      << coarse.verdict.reasons.back();
+  EXPECT_LT(p[2], 1e-2);
+  EXPECT_TRUE(fine.verdict.trustworthy) << (fine.verdict.reasons.empty() ? "" : fine.verdict.reasons[0]);
+  EXPECT_EQ(unchecked.particles.check.checked, 0u);
+  EXPECT_TRUE(unchecked.verdict.trustworthy);
+  EXPECT_EQ(x_unchecked, x_coarse) << "the check leaves the particles at h as they were";
+  EXPECT_NE(format_summary(coarse).find("particles at half the step    2 checked: 0 fates differ; in flight moved <= "
+                                        "0.042 of their distance"),
+            std::string::npos)
+      << format_summary(coarse);
+}
+
 TEST(Particles, AThrowStraightUpFallsBackWhenKeplerSays) {
   const double R = 500.0, v0 = 0.3;
   double errors[2];
+  ParticleOutcome landed[2];
+  ParticleCheck checked;  // of the run at h: its particle carried again at h/2
   for (int halving = 0; halving < 2; ++halving) {
     const double h = 5.0 / (1 << halving);  // 2 and 4 Verlet steps a step of the bodies (10 s)
     const Scene scene = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}", 0.0,
@@ -492,6 +549,8 @@ TEST(Particles, AThrowStraightUpFallsBackWhenKeplerSays) {
     const ParticleOutcome& o = swarm.outcomes()[0];
     ASSERT_EQ(o.fate, ParticleFate::impact);
     errors[halving] = std::abs(o.t - flight);
+    landed[halving] = o;
+    if (halving == 0) checked = swarm.check(from);
     std::printf("h = %g: lands after %.9f s, Kepler %.9f s (%.3e s); %.3e m from the site\n", h, o.t, flight,
                 errors[halving], (o.point - R * x0 / r0).norm());
     EXPECT_LT(errors[halving], 1e-5 * flight);
@@ -499,4 +558,12 @@ TEST(Particles, AThrowStraightUpFallsBackWhenKeplerSays) {
     EXPECT_NEAR(o.velocity.norm(), std::sqrt(v0 * v0 + 2 * mu * (1 / R - 1 / r0)), 1e-4 * v0);
   }
   EXPECT_NEAR(std::log2(errors[0] / errors[1]), 2.0, 0.2) << "order 2";
+  // The check at h landed its particle as the run at h/2 did, bit for bit (the bodies' step a
+  // multiple of both: the same bodies at the same substeps).
+  EXPECT_EQ(checked.fates_differ, 0u);
+  EXPECT_EQ(checked.landing_time, std::abs(landed[0].t - landed[1].t));
+  const Scene scene = lone_body_scene("density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}", 0.0,
+                                      "{states: [[600, 0, 0, 0, 0, 0]]}");
+  const BodyField field(scene.system.body(0), scene.system.G(), BodyFieldOptions{});
+  EXPECT_EQ(checked.landing_point, (landed[0].point - landed[1].point).norm() / field.bounding_radius());
 }

@@ -104,6 +104,45 @@ TEST(Simulation, TheExactModelContinuesBitwise) {
   std::filesystem::remove(file);
 }
 
+// Forces beyond the potential (docs/forces.md): the tidal spin-down saved mid-run and loaded
+// continues bit for bit — the state, the forces' balance (each force's work and momenta) and the
+// verdict's errors, whose momentum scales include the largest momenta the forces exchanged (kept
+// in the checkpoint). Loaded with a new output file, the balance starts again there.
+TEST(Simulation, AForcedRunSavedAndLoadedContinuesBitwise) {
+  PluginRegistry registry;
+  const auto file = std::filesystem::temp_directory_path() / ("noether-forced-" + std::to_string(::getpid()) + ".h5");
+  for (const char* integrator : {"integrator.order=2", "integrator.order=4",
+                                 "integrator={plugin: rk, method: rk4, step: 0.01}"}) {
+    const Scene scene = load_scene(test::source_path("examples/tidal-spin-down.yaml"),
+                                   {integrator, "run.t_end=6", "run.output_every=1"});
+    const auto [whole, second] = run_whole_and_continued(scene, registry, 2.37, 6.0, file);
+    EXPECT_TRUE(same_bits(whole->state(), second->state())) << integrator;
+    EXPECT_EQ(whole->state().force_balance, second->state().force_balance) << integrator;
+    const RunSummary a = whole->summary(), b = second->summary();
+    ASSERT_EQ(b.forces.size(), 1u);
+    EXPECT_NE(a.forces[0].work, 0.0);
+    EXPECT_EQ(a.forces[0].work, b.forces[0].work) << integrator;
+    EXPECT_EQ(a.forces[0].angular_momentum, b.forces[0].angular_momentum) << integrator;
+    EXPECT_EQ(a.max_abs_energy_error, b.max_abs_energy_error) << integrator;
+    EXPECT_EQ(a.max_rel_linear_momentum_error, b.max_rel_linear_momentum_error) << integrator;
+    EXPECT_EQ(a.max_rel_angular_momentum_error, b.max_rel_angular_momentum_error) << integrator;
+  }
+  // A new output file: its summary and the forces' balance start at the loaded state; E − W is
+  // conserved from there to the integrator's error (the whole run's is ~1e-8 here).
+  const auto out = std::filesystem::temp_directory_path() / ("noether-forced-out-" + std::to_string(::getpid()) + ".h5");
+  RunOptions options;
+  options.output = out;
+  options.overwrite = true;
+  auto again = Simulation::load(file, registry, options);
+  EXPECT_TRUE(again->state().force_balance.isZero(0.0));
+  again->integrate(6.0);
+  EXPECT_NE(again->summary().forces[0].work, 0.0);
+  EXPECT_LT(again->summary().max_abs_energy_error, 1e-6 * std::abs(again->summary().initial.energy));
+  again.reset();
+  std::filesystem::remove(out);
+  std::filesystem::remove(file);
+}
+
 TEST(Simulation, SetStateIsChecked) {
   PluginRegistry registry;
   Simulation sim(test::dumbbell_scene({"run.t_end=1"}), registry);

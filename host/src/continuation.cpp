@@ -28,11 +28,9 @@ namespace {
 // What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
 // tangent's frames but not the state of its integration: the chaos indicators' sums, the
 // parameters' stencils), a scene with impulses (which of them a continuation has passed) and one
-// with forces (what they put in so far).
-// `continuing`: --resume, which reads the forces' balance back with every frame; a saved
-// simulation does not keep the run's largest exchanged momenta, so saving refuses forces.
-void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice,
-                        bool continuing = false) {
+// with particles. Forces beyond the potential are continued: every frame holds their balance,
+// and a saved simulation the largest momenta they exchanged (the verdict's scales).
+void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
@@ -40,8 +38,6 @@ void refuse_unsupported(const Scene& scene, const std::string& doing, const std:
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
   if (!scene.particles.empty())
     throw Error(doing + " a run whose scene has massless particles (particles:) is not supported yet" + advice);
-  if (!continuing && !scene.forces.empty())
-    throw Error(doing + " a run whose scene has forces beyond the potential (forces:) is not supported yet" + advice);
 }
 
 // Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied
@@ -112,7 +108,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole", true);
+  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
@@ -242,6 +238,10 @@ void Simulation::save(const std::filesystem::path& path) const {
       {"frames", {static_cast<double>(s.frames)}},
       {"orbit_scales", orbit_scales(s.orbits)}};
   if (const auto spin = m.observer->spin_state_numbers(); !spin.empty()) numbers.emplace_back("spin_state", spin);
+  if (!m.scene.forces.empty()) {  // the forces' balance is the state's; their largest exchange is not (33.3)
+    const auto [p, L] = m.observer->exchanged();
+    numbers.push_back({"exchanged_momenta", {p, L}});
+  }
   writer.write_summary_values(
       numbers,
       {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
@@ -274,6 +274,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
   scene.initial = at_last.state;  // frame 0 of the loaded simulation is where the file stood
   const bool with_output = options.output.has_value();
+  // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
+  if (with_output && !scene.forces.empty()) scene.initial.force_balance.setZero();
   auto sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
@@ -294,13 +296,23 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     s.min_distance_pair = run.summary_text("min_distance_pair");
     s.orbits = orbits_of(run);
     s.stop_reason = run.summary_text("stop_reason");
-    for (const auto& [key, values] : run.summary_numbers)  // absent from an older noether's file
+    bool exchanged = false;
+    for (const auto& [key, values] : run.summary_numbers) {  // absent from an older noether's file
       if (key == "spin_state") m.observer->set_spin_state_numbers(values);
+      if (key == "exchanged_momenta" && values.size() == 2) {
+        m.observer->set_exchanged(values[0], values[1]);
+        exchanged = true;
+      }
+    }
+    if (!m.scene.forces.empty() && !exchanged)
+      throw Error(path.string() + ": saved without the momenta its forces exchanged, which the verdict's scales "
+                  "need; load it with an output file (its summary then starts there) or run the scene again");
   } else if (!with_output) {  // a run's file: its frames replayed into the summary, as --resume does
     m.new_segment();
     replay(run, m, last, options.interrupt);
     s.interpolated_frames = at_last.interpolated;
   }
+  if (with_output && !m.scene.forces.empty()) at_last.state.force_balance.setZero();
   m.restore(at_last, path);
   return sim;
 }

@@ -74,6 +74,19 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
     }
     a_.col(i) = acceleration(x_.col(i), at, fields_[0]);
   }
+  // The check's particles: k n / K for k < K, spread evenly through the list.
+  const std::size_t K = std::min(settings_.check, outcomes_.size());
+  for (std::size_t k = 0; k < K; ++k) checked_.push_back(k * outcomes_.size() / K);
+  x_half_.resize(3, static_cast<Eigen::Index>(K));
+  v_half_.resize(3, static_cast<Eigen::Index>(K));
+  a_half_.resize(3, static_cast<Eigen::Index>(K));
+  for (std::size_t k = 0; k < K; ++k) {
+    const auto c = static_cast<Eigen::Index>(k), i = static_cast<Eigen::Index>(checked_[k]);
+    x_half_.col(c) = x_.col(i);
+    v_half_.col(c) = v_.col(i);
+    a_half_.col(c) = a_.col(i);
+  }
+  outcomes_half_.assign(K, {});
 }
 
 void ParticleSwarm::recorded_positions(const State& bodies, Eigen::Matrix3Xd& out) const {
@@ -153,41 +166,96 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
   while (fields_.size() < static_cast<std::size_t>(threads)) fields_.push_back(fields_[0]);
   std::vector<State> probes(static_cast<std::size_t>(threads));
   std::vector<std::int64_t> steps(static_cast<std::size_t>(threads), 0);
+  // One particle's flight through `through`, read from and written back to columns c of (x, v, a).
+  auto fly = [&](Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& a, Eigen::Index c, ParticleOutcome& outcome,
+                 const std::vector<Placement>& through, int thread) {
+    Flight p{x.col(c), v.col(c), a.col(c), outcome};
+    carry(p, through, from, to, fields_[static_cast<std::size_t>(thread)], probes[static_cast<std::size_t>(thread)]);
+    x.col(c) = p.x, v.col(c) = p.v, a.col(c) = p.a;
+    outcome = p.outcome;
+  };
   parallel_for_each(size(), threads, [&](std::size_t i, int thread) {
     if (outcomes_[i].fate != ParticleFate::in_flight) return;
-    carry(i, ends, from, to, fields_[static_cast<std::size_t>(thread)], probes[static_cast<std::size_t>(thread)]);
+    fly(x_, v_, a_, static_cast<Eigen::Index>(i), outcomes_[i], ends, thread);
     steps[static_cast<std::size_t>(thread)] += n;
   });
   for (const std::int64_t s : steps) particle_steps_ += s;
-  // Escapes, at the step's end: farther than `escape` from `around` (or the bodies' barycentre).
-  if (settings_.escape > 0.0) {
-    Vec3 centre = Vec3::Zero();
-    if (settings_.around) {
-      centre = to.x.col(static_cast<Eigen::Index>(*settings_.around));
-    } else {
-      double m = 0.0;
-      for (std::size_t b = 0; b < system_.size(); ++b) {
-        centre += system_.body(b).mass * to.x.col(static_cast<Eigen::Index>(b));
-        m += system_.body(b).mass;
-      }
-      centre /= m;
+  if (!checked_.empty()) {  // the check's particles at half the step: the bodies at the midpoints too
+    std::vector<Placement> halves;
+    halves.reserve(2 * ends.size() - 1);
+    for (int s = 0; s < n; ++s) {
+      halves.push_back(ends[static_cast<std::size_t>(s)]);
+      hermite_state(system_, from, to, from.t + (to.t - from.t) * (2 * s + 1) / (2 * n), probe);
+      halves.push_back(placement_of(system_, probe));
     }
-    for (std::size_t i = 0; i < size(); ++i)
-      if (outcomes_[i].fate == ParticleFate::in_flight &&
-          (x_.col(static_cast<Eigen::Index>(i)) - centre).norm() > settings_.escape) {
-        outcomes_[i].fate = ParticleFate::escape;
-        outcomes_[i].t = to.t;
-      }
+    halves.push_back(ends.back());
+    std::fill(steps.begin(), steps.end(), 0);
+    parallel_for_each(checked_.size(), threads, [&](std::size_t k, int thread) {
+      if (outcomes_half_[k].fate != ParticleFate::in_flight) return;
+      fly(x_half_, v_half_, a_half_, static_cast<Eigen::Index>(k), outcomes_half_[k], halves, thread);
+      steps[static_cast<std::size_t>(thread)] += 2 * n;
+    });
+    for (const std::int64_t s : steps) check_steps_ += s;
   }
+  mark_escapes(to, x_, outcomes_);
+  mark_escapes(to, x_half_, outcomes_half_);
   t_ = to.t;
   seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The particles' centre at `bodies`: `around`, or the bodies' barycentre.
+Vec3 ParticleSwarm::centre(const State& bodies) const {
+  if (settings_.around) return bodies.x.col(static_cast<Eigen::Index>(*settings_.around));
+  Vec3 c = Vec3::Zero();
+  double m = 0.0;
+  for (std::size_t b = 0; b < system_.size(); ++b) {
+    c += system_.body(b).mass * bodies.x.col(static_cast<Eigen::Index>(b));
+    m += system_.body(b).mass;
+  }
+  return c / m;
+}
+
+// Escapes, at a step's end: farther than `escape` from the centre.
+void ParticleSwarm::mark_escapes(const State& bodies, const Eigen::Matrix3Xd& x,
+                                 std::vector<ParticleOutcome>& outcomes) const {
+  if (!(settings_.escape > 0.0) || outcomes.empty()) return;
+  const Vec3 c = centre(bodies);
+  for (std::size_t i = 0; i < outcomes.size(); ++i)
+    if (outcomes[i].fate == ParticleFate::in_flight && (x.col(static_cast<Eigen::Index>(i)) - c).norm() > settings_.escape) {
+      outcomes[i].fate = ParticleFate::escape;
+      outcomes[i].t = bodies.t;
+    }
+}
+
+ParticleCheck ParticleSwarm::check(const State& bodies) const {
+  ParticleCheck out;
+  out.checked = checked_.size();
+  out.steps = check_steps_;
+  const Vec3 c = centre(bodies);
+  for (std::size_t k = 0; k < checked_.size(); ++k) {
+    const std::size_t i = checked_[k];
+    const ParticleOutcome &h = outcomes_[i], &half = outcomes_half_[k];
+    if (h.fate != half.fate || h.body != half.body) {
+      ++out.fates_differ;
+      continue;
+    }
+    if (h.fate == ParticleFate::in_flight) {
+      const Vec3 x = x_.col(static_cast<Eigen::Index>(i));
+      const double r = (x - c).norm();
+      if (r > 0) out.position = std::max(out.position, (x - Vec3(x_half_.col(static_cast<Eigen::Index>(k)))).norm() / r);
+    } else if (h.fate == ParticleFate::impact) {
+      const double radius = fields_[0][static_cast<std::size_t>(h.body)].bounding_radius();
+      out.landing_point = std::max(out.landing_point, (h.point - half.point).norm() / radius);
+      out.landing_time = std::max(out.landing_time, std::abs(h.t - half.t));
+    }
+  }
+  return out;
+}
+
 // (38.3): kick, drift, kick through each substep; a landing ends the particle's flight (38.4).
-void ParticleSwarm::carry(std::size_t i, const std::vector<Placement>& ends, const State& from, const State& to,
-                          std::vector<BodyField>& fields, State& probe) {
-  const auto c = static_cast<Eigen::Index>(i);
-  Vec3 x = x_.col(c), v = v_.col(c), a = a_.col(c);
+void ParticleSwarm::carry(Flight& p, const std::vector<Placement>& ends, const State& from, const State& to,
+                          std::vector<BodyField>& fields, State& probe) const {
+  Vec3 x = p.x, v = p.v, a = p.a;
   for (std::size_t s = 1; s < ends.size(); ++s) {
     const double h = ends[s].t - ends[s - 1].t;
     const Vec3 half = v + 0.5 * h * a;
@@ -201,23 +269,18 @@ void ParticleSwarm::carry(std::size_t i, const std::vector<Placement>& ends, con
       if (r.squaredNorm() > f.bounding_radius() * f.bounding_radius() || f.surface_gap(r) > 0.0) continue;
       ParticleOutcome landed = landing(b, ends[s - 1].t, ends[s].t, x, v, x1, v1, from, to, probe);
       // Of two bodies hit in one substep, the first.
-      if (outcomes_[i].fate == ParticleFate::in_flight || landed.t < outcomes_[i].t) outcomes_[i] = landed;
+      if (p.outcome.fate == ParticleFate::in_flight || landed.t < p.outcome.t) p.outcome = landed;
     }
-    if (outcomes_[i].fate == ParticleFate::impact) {
+    if (p.outcome.fate == ParticleFate::impact) {
       // The particle stays where it landed, with the velocity it landed with (inertial).
-      const double u = (outcomes_[i].t - ends[s - 1].t) / h;
-      Vec3 xl, vl;
-      hermite_path(x, v, x1, v1, h, u, xl, vl);
-      x_.col(c) = xl;
-      v_.col(c) = vl;
-      a_.col(c) = a1;
+      const double u = (p.outcome.t - ends[s - 1].t) / h;
+      hermite_path(x, v, x1, v1, h, u, p.x, p.v);
+      p.a = a1;
       return;
     }
     x = x1, v = v1, a = a1;
   }
-  x_.col(c) = x;
-  v_.col(c) = v;
-  a_.col(c) = a;
+  p.x = x, p.v = v, p.a = a;
 }
 
 // (38.4): the time in [ta, tb] where the particle's Hermite path meets body b's surface, which

@@ -157,6 +157,10 @@ class RunStatistics final : public Observer {
   // The scales of the relative momentum errors (a saved simulation keeps them).
   std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
   void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
+  // The largest ‖ΔP‖, ‖ΔL‖ the forces beyond the potential put in so far, part of those scales
+  // in a forced run (a saved simulation keeps them too).
+  std::pair<double, double> exchanged() const { return {exchanged_p_, exchanged_L_}; }
+  void set_exchanged(double p, double L) { exchanged_p_ = p, exchanged_L_ = L; }
   // The spin states' running values (a saved simulation keeps them).
   std::vector<double> spin_state_numbers() const { return spin_.pack(); }
   void set_spin_state_numbers(const std::vector<double>& numbers) { spin_.unpack(numbers); }

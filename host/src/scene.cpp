@@ -597,12 +597,13 @@ EjectaSettings parse_ejecta(const Params& e, const System& sys, std::size_t inde
 
 }  // namespace
 
-// particles: {around, states | file | orbits | ejecta, step, degree, tolerance, escape, record}
+// particles: {around, states | file | orbits | ejecta, step, degree, tolerance, escape, record, check}
 // (docs/user-guide.md, "Particles"): each source adds particles, in the order states, file, orbits,
 // ejecta.
 ParticleSettings parse_particles(const Params& p, const System& sys, const State& initial,
                                  const std::filesystem::path& folder) {
-  p.check_keys({"around", "states", "file", "orbits", "ejecta", "step", "degree", "tolerance", "escape", "record"},
+  p.check_keys({"around", "states", "file", "orbits", "ejecta", "step", "degree", "tolerance", "escape", "record",
+                "check"},
                "'particles'");
   ParticleSettings out;
   Vec3 x0 = Vec3::Zero(), v0 = Vec3::Zero();
@@ -673,6 +674,9 @@ ParticleSettings parse_particles(const Params& p, const System& sys, const State
   const long record = p.get("record", 100L);
   if (record < 0) throw SceneError(p.at("record").here() + "'particles.record' must be a count ≥ 0");
   out.record = std::min(static_cast<std::size_t>(record), out.position.size());
+  const long check = p.get("check", 32L);
+  if (check < 0) throw SceneError(p.at("check").here() + "'particles.check' must be a count ≥ 0 (0: no check)");
+  out.check = std::min(static_cast<std::size_t>(check), out.position.size());
   if (!(out.step > 0.0 && std::isfinite(out.step)) && p.has("step"))
     throw SceneError(p.at("step").here() + "'particles.step' must be a positive time (the particles' longest Verlet step)");
   if (out.degree < 0 || out.degree > multi_index::kMaxDegree)
@@ -840,10 +844,11 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (run.has("escape")) scene.run.escape = parse_escape(run.at("escape"), scene.system);
   if (run.has("trust")) {
     const Params& trust = run.at("trust");
-    trust.check_keys({"energy", "momentum", "orthogonality", "position"}, "'run.trust'");
+    trust.check_keys({"energy", "momentum", "orthogonality", "position", "particle_fates"}, "'run.trust'");
     TrustThresholds& t = scene.run.trust;
     for (auto [key, value] : {std::pair<const char*, double*>{"energy", &t.energy}, {"momentum", &t.momentum},
-                              {"orthogonality", &t.orthogonality}, {"position", &t.position}}) {
+                              {"orthogonality", &t.orthogonality}, {"position", &t.position},
+                              {"particle_fates", &t.particle_fates}}) {
       *value = trust.get(key, *value);
       if (!(*value > 0.0))
         throw SceneError(trust.at(key).here() + "'run.trust." + key + "' must be a positive number");

@@ -130,6 +130,7 @@ struct Simulation::Impl {
     s.steps = particles->particle_steps();
     s.seconds = particles->seconds();
     s.fields = particles->fields();
+    s.check = particles->check(state);
     return s;
   }
   WorkCounters work() const { return base_work + integrator->work(); }

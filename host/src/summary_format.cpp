@@ -89,8 +89,16 @@ std::string format_summary(const RunSummary& s) {
       }
     std::snprintf(line, sizeof line, "particles                     %zu: %zu in flight, %zu escaped%s; %.3g us a particle-step\n",
                   p.count, p.in_flight, p.escaped, landed.c_str(),
-                  p.steps > 0 ? 1e6 * p.seconds / static_cast<double>(p.steps) : 0.0);
+                  p.steps > 0 ? 1e6 * p.seconds / static_cast<double>(p.steps + p.check.steps) : 0.0);
     optional += line;
+    if (const ParticleCheck& c = p.check; c.checked > 0) {
+      std::snprintf(line, sizeof line,
+                    "particles at half the step    %zu checked: %zu fates differ; in flight moved <= %.2g of their "
+                    "distance, landing points <= %.2g of the radius, times <= %.2g%s\n",
+                    c.checked, c.fates_differ, c.position, c.landing_point, c.landing_time,
+                    with_unit(s.energy_unit.empty() ? "" : s.time_unit).c_str());
+      optional += line;
+    }
   }
   if (!s.mutual_pair.empty()) {
     if (s.mutual_revolutions > 0) {
@@ -256,7 +264,12 @@ std::string format_summary_json(const RunSummary& s) {
     field("particles", "{\"count\": " + std::to_string(p.count) + ", \"in_flight\": " + std::to_string(p.in_flight) +
                            ", \"escaped\": " + std::to_string(p.escaped) + ", \"landed\": " + landed +
                            "}, \"verlet_steps\": " + std::to_string(p.steps) + ", \"seconds\": " + json_number(p.seconds) +
-                           ", \"fields\": " + fields + "]}");
+                           ", \"fields\": " + fields + "], \"check\": {\"checked\": " + std::to_string(p.check.checked) +
+                           ", \"fates_differ\": " + std::to_string(p.check.fates_differ) +
+                           ", \"position\": " + json_number(p.check.position) +
+                           ", \"landing_point\": " + json_number(p.check.landing_point) +
+                           ", \"landing_time\": " + json_number(p.check.landing_time) +
+                           ", \"verlet_steps\": " + std::to_string(p.check.steps) + "}}");
   } else {
     field("particles", "null");
   }

@@ -87,6 +87,32 @@ void judge(RunSummary& s, const Scene& scene) {
                   limit.orthogonality);
     v.reasons.push_back(why);
   }
+  // The particles at half their step (particles.check): their fates, and where those in flight
+  // stand and those landed hit, against the run's.
+  const ParticleCheck& particles = s.particles.check;
+  if (particles.checked > 0) {
+    if (static_cast<double>(particles.fates_differ) > limit.particle_fates * static_cast<double>(particles.checked)) {
+      std::snprintf(why, sizeof why,
+                    "the particles are not resolved: halving their step changes the fate of %zu of the %zu checked "
+                    "(> %.3g%%; a smaller particles.step?)",
+                    particles.fates_differ, particles.checked, 100 * limit.particle_fates);
+      v.reasons.push_back(why);
+    }
+    if (particles.position > limit.position) {
+      std::snprintf(why, sizeof why,
+                    "the particles are not resolved: halving their step moves the checked ones in flight by up to "
+                    "%.2e of their distance from the centre (> %.0e; a smaller particles.step?)",
+                    particles.position, limit.position);
+      v.reasons.push_back(why);
+    }
+    if (particles.landing_point > limit.position) {
+      std::snprintf(why, sizeof why,
+                    "the particles are not resolved: halving their step moves the checked ones' landing points by up "
+                    "to %.2e of the body's radius (> %.0e; a smaller particles.step?)",
+                    particles.landing_point, limit.position);
+      v.reasons.push_back(why);
+    }
+  }
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
   if (s.min_gap < -1e-6 * s.min_gap_reach) {

@@ -28,8 +28,11 @@
 // Version 9: forces beyond the potential — PluginKind::Force, ForceModel
 // (force_model.hpp), PluginDescriptor::make_force, Integrator::add_forcing and
 // State::force_balance.
-// Version 10 (current): ExactMutualOptions::method and ExactMutual's expansion (its layout
-// changed); solid_harmonics.hpp added.
+// Version 10: ExactMutualOptions::method and ExactMutual's expansion (its layout changed);
+// solid_harmonics.hpp added.
+// Version 11 (current): DynamicsParameter and ParameterForces carry the forces beyond the
+// potential made at a parameter's stencil (their layouts changed; ParameterForces::forcing,
+// with_forcing).
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -47,7 +50,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 10u
+#define NOETHER_PLUGIN_API_VERSION 11u
 
 namespace noether {
 

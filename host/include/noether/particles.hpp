@@ -10,6 +10,7 @@
 // substep's cubic Hermite path by regula falsi (38.4), with where and how fast it hit, in the body
 // frame. A particle farther than `escape` from the centre has escaped.
 #include <noether/body_field.hpp>
+#include <noether/particle_check.hpp>
 #include <noether/scene.hpp>
 
 #include <cstdint>
@@ -56,14 +57,25 @@ class ParticleSwarm {
   // What each body's field is (BodyField::describe), in the scene's order of bodies.
   std::vector<std::string> fields() const;
   std::int64_t particle_steps() const { return particle_steps_; }  // Verlet steps taken, all particles
+  // The check's comparison where the run stands, the bodies at `bodies` (at time()).
+  ParticleCheck check(const State& bodies) const;
   double seconds() const { return seconds_; }                      // wall time spent in advance()
 
   struct Placement;  // the bodies' positions and attitudes at one time
 
  private:
+  // One particle in flight, (x, v, a) at time(), through the substeps `ends` (38.3), landing
+  // when it crosses a surface (38.4).
+  struct Flight {
+    Vec3 x, v, a;
+    ParticleOutcome outcome;
+  };
   Vec3 acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const;
-  void carry(std::size_t i, const std::vector<Placement>& ends, const State& from, const State& to,
-             std::vector<BodyField>& fields, State& probe);
+  void carry(Flight& p, const std::vector<Placement>& ends, const State& from, const State& to,
+             std::vector<BodyField>& fields, State& probe) const;
+  Vec3 centre(const State& bodies) const;  // what `escape` is measured from
+  // Every particle of (x, outcomes) in flight farther than `escape` from the centre has escaped at `bodies`.
+  void mark_escapes(const State& bodies, const Eigen::Matrix3Xd& x, std::vector<ParticleOutcome>& outcomes) const;
   ParticleOutcome landing(std::size_t body, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,
                           const Vec3& vb, const State& from, const State& to, State& probe) const;
 
@@ -74,6 +86,11 @@ class ParticleSwarm {
   Eigen::Matrix3Xd x_before_, v_before_;        // the recorded particles at the last step's start
   double t_before_ = 0.0;
   std::vector<ParticleOutcome> outcomes_;
+  // The check's particles (their indices) at half the step: their own states and outcomes.
+  std::vector<std::size_t> checked_;
+  Eigen::Matrix3Xd x_half_, v_half_, a_half_;
+  std::vector<ParticleOutcome> outcomes_half_;
+  std::int64_t check_steps_ = 0;
   double t_ = 0.0;
   std::int64_t particle_steps_ = 0;
   double seconds_ = 0.0;

@@ -26,8 +26,11 @@ struct TrustThresholds {
   double momentum = 1e-6;       // relative linear and angular momentum errors, where conserved
   double orthogonality = 1e-6;  // max ‖I − RᵀR‖_F
   // An orbit the energy cannot certify (a small body's): its relative position error over the
-  // run, estimated by halving the step over one orbit (docs/user-guide.md, "Verdict").
+  // run, estimated by halving the step over one orbit (docs/user-guide.md, "Verdict"); and the
+  // checked particles' positions and landing points at half their step (particles.check).
   double position = 1e-2;
+  // The fraction of the checked particles whose fate changes at half their step.
+  double particle_fates = 0.05;
 };
 
 struct RunSettings {
@@ -78,6 +81,9 @@ struct ParticleSettings {
   double tolerance = 1e-10;  // of the series against a polyhedron's exact field (38.2)
   double escape = 0.0;       // a particle farther than this has escaped (0: never)
   std::size_t record = 100;  // the first this many particles' positions at every output frame
+  // How many particles, spread evenly through the list, are carried a second time at half the
+  // step for the verdict (docs/user-guide.md, "Particles"; 0: none).
+  std::size_t check = 32;
   bool empty() const { return position.empty(); }
 };
 

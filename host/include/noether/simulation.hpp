@@ -5,6 +5,7 @@
 #include <noether/spin_state.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
+#include <noether/particle_check.hpp>
 #include <noether/stepping.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
@@ -94,8 +95,9 @@ struct ParticleSummary {
   std::vector<std::size_t> impacts;  // landed on each body, in the scene's order
   std::size_t escaped = 0, in_flight = 0;
   std::int64_t steps = 0;  // Verlet steps, all particles
-  double seconds = 0.0;    // wall time spent carrying them
+  double seconds = 0.0;    // wall time spent carrying them (the check's particles too)
   std::vector<std::string> fields;  // each body's field as the particles feel it (BodyField::describe)
+  ParticleCheck check;              // the step-halving check (particles.check)
 };
 
 struct RunSummary {
