@@ -98,20 +98,17 @@ void judge(RunSummary& s, const Scene& scene) {
                     particles.fates_differ, particles.checked, 100 * limit.particle_fates);
       v.reasons.push_back(why);
     }
-    if (particles.position > limit.position) {
+    // How far halving the step moves them, `what` and of what, against run.trust.position.
+    auto moved = [&](double fraction, const char* what, const char* of) {
+      if (!(fraction > limit.position)) return;
       std::snprintf(why, sizeof why,
-                    "the particles are not resolved: halving their step moves the checked ones in flight by up to "
-                    "%.2e of their distance from the centre (> %.0e; a smaller particles.step?)",
-                    particles.position, limit.position);
+                    "the particles are not resolved: halving their step moves the checked ones%s by up to %.2e of %s "
+                    "(> %.0e; a smaller particles.step?)",
+                    what, fraction, of, limit.position);
       v.reasons.push_back(why);
-    }
-    if (particles.landing_point > limit.position) {
-      std::snprintf(why, sizeof why,
-                    "the particles are not resolved: halving their step moves the checked ones' landing points by up "
-                    "to %.2e of the body's radius (> %.0e; a smaller particles.step?)",
-                    particles.landing_point, limit.position);
-      v.reasons.push_back(why);
-    }
+    };
+    moved(particles.position, " in flight", "their distance from the centre");
+    moved(particles.landing_point, "' landing points", "the body's radius");
   }
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
