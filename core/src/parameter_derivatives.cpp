@@ -4,6 +4,17 @@
 
 namespace noether {
 
+namespace {
+
+// g += w (f_1 … f_n, M_1 … M_m): one stencil point's forces in a column of G (22.1), (33.9).
+void add_weighted(double w, const Forces& forces, Eigen::Ref<Eigen::VectorXd> g) {
+  const Eigen::Index n = forces.f.cols(), m = forces.M.cols();
+  for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += w * forces.f.col(i);
+  for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += w * forces.M.col(k);
+}
+
+}  // namespace
+
 ParameterForces::ParameterForces(std::shared_ptr<const ParameterDerivatives> derivatives)
     : derivatives_(std::move(derivatives)) {
   if (!derivatives_) throw Error("ParameterForces: no parameters");
@@ -31,8 +42,7 @@ const Eigen::MatrixXd& ParameterForces::operator()(const State& state) {
     const std::vector<double>& weights = derivatives_->parameters[j].weights;
     for (std::size_t s = 0; s < models_[j].size(); ++s) {  // Σ_s w_s (f, M)(p_s)             (22.1)
       models_[j][s](state, forces_);
-      for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += weights[s] * forces_.f.col(i);
-      for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += weights[s] * forces_.M.col(k);
+      add_weighted(weights[s], forces_, g);
     }
   }
   return G_;
@@ -45,10 +55,8 @@ const Eigen::MatrixXd& ParameterForces::forcing(const State& state) {
     auto g = G_forcing_.col(static_cast<Eigen::Index>(j));
     const std::vector<double>& weights = derivatives_->parameters[j].weights;
     for (std::size_t s = 0; s < forcings_[j].size(); ++s) {  // Σ_s w_s (f^F, M^F)(p_s) at z   (33.9)
-      ForcingEvaluator& forces = forcings_[j][s];
-      forces(state);
-      for (Eigen::Index i = 0; i < n; ++i) g.segment<3>(3 * i) += weights[s] * forces.total().f.col(i);
-      for (Eigen::Index k = 0; k < m; ++k) g.segment<3>(3 * n + 3 * k) += weights[s] * forces.total().M.col(k);
+      forcings_[j][s](state);
+      add_weighted(weights[s], forcings_[j][s].total(), g);
     }
   }
   return G_forcing_;

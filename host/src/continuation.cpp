@@ -272,10 +272,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
-  scene.initial = at_last.state;  // frame 0 of the loaded simulation is where the file stood
   const bool with_output = options.output.has_value();
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
-  if (with_output && !scene.forces.empty()) scene.initial.force_balance.setZero();
+  if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();
+  scene.initial = at_last.state;  // frame 0 of the loaded simulation is where the file stood
   auto sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
@@ -312,7 +312,6 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     replay(run, m, last, options.interrupt);
     s.interpolated_frames = at_last.interpolated;
   }
-  if (with_output && !m.scene.forces.empty()) at_last.state.force_balance.setZero();
   m.restore(at_last, path);
   return sim;
 }

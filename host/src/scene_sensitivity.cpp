@@ -250,6 +250,18 @@ double sensitivity_key_value(const Scene& scene, const std::string& column) {
 
 namespace {
 
+// The scene with one more `--set` assignment ("bodies.beta.mass=…"), or nothing if the scene
+// refuses that value (a bound).
+std::optional<Scene> scene_with(const Scene& scene, const std::string& assignment) {
+  std::vector<std::string> overrides = scene.overrides;
+  overrides.push_back(assignment);
+  try {
+    return parse_scene(scene.text, scene.file, overrides);
+  } catch (const SceneError&) {
+    return std::nullopt;
+  }
+}
+
 // The pair models (what a tolerance chose) of a model, for comparison with a perturbed one's.
 std::vector<std::string> choices(const Potential& potential) {
   std::vector<std::string> out;
@@ -323,17 +335,8 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
       const double value = force_key_value(scene, text);
       if (!(std::abs(value) > 0.0))
         throw SceneError("run.sensitivities: '" + text + "' is 0 in the scene: no scale to difference it on");
-      add_parameter(text, value, std::abs(value), [&](double offset) -> std::optional<Scene> {
-        std::vector<std::string> overrides = scene.overrides;
-        overrides.push_back(text + "=" + number(value + offset));
-        std::optional<Scene> other;
-        try {
-          other = parse_scene(scene.text, scene.file, overrides);
-        } catch (const SceneError&) {
-          return std::nullopt;
-        }
-        return other;
-      }, false);
+      add_parameter(text, value, std::abs(value),
+                    [&](double offset) { return scene_with(scene, text + "=" + number(value + offset)); }, false);
       continue;
     }
     if (text.compare(0, 9, "impulses.") == 0) {  // 0 at t0: the run adds m e_a at the impulse (24.2)
@@ -380,14 +383,8 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
           assignment += "[" + number(v[0]) + ", " + number(v[1]) + ", " + number(v[2]) + "]";
         else
           assignment += number(v[0]);
-        std::vector<std::string> overrides = scene.overrides;
-        overrides.push_back(assignment);
-        std::optional<Scene> other;
-        try {
-          other = parse_scene(scene.text, scene.file, overrides);
-        } catch (const SceneError&) {
-          return std::nullopt;
-        }
+        std::optional<Scene> other = scene_with(scene, assignment);
+        if (!other) return other;
         if (other->system.size() != system.size() || other->system.rigid_count() != system.rigid_count())
           throw SceneError("run.sensitivities: '" + text + "' changes which bodies the scene has");
         for (std::size_t i = 0; i < system.size() && !key.dynamics; ++i)
