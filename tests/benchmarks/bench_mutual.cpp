@@ -8,6 +8,7 @@
 
 #include <noether/error.hpp>
 #include <noether/exact_mutual.hpp>
+#include <noether/mutual_series.hpp>
 #include <noether/simulation.hpp>
 
 #include <benchmark/benchmark.h>
@@ -43,6 +44,25 @@ void BM_MutualSeriesKw4(benchmark::State& st) {
   evaluate_repeatedly(st, scene);
 }
 BENCHMARK(BM_MutualSeriesKw4)->DenseRange(2, 12, 1)->Unit(benchmark::kMicrosecond);
+
+// MutualSeries::jacobian alone on KW4's integrals (the terms and their derivatives (25.1)–(25.5),
+// what a force Jacobian or an STM step costs per pair), at a turning configuration.
+void BM_MutualSeriesJacobianKw4(benchmark::State& st) {
+  const int N = static_cast<int>(st.range(0));
+  const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"));
+  const InertiaIntegrals TA = scene.system.body(0).solid->integrals(N), TB = scene.system.body(1).solid->integrals(N);
+  MutualSeries series(N);
+  MutualJacobian J;
+  Vec3 R(1180.0, 620.0, -140.0);
+  const Mat3 C = Eigen::AngleAxisd(0.7, Vec3(0.3, -0.4, 1).normalized()).toRotationMatrix();
+  for (auto _ : st) {
+    const MutualTerms t = series.jacobian(scene.system.G(), TA, TB, R, C, J);
+    benchmark::DoNotOptimize(t.U);
+    benchmark::DoNotOptimize(J.tauB_phi.data());
+    R.x() += 1e-9;
+  }
+}
+BENCHMARK(BM_MutualSeriesJacobianKw4)->Arg(2)->Arg(4)->Arg(8)->Arg(12)->Unit(benchmark::kMicrosecond);
 
 void BM_MutualIntegralsKw4Primary(benchmark::State& st) {
   const int N = static_cast<int>(st.range(0));

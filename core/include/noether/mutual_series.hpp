@@ -5,6 +5,7 @@
 //
 // Frames: everything is in body A's frame. R is B's centre of mass minus A's, C rotates
 // B's frame into A's (x_A = C x_B). U is the potential energy (negative).
+#include <noether/harmonic_integrals.hpp>
 #include <noether/inertia_integrals.hpp>
 #include <noether/lie.hpp>
 
@@ -59,32 +60,35 @@ class MutualSeries {
     int gamma, component, minus1, minus2;
     double factor;
   };
-  // ∂T'^β/∂θ (13.6) as Σ coefficient × T'^{β'} over at most two β' per axis.
-  struct TorqueTerm {
-    int beta;
-    std::array<std::array<std::pair<double, int>, 2>, 3> terms;
+  // (Ô_c X)_t += coefficient × X_s: the in-degree rotation generator (13.6) about axis c followed by
+  // the reduction (13.9), from reduced integrals to reduced integrals (13.11); sorted by t.
+  struct GeneratorTerm {
+    int target, source;
+    double coefficient;
   };
   // evaluate_rotated with D^γ computed to degree L_max ≥ N + 1 (the jacobian's N + 2).
   MutualTerms evaluate_scaled(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB_in_A, const Vec3& R,
                               int L_max);
   // D^γ(1/r) at the unit vector e for |γ| ≤ L (13.4), in Rj_ (stride count(L)).
   const double* derivatives_at(const Vec3& e, int L);
-  // (O_c X)_β: the in-degree derivative (13.6) of integrals X under a rotation about axis c.
-  void rotate_generator(const std::vector<double>& X, int c, int n, std::vector<double>& out) const;
+  // out = Ô_c X on the reduced multi-indices below n (zero elsewhere).
+  void turn_reduced(const std::vector<double>& X, int c, int n, std::vector<double>& out) const;
 
   int order_;
-  std::vector<std::vector<Pair>> pairs_;  // per β (|β| ≤ N): every α with |α| ≤ N − |β|
+  std::vector<int> free_;                 // the reduced multi-indices β (power of z ≤ 1), |β| ≤ N, ascending
+  std::vector<std::vector<Pair>> pairs_;  // per reduced β: every reduced α with |α| ≤ N − |β|, by α
+  std::vector<std::vector<std::array<int, 6>>> second_;  // beside pairs_: γ + e_i + e_j, ij = xx yy zz xy xz yz
   std::vector<double> sign_over_factorial_;  // (−1)^{|α|}/α!
   std::vector<double> inverse_factorial_;    // 1/β!
-  std::vector<int> degree_;                  // |α|
   std::vector<int> first_of_degree_;         // index of the first multi-index of each degree
-  std::vector<Recurrence> recurrence_;       // for |γ| ≤ N + 1, by degree
-  std::vector<TorqueTerm> torque_;
-  IntegralRotation rotation_;
+  std::vector<Recurrence> recurrence_;       // for |γ| ≤ N + 2, by degree
+  std::array<std::vector<GeneratorTerm>, 3> generator_;
+  TraceReduction reduction_;
+  HarmonicRotation rotation_;
   InertiaIntegrals rotated_;
   std::vector<double> Rj_, A_, S_, B_, L_, M_;
   std::vector<Vec3> l_;                    // l_β,i = Σ_α A_α D^{α+β+e_i}, kept for the jacobian
-  std::vector<double> OB_[3], OOB_[3][3];  // O_c B and O_d O_c B (jacobian)
+  std::vector<double> OB_[3], OOB_[3][3];  // Ô_c B and Ô_d Ô_c B (jacobian)
 };
 
 }  // namespace noether

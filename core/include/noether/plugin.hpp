@@ -30,9 +30,11 @@
 // State::force_balance.
 // Version 10: ExactMutualOptions::method and ExactMutual's expansion (its layout changed);
 // solid_harmonics.hpp added.
-// Version 11 (current): DynamicsParameter and ParameterForces carry the forces beyond the
+// Version 11: DynamicsParameter and ParameterForces carry the forces beyond the
 // potential made at a parameter's stencil (their layouts changed; ParameterForces::forcing,
 // with_forcing).
+// Version 12 (current): MutualSeries sums over the integrals modulo traces (its layout changed);
+// harmonic_integrals.hpp (TraceReduction, HarmonicRotation) added.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -50,7 +52,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 11u
+#define NOETHER_PLUGIN_API_VERSION 12u
 
 namespace noether {
 
