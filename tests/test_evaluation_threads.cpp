@@ -1,15 +1,17 @@
 // Threads inside one evaluation (noether/evaluation_threads.hpp; docs/user-guide.md, "Threads"):
 // mutual-series evaluates its pairs on several threads and sums them in pair order, so a run is
-// the same bit for bit for any number of threads — forces, and whole runs; and an error is the
-// one the single-threaded evaluation gives.
+// the same bit for bit for any number of threads — forces, force Jacobians, whole runs and their
+// state-transition matrices; and an error is the one the single-threaded evaluation gives.
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
 #include <noether/evaluation_threads.hpp>
+#include <noether/force_jacobian.hpp>
 #include <noether/simulation.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <stdexcept>
 #include <string>
@@ -79,6 +81,51 @@ TEST(EvaluationThreads, MutualSeriesForcesAreTheSameForAnyNumberOfThreads) {
     EXPECT_GT(one.f.norm(), 0.0);
     for (const int threads : {2, 3, 5}) EXPECT_TRUE(bitwise_equal(one, evaluate(scene, *model, threads))) << threads;
   }
+}
+
+// The force Jacobian K (docs/equations.md §25; what every step of a state-transition matrix needs)
+// with 2, 3 and 5 threads is the single thread's, bit for bit, on the same two scenes; and a run
+// carrying the STM (LGVI, 10 steps of 8 ellipsoids at order 4) ends with the same matrix.
+TEST(EvaluationThreads, MutualSeriesForceJacobianIsTheSameForAnyNumberOfThreads) {
+  auto registry = test::bundled_plugins();
+  for (const auto& [K, potential] : {std::pair{27, "{plugin: mutual-series, order: 4}"},
+                                     std::pair{6, "{plugin: mutual-series, tolerance: 1e-4, min_separation: 3}"}}) {
+    SCOPED_TRACE(potential);
+    const Scene scene = test::ellipsoid_lattice_scene(K, potential);
+    const auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+    auto jacobian = [&](int threads) {
+      const EvaluationThreads in_scope(threads);
+      auto workspace = model->make_workspace();
+      return force_jacobian(*model, scene.initial, *workspace);
+    };
+    const ForceJacobian one = jacobian(1);
+    EXPECT_TRUE(one.analytic);
+    EXPECT_GT(one.K.norm(), 0.0);
+    for (const int threads : {2, 3, 5}) EXPECT_TRUE(one.K == jacobian(threads).K) << threads;
+  }
+  {  // a swarm whose pairs' orders differ (most pairs far): threads take uneven pairs
+    const Scene swarm = test::satellite_swarm_scene(32, "{plugin: mutual-series, tolerance: 1e-8}");
+    const auto model = registry.make_potential("mutual-series", swarm.system, swarm.potentials[0].params);
+    auto workspace = model->make_workspace();
+    const ForceJacobian one = force_jacobian(*model, swarm.initial, *workspace);
+    int lowest = 99, highest = 0;
+    for (const PairModel& m : model->pair_models(*workspace)) lowest = std::min(lowest, m.order), highest = std::max(highest, m.order);
+    EXPECT_LT(lowest, highest);
+    const EvaluationThreads in_scope(2);
+    auto threaded = model->make_workspace();
+    EXPECT_TRUE(one.K == force_jacobian(*model, swarm.initial, *threaded).K);
+    EXPECT_TRUE(bitwise_equal(evaluate(swarm, *model, 1), evaluate(swarm, *model, 2)));
+  }
+  Scene scene = test::ellipsoid_lattice_scene(8, "{plugin: mutual-series, order: 4}", 3.0);
+  scene.run.stm = true;
+  std::vector<Eigen::MatrixXd> stm;
+  for (const int threads : {1, 2}) {
+    RunOptions options;
+    options.threads = threads;
+    stm.push_back(run_scene(scene, registry, options).final_state.tangent);
+  }
+  EXPECT_EQ(stm[0].rows(), State::tangent_rows(scene.system));
+  EXPECT_TRUE(stm[0] == stm[1]);
 }
 
 // A whole run (LGVI, 10 steps of 8 ellipsoids) with --threads 1 and 2: every final coordinate and

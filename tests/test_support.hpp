@@ -6,6 +6,7 @@
 #include <noether/stepping.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace noether::test {
@@ -60,6 +61,33 @@ inline Scene ellipsoid_lattice_scene(int K, const std::string& potential, double
   }
   text += "potential: " + potential + "\nintegrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 0.1, output_every: 0.1}\n";
   return parse_scene(text, "ellipsoid lattice", {});
+}
+
+// A primary (ellipsoid, semi-axes 2, 1.6, 1.2, mass 100, G = 1) and K − 1 small ellipsoids
+// (0.2, 0.16, 0.12; mass 0.01) on circular orbits of radius 12 + 4k, each in its own plane: a
+// scene where most pairs are far apart (the median pair's closest expected approach is ~600 times
+// the sum of its radii at K = 128, the nearest ~2 times), for tolerance-chosen orders.
+inline Scene satellite_swarm_scene(int K, const std::string& potential) {
+  auto number = [](double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return std::string(buffer);
+  };
+  auto vec = [&](const Vec3& v) { return "[" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + "]"; };
+  std::string text = "G: 1\nbodies:\n  - {name: primary, mass: 100, shape: {ellipsoid: {semi_axes: [2, 1.6, 1.2]}}, "
+                     "position: [0, 0, 0], velocity: [0, 0, 0], angular_velocity: [0, 0, 0.3]}\n";
+  for (int k = 1; k < K; ++k) {
+    const double r = 12.0 + 4.0 * k, u = std::fmod(1.9 * k, 2 * M_PI);
+    const Mat3 turn = (Eigen::AngleAxisd(std::fmod(2.3 * k, 2 * M_PI), Vec3::UnitZ()) *
+                       Eigen::AngleAxisd(std::fmod(0.7 * k, M_PI), Vec3::UnitX())).toRotationMatrix();
+    const Vec3 x = turn * Vec3(r * std::cos(u), r * std::sin(u), 0.0);
+    const Vec3 v = turn * (std::sqrt(100.0 / r) * Vec3(-std::sin(u), std::cos(u), 0.0));
+    text += "  - {name: s" + std::to_string(k) + ", mass: 0.01, shape: {ellipsoid: {semi_axes: [0.2, 0.16, 0.12]}}, position: " +
+            vec(x) + ", velocity: " + vec(v) + ", attitude: {euler_angles: [" + std::to_string(17.0 * k) + ", " +
+            std::to_string(5.0 * (k % 7)) + ", 0]}, angular_velocity: [0, 0, " + std::to_string(0.1 + 0.01 * k) + "]}\n";
+  }
+  text += "potential: " + potential + "\nintegrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 0.1, output_every: 0.1}\n";
+  return parse_scene(text, "satellite swarm", {});
 }
 
 }  // namespace noether::test

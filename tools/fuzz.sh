@@ -31,8 +31,8 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
 rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log")
 echo "fuzz: ${executed:-0} executions, ${rate:-0} per second, exit $status; log $log"
-if [ "$status" -ne 0 ] || ls "$work/findings" | grep -q .; then
-  grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$log" | head -20
+if [ "$status" -ne 0 ] || [ -n "$(ls -A "$work/findings")" ]; then
+  grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$log" | head -20 || true
   echo "fuzz: FAIL: a finding (reproduce: build/sanitize/bin/noether_fuzz_scene FILE)"; ls "$work/findings"
   exit 1
 fi

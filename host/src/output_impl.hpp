@@ -40,6 +40,7 @@ struct H5Writer::Impl {
   Clock::time_point last_flush = Clock::now();
   std::size_t n_bodies = 0, n_rigid = 0;
   std::optional<System> system;  // the bodies the frames are computed with (masses, inertias)
+  std::vector<Vec3> largest_moment_axes;  // each rigid body's (io::FrameInput), found once
   io::FrameLayout layout;        // which series the file has
   std::ptrdiff_t primary = -1, secondary = -1;  // the binary, when the scene is two-body-like
   // The frame schema's series this file has (io/frame_schema.hpp), in the schema's order.

@@ -10,6 +10,7 @@
 #include "io/checksum.hpp"
 #include "binary_pair.hpp"
 #include "output_impl.hpp"
+#include "spin_state_tracker.hpp"
 
 #include <cmath>
 #include <limits>
@@ -54,6 +55,9 @@ void H5Writer::create_layout(const Scene& scene) {
   m.n_bodies = sys.size();
   m.n_rigid = sys.rigid_count();
   m.system = sys;
+  m.largest_moment_axes.clear();
+  for (std::size_t k = 0; k < sys.rigid_count(); ++k)
+    m.largest_moment_axes.push_back(largest_moment_axis(sys.body(sys.body_of_rigid(k)).inertia));
   if (const auto pair = binary_pair(sys)) {
     m.primary = static_cast<std::ptrdiff_t>(pair->primary);
     m.secondary = static_cast<std::ptrdiff_t>(pair->secondary);

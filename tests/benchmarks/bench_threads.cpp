@@ -1,12 +1,17 @@
 // Threads inside one evaluation (noether/evaluation_threads.hpp): mutual-series on K ellipsoids
 // (K(K−1)/2 pairs, tests/test_support.hpp's lattice), at orders 2 and 4, on 1 and 2 threads —
-// the cost of an evaluation, per pair, and the speed-up (docs/numerical-results.md, "Threads").
-// Run: build/release/bin/noether_benchmarks --benchmark_filter=MutualSeriesPairs
+// the cost of an evaluation and of a force Jacobian, per pair, and the speed-up; and a swarm of
+// satellites whose pairs are mostly far, at a tolerance against the fixed order it needs
+// (docs/numerical-results.md, "Threads").
+// Run: build/release/bin/noether_benchmarks --benchmark_filter='MutualSeries(Pairs|Swarm)'
+#include <noether/force_jacobian.hpp>
 #include "test_support.hpp"
 
 #include <noether/evaluation_threads.hpp>
 
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
 
 using namespace noether;
 
@@ -33,6 +38,66 @@ void BM_MutualSeriesPairs(benchmark::State& st) {
 }
 BENCHMARK(BM_MutualSeriesPairs)
     ->ArgsProduct({{2, 8, 32, 128}, {2, 4}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+// The force Jacobian K (docs/equations.md §25) of the same lattices. Args: K, order, threads.
+void BM_MutualSeriesPairsJacobian(benchmark::State& st) {
+  const int K = static_cast<int>(st.range(0)), order = static_cast<int>(st.range(1)), threads = static_cast<int>(st.range(2));
+  const Scene scene = test::ellipsoid_lattice_scene(K, "{plugin: mutual-series, order: " + std::to_string(order) + "}");
+  auto registry = test::bundled_plugins();
+  const auto potential = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+  auto workspace = potential->make_workspace();
+  const EvaluationThreads in_scope(threads);
+  for (auto _ : st) {
+    const ForceJacobian J = force_jacobian(*potential, scene.initial, *workspace);
+    benchmark::DoNotOptimize(J.K.data());
+  }
+  const double pairs = K * (K - 1) / 2.0;
+  st.counters["pairs"] = pairs;
+  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_MutualSeriesPairsJacobian)
+    ->ArgsProduct({{8, 32, 128}, {2, 4}, {1, 2}})
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
+// A primary and K − 1 satellites (test::satellite_swarm_scene): each pair's order chosen from
+// `tolerance: 1e-8` (mode 0), or every pair at the highest order that choice gave (mode 1: what a
+// fixed order must be to meet the tolerance everywhere). Args: K, mode, threads. Counters: the
+// pairs' mean and largest order.
+void BM_MutualSeriesSwarm(benchmark::State& st) {
+  const int K = static_cast<int>(st.range(0)), mode = static_cast<int>(st.range(1)), threads = static_cast<int>(st.range(2));
+  auto registry = test::bundled_plugins();
+  const Scene chosen = test::satellite_swarm_scene(K, "{plugin: mutual-series, tolerance: 1e-8}");
+  const auto tolerant = registry.make_potential("mutual-series", chosen.system, chosen.potentials[0].params);
+  auto tolerant_workspace = tolerant->make_workspace();
+  Forces f;
+  f.resize(chosen.system);
+  tolerant->evaluate(chosen.initial, f, *tolerant_workspace);  // chooses the orders
+  double sum = 0.0;
+  int largest = 0;
+  const auto models = tolerant->pair_models(*tolerant_workspace);
+  for (const PairModel& m : models) sum += m.order, largest = std::max(largest, m.order);
+  const Scene fixed = test::satellite_swarm_scene(K, "{plugin: mutual-series, order: " + std::to_string(largest) + "}");
+  const auto fixed_potential = registry.make_potential("mutual-series", fixed.system, fixed.potentials[0].params);
+  const Potential& potential = mode == 0 ? *tolerant : *fixed_potential;
+  auto workspace = mode == 0 ? std::move(tolerant_workspace) : fixed_potential->make_workspace();
+  const EvaluationThreads in_scope(threads);
+  for (auto _ : st) {
+    potential.evaluate(chosen.initial, f, *workspace);
+    benchmark::DoNotOptimize(f.U);
+  }
+  const double pairs = K * (K - 1) / 2.0;
+  st.counters["pairs"] = pairs;
+  st.counters["mean_order"] = mode == 0 ? sum / static_cast<double>(models.size()) : largest;
+  st.counters["max_order"] = largest;
+  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_MutualSeriesSwarm)
+    ->ArgsProduct({{8, 32, 128}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
 

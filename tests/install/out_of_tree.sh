@@ -33,14 +33,14 @@ cmake --build "$work/force"
 NOETHER_PLUGIN_PATH="$work/force" "$work/prefix/bin/noether" plugins | grep -E '^force +linear-drag'
 ctest --test-dir "$work/force" --output-on-failure
 # The out-of-tree plugins link the installed libnoether-core only, and only its interface.
-core=$(find "$work/prefix" -name 'libnoether-core.so' | head -1)
+core=$(find "$work/prefix" -name 'libnoether-core.so' -print -quit)
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/build/noether-j2.so" | tail -1
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/integrator/noether-stormer-verlet.so" | tail -1
 "$src/tests/abi/check_plugin_abi.sh" "$core" "$work/force/noether-linear-drag.so" | tail -1
 # The Python module from the prefix: found there (<prefix>/<libdir>/python3/dist-packages), it
 # finds the installed libnoether and plugins, and also the out-of-tree one on NOETHER_PLUGIN_PATH.
 if [ -n "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py')" ]; then
-  pydir=$(dirname "$(dirname "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py' | head -1)")")
+  pydir=$(dirname "$(dirname "$(find "$work/prefix" -path '*python3/dist-packages/noether/__init__.py' -print -quit)")")
   cd "$work"  # not the source tree: nothing found by accident
   NOETHER_PLUGIN_PATH="$work/build" PYTHONPATH="$pydir" /usr/bin/python3 -c "
 import noether

@@ -29,7 +29,10 @@ find . -type f | sed 's|^\./||' | sort > "$work/files.txt"
 sdist=$(/usr/bin/python3 -c "import sys; sys.path.insert(0, 'python/packaging'); import noether_build; print(noether_build.build_sdist('$work'))")
 tar -tzf "$work/$sdist" | sed 's|^[^/]*/||' | grep -v '^PKG-INFO$' | sort > "$work/sdist.txt"
 diff "$work/files.txt" "$work/sdist.txt" > /dev/null || { echo "FAIL: $sdist does not hold the source tree"; diff "$work/files.txt" "$work/sdist.txt" | head; exit 1; }
-tar -xzOf "$work/$sdist" "${sdist%.tar.gz}/PKG-INFO" | grep -q "^Name: noether$"
+# (Into a file first: `tar … | grep -q` fails under pipefail whenever grep stops reading before tar
+# has written the whole PKG-INFO, which holds the README: tar dies of SIGPIPE.)
+tar -xzOf "$work/$sdist" "${sdist%.tar.gz}/PKG-INFO" > "$work/PKG-INFO"
+grep -q "^Name: noether$" "$work/PKG-INFO" || { echo "FAIL: $sdist's PKG-INFO does not name noether"; exit 1; }
 echo "sdist: $sdist, $(wc -l < "$work/sdist.txt") files"
 /usr/bin/python3 -m venv --system-site-packages "$work/v"
 start=$(date +%s)

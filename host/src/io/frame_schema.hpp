@@ -36,6 +36,9 @@ struct FrameInput {
   const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
   // The recorded massless particles' positions at the frame's time (particles.record; none: null).
   const Eigen::Matrix3Xd* particles = nullptr;
+  // Each rigid body's axis of largest moment (the nutation angle's, eq. 17.11), found once per run
+  // rather than by an eigensolver every frame; null: found here.
+  const std::vector<Vec3>* largest_moment_axes = nullptr;
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and

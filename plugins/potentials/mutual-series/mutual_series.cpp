@@ -58,6 +58,14 @@ struct SeriesWorkspace final : noether::Workspace {
   // and each pair's share of the forces, summed on the calling thread in pair order afterwards.
   std::vector<noether::SeriesBank> thread_banks;
   std::vector<noether::PairShare> shares;
+  // A force Jacobian on several threads: each pair's frame, terms and second derivatives (§25),
+  // added into K on the calling thread in pair order afterwards.
+  struct PairJacobian {
+    noether::PairFrame frame;
+    noether::MutualTerms t;
+    noether::MutualJacobian J;
+  };
+  std::vector<PairJacobian> jacobians;
 };
 
 class MutualSeriesPotential final : public noether::Potential {
@@ -142,32 +150,52 @@ class MutualSeriesPotential final : public noether::Potential {
     return t;
   }
 
-  // K = ∂(f, M)/∂(x, θ) pair by pair from the series' second derivatives (docs/equations.md §25).
+  // K = ∂(f, M)/∂(x, θ) pair by pair from the series' second derivatives (docs/equations.md §25),
+  // on evaluation_threads() threads like evaluate: the pairs' blocks are added in pair order, so K
+  // is the same bit for bit for any number of threads.
   bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
     if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
-    for (std::size_t k = 0; k < pairs_.size(); ++k) {
-      const Pair& p = pairs_[k];
-      const int order = w.pairs[k].order;
-      const noether::PairFrame frame = noether::pair_frame(s, p);
-      const double R = frame.R.norm();
-      if (!(R > 0.0)) throw noether::IntegrationError("mutual-series: bodies '" + names_[p.a] + "' and '" + names_[p.b] +
-                                                      "' are at the same position (a collision)", s.t);
-      noether::MutualJacobian J;
-      noether::MutualTerms t;
-      if (order == 0) {  // point masses: g = G m_a m_b R/R³, ∂g/∂R = G m_a m_b (I − 3 R̂R̂ᵀ)/R³
-        const double Gmm = G_ * mass_[p.a] * mass_[p.b];
-        const Vec3 e = frame.R / R;
-        t.U = -Gmm / R;
-        t.dU_dR = (Gmm / (R * R)) * e;
-        J.g_R = (Gmm / (R * R * R)) * (noether::Mat3::Identity() - 3.0 * e * e.transpose());
-        J.tauA_R = noether::hat(frame.R) * J.g_R - noether::hat(t.dU_dR);
-      } else {
-        t = w.bank.at(order).jacobian(G_, integrals_[p.a], integrals_[p.b], frame.R, frame.C, J);
+    const int threads = noether::evaluation_threads();
+    if (threads <= 1 || pairs_.size() < 2) {
+      SeriesWorkspace::PairJacobian one;
+      for (std::size_t k = 0; k < pairs_.size(); ++k) {
+        pair_jacobian(s, pairs_[k], w.pairs[k].order, w.bank, one);
+        noether::add_mutual_jacobian(pairs_[k], one.frame, one.t, one.J, mass_.size(), K);
       }
-      noether::add_mutual_jacobian(p, frame, t, J, mass_.size(), K);
+      return true;
+    }
+    w.jacobians.resize(pairs_.size());
+    if (w.thread_banks.size() < static_cast<std::size_t>(threads)) w.thread_banks.resize(static_cast<std::size_t>(threads));
+    noether::parallel_for_each(pairs_.size(), threads, [&](std::size_t k, int thread) {
+      pair_jacobian(s, pairs_[k], w.pairs[k].order, w.thread_banks[static_cast<std::size_t>(thread)], w.jacobians[k]);
+    });
+    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+      const SeriesWorkspace::PairJacobian& one = w.jacobians[k];
+      noether::add_mutual_jacobian(pairs_[k], one.frame, one.t, one.J, mass_.size(), K);
     }
     return true;
+  }
+
+  // One pair's frame, terms and their derivatives J (25.1)–(25.5).
+  void pair_jacobian(const State& s, const Pair& p, int order, noether::SeriesBank& bank,
+                     SeriesWorkspace::PairJacobian& out) const {
+    out.frame = noether::pair_frame(s, p);
+    const double R = out.frame.R.norm();
+    if (!(R > 0.0)) throw noether::IntegrationError("mutual-series: bodies '" + names_[p.a] + "' and '" + names_[p.b] +
+                                                    "' are at the same position (a collision)", s.t);
+    out.J = noether::MutualJacobian{};
+    if (order == 0) {  // point masses: g = G m_a m_b R/R³, ∂g/∂R = G m_a m_b (I − 3 R̂R̂ᵀ)/R³
+      const double Gmm = G_ * mass_[p.a] * mass_[p.b];
+      const Vec3 e = out.frame.R / R;
+      out.t = noether::MutualTerms{};
+      out.t.U = -Gmm / R;
+      out.t.dU_dR = (Gmm / (R * R)) * e;
+      out.J.g_R = (Gmm / (R * R * R)) * (noether::Mat3::Identity() - 3.0 * e * e.transpose());
+      out.J.tauA_R = noether::hat(out.frame.R) * out.J.g_R - noether::hat(out.t.dU_dR);
+      return;
+    }
+    out.t = bank.at(order).jacobian(G_, integrals_[p.a], integrals_[p.b], out.frame.R, out.frame.C, out.J);
   }
 
   std::vector<noether::PairModel> pair_models(const noether::Workspace& workspace) const override {
