@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +33,24 @@ Forces evaluate(const Scene& scene, const Potential& potential, int threads) {
 
 bool bitwise_equal(const Forces& a, const Forces& b) {
   return a.U == b.U && a.f == b.f && a.M == b.M;  // Eigen's == compares every entry exactly
+}
+
+// The lattices the forces' and the force Jacobian's tests share, each with its potential: 27
+// ellipsoids (351 pairs) at order 4, and 6 at a tolerance (the pairs' orders chosen and watched).
+struct Lattice {
+  std::string potential;
+  Scene scene;
+  std::shared_ptr<const Potential> model;
+};
+std::vector<Lattice> lattices(PluginRegistry& registry) {
+  std::vector<Lattice> out;
+  for (const auto& [K, potential] : {std::pair{27, "{plugin: mutual-series, order: 4}"},
+                                     std::pair{6, "{plugin: mutual-series, tolerance: 1e-4, min_separation: 3}"}}) {
+    Scene scene = test::ellipsoid_lattice_scene(K, potential);
+    auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+    out.push_back({potential, std::move(scene), std::move(model)});
+  }
+  return out;
 }
 
 }  // namespace
@@ -68,35 +87,30 @@ TEST(EvaluationThreads, EveryIndexOnceAndTheLowestIndexsErrorRethrown) {
   EXPECT_EQ(evaluation_threads(), 1);
 }
 
-// 27 ellipsoids (351 pairs) at order 4, and 6 at a tolerance (the pairs' orders chosen and
-// watched): the forces and moments with 2, 3 and 5 threads are the single thread's, bit for bit.
+// The lattices' forces and moments with 2, 3 and 5 threads are the single thread's, bit for bit.
 TEST(EvaluationThreads, MutualSeriesForcesAreTheSameForAnyNumberOfThreads) {
   auto registry = test::bundled_plugins();
-  for (const auto& [K, potential] : {std::pair{27, "{plugin: mutual-series, order: 4}"},
-                                     std::pair{6, "{plugin: mutual-series, tolerance: 1e-4, min_separation: 3}"}}) {
-    SCOPED_TRACE(potential);
-    const Scene scene = test::ellipsoid_lattice_scene(K, potential);
-    const auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
-    const Forces one = evaluate(scene, *model, 1);
+  for (const Lattice& lattice : lattices(registry)) {
+    SCOPED_TRACE(lattice.potential);
+    const Forces one = evaluate(lattice.scene, *lattice.model, 1);
     EXPECT_GT(one.f.norm(), 0.0);
-    for (const int threads : {2, 3, 5}) EXPECT_TRUE(bitwise_equal(one, evaluate(scene, *model, threads))) << threads;
+    for (const int threads : {2, 3, 5})
+      EXPECT_TRUE(bitwise_equal(one, evaluate(lattice.scene, *lattice.model, threads))) << threads;
   }
 }
 
 // The force Jacobian K (docs/equations.md §25; what every step of a state-transition matrix needs)
-// with 2, 3 and 5 threads is the single thread's, bit for bit, on the same two scenes; and a run
+// with 2, 3 and 5 threads is the single thread's, bit for bit, on the same lattices and on a swarm
+// whose pairs' orders differ; and a run
 // carrying the STM (LGVI, 10 steps of 8 ellipsoids at order 4) ends with the same matrix.
 TEST(EvaluationThreads, MutualSeriesForceJacobianIsTheSameForAnyNumberOfThreads) {
   auto registry = test::bundled_plugins();
-  for (const auto& [K, potential] : {std::pair{27, "{plugin: mutual-series, order: 4}"},
-                                     std::pair{6, "{plugin: mutual-series, tolerance: 1e-4, min_separation: 3}"}}) {
-    SCOPED_TRACE(potential);
-    const Scene scene = test::ellipsoid_lattice_scene(K, potential);
-    const auto model = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+  for (const Lattice& lattice : lattices(registry)) {
+    SCOPED_TRACE(lattice.potential);
     auto jacobian = [&](int threads) {
       const EvaluationThreads in_scope(threads);
-      auto workspace = model->make_workspace();
-      return force_jacobian(*model, scene.initial, *workspace);
+      auto workspace = lattice.model->make_workspace();
+      return force_jacobian(*lattice.model, lattice.scene.initial, *workspace);
     };
     const ForceJacobian one = jacobian(1);
     EXPECT_TRUE(one.analytic);

@@ -77,20 +77,9 @@ void HarmonicRotation::apply(const Mat3& C, const InertiaIntegrals& T, InertiaIn
     throw Error("HarmonicRotation: integrals of order " + std::to_string(order) + " exceed the rotation's order " +
                 std::to_string(order_));
   const auto n_all = static_cast<std::size_t>(count(order));
-  if (order <= 2) {  // degree 1: C t; degree 2: C S Cᵀ, then reduced (the tables cost more than this)
-    out.order = order;
-    out.T.resize(n_all);
-    out.T[0] = T.T[0];
-    if (order >= 1) {
-      const Vec3 t1 = C * Vec3(T.T[1], T.T[2], T.T[3]);
-      out.T[1] = t1.x(), out.T[2] = t1.y(), out.T[3] = t1.z();
-    }
-    if (order == 2) {
-      const Mat3 S = C * T.second_moment() * C.transpose();
-      const double s[6] = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};  // index order
-      for (int i = 0; i < 6; ++i) out.T[static_cast<std::size_t>(4 + i)] = s[i];
-      reduction_.apply(out.T.data(), 2);
-    }
+  if (order <= 2) {  // C t and C S Cᵀ, then reduced: the tables cost more than this
+    rotate_low_degrees(C, T, out, order);
+    reduction_.apply(out.T.data(), order);
     return;
   }
   reduced_.assign(T.T.begin(), T.T.begin() + static_cast<std::ptrdiff_t>(n_all));

@@ -184,6 +184,21 @@ InertiaIntegrals integrals_from_inertia(double mass, const Mat3& J) {
 
 // ---- rotation ---------------------------------------------------------------------------
 
+void rotate_low_degrees(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out, int order) {
+  out.order = order;
+  out.T.resize(static_cast<std::size_t>(count(order)));
+  out.T[0] = T.T[0];
+  if (order >= 1) {  // degree 1: C t
+    const Vec3 t1 = C * Vec3(T.T[1], T.T[2], T.T[3]);
+    out.T[1] = t1.x(), out.T[2] = t1.y(), out.T[3] = t1.z();
+  }
+  if (order == 2) {  // degree 2: C S Cᵀ
+    const Mat3 S = C * T.second_moment() * C.transpose();
+    const double s[6] = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};  // index order
+    for (int i = 0; i < 6; ++i) out.T[static_cast<std::size_t>(4 + i)] = s[i];
+  }
+}
+
 namespace {
 // Index of (l, m, n) within its degree.
 int local(int l, int m, int n) { return multi_index::index(l, m, n) - multi_index::first_of_degree(l + m + n); }
@@ -217,21 +232,10 @@ void IntegralRotation::apply(const Mat3& C, const InertiaIntegrals& T, InertiaIn
   if (order > order_)
     throw Error("IntegralRotation: integrals of order " + std::to_string(order) +
                 " exceed the rotation's order " + std::to_string(order_));
+  if (order <= 2) return rotate_low_degrees(C, T, out, order);  // no monomial tables needed
   out.order = order;
   out.T.resize(static_cast<std::size_t>(count(order)));
   out.T[0] = T.T[0];
-  if (order <= 2) {  // degree 1: C t; degree 2: C S Cᵀ (no monomial tables needed)
-    if (order >= 1) {
-      const Vec3 t1 = C * Vec3(T.T[1], T.T[2], T.T[3]);
-      out.T[1] = t1.x(), out.T[2] = t1.y(), out.T[3] = t1.z();
-    }
-    if (order == 2) {
-      const Mat3 S = C * T.second_moment() * C.transpose();
-      const double s[6] = {S(0, 0), S(0, 1), S(0, 2), S(1, 1), S(1, 2), S(2, 2)};  // index order
-      for (int i = 0; i < 6; ++i) out.T[static_cast<std::size_t>(4 + i)] = s[i];
-    }
-    return;
-  }
   for (int d = 1; d <= order; ++d) {
     const int nd = multi_index::count_of_degree(d), np = multi_index::count_of_degree(d - 1);
     auto& K = K_[static_cast<std::size_t>(d)];

@@ -17,6 +17,14 @@ using namespace noether;
 
 namespace {
 
+// The counters every benchmark here reports: the pairs of K bodies, and the time per pair.
+void count_pairs(benchmark::State& st, int K) {
+  const double pairs = K * (K - 1) / 2.0;
+  st.counters["pairs"] = pairs;
+  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
+                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 // Args: K, order, threads.
 void BM_MutualSeriesPairs(benchmark::State& st) {
   const int K = static_cast<int>(st.range(0)), order = static_cast<int>(st.range(1)), threads = static_cast<int>(st.range(2));
@@ -31,10 +39,7 @@ void BM_MutualSeriesPairs(benchmark::State& st) {
     potential->evaluate(scene.initial, f, *workspace);
     benchmark::DoNotOptimize(f.U);
   }
-  const double pairs = K * (K - 1) / 2.0;
-  st.counters["pairs"] = pairs;
-  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
-                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  count_pairs(st, K);
 }
 BENCHMARK(BM_MutualSeriesPairs)
     ->ArgsProduct({{2, 8, 32, 128}, {2, 4}, {1, 2}})
@@ -53,10 +58,7 @@ void BM_MutualSeriesPairsJacobian(benchmark::State& st) {
     const ForceJacobian J = force_jacobian(*potential, scene.initial, *workspace);
     benchmark::DoNotOptimize(J.K.data());
   }
-  const double pairs = K * (K - 1) / 2.0;
-  st.counters["pairs"] = pairs;
-  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
-                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  count_pairs(st, K);
 }
 BENCHMARK(BM_MutualSeriesPairsJacobian)
     ->ArgsProduct({{8, 32, 128}, {2, 4}, {1, 2}})
@@ -89,12 +91,9 @@ void BM_MutualSeriesSwarm(benchmark::State& st) {
     potential.evaluate(chosen.initial, f, *workspace);
     benchmark::DoNotOptimize(f.U);
   }
-  const double pairs = K * (K - 1) / 2.0;
-  st.counters["pairs"] = pairs;
+  count_pairs(st, K);
   st.counters["mean_order"] = mode == 0 ? sum / static_cast<double>(models.size()) : largest;
   st.counters["max_order"] = largest;
-  st.counters["ns_per_pair"] = benchmark::Counter(static_cast<double>(st.iterations()) * pairs,
-                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_MutualSeriesSwarm)
     ->ArgsProduct({{8, 32, 128}, {0, 1}, {1, 2}})

@@ -59,6 +59,10 @@ InertiaIntegrals point_integrals(const std::vector<double>& masses,
 // its centre of mass): ∫ x xᵀ dm = ½ tr(J) I − J.
 InertiaIntegrals integrals_from_inertia(double mass, const Mat3& J);
 
+// The integrals of degree ≤ 2 (order ≤ 2 of T) seen in axes rotated by C: C t and C S Cᵀ (12.6);
+// `out` is resized to count(order).
+void rotate_low_degrees(const Mat3& C, const InertiaIntegrals& T, InertiaIntegrals& out, int order);
+
 // T'^α = ∫ (C x)^α dm: the integrals of a body seen in axes rotated by C (Hou et al. 2017
 // Eq. 21). Each degree maps onto itself through the coefficients of the monomials of y = Cx,
 // built degree by degree (y^α = y_k y^{α − e_k}). Holds its scratch: one per thread.
