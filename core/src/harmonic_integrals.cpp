@@ -2,6 +2,7 @@
 #include <noether/harmonic_integrals.hpp>
 
 #include <algorithm>
+#include <array>
 #include <string>
 
 namespace noether {

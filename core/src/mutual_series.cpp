@@ -133,7 +133,7 @@ MutualTerms MutualSeries::jacobian(double G, const InertiaIntegrals& TA, const I
   // The terms, with D to degree N + 2 (one higher than they need) and, in the scratch, the reduced
   // A_α = (−1)^{|α|} T_A^α/(α! R^{|α|}), B_β = T'^β/R^{|β|}, L_β and l_β,i = Σ_α A_α D^{α+β+e_i}.
   const int N = order_;
-  const MutualTerms t = evaluate_scaled(G, TA, *B, Rv, N + 2);
+  const MutualTerms t = evaluate_scaled(G, TA, *B, Rv, N + 2, true);  // a point mass's class is itself
   const int na = count(std::min(N, TA.order)), nb = count(std::min(N, B->order));
   const double R = Rv.norm();
   const double* D = Rj_.data();
@@ -183,18 +183,18 @@ MutualTerms MutualSeries::jacobian(double G, const InertiaIntegrals& TA, const I
 
 MutualTerms MutualSeries::evaluate(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
                                    const Vec3& R, const Mat3& C) {
-  if (TB.order == 0) return evaluate_rotated(G, TA, TB, R);
+  if (TB.order == 0) return evaluate_scaled(G, TA, TB, R, order_ + 1, true);
   rotation_.apply(C, TB, rotated_, order_);  // B's class (13.10), degrees ≤ N
-  return evaluate_rotated(G, TA, rotated_, R);
+  return evaluate_scaled(G, TA, rotated_, R, order_ + 1, true);
 }
 
 MutualTerms MutualSeries::evaluate_rotated(double G, const InertiaIntegrals& TA,
                                            const InertiaIntegrals& TB, const Vec3& Rv) {
-  return evaluate_scaled(G, TA, TB, Rv, order_ + 1);
+  return evaluate_scaled(G, TA, TB, Rv, order_ + 1, false);
 }
 
 MutualTerms MutualSeries::evaluate_scaled(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB,
-                                          const Vec3& Rv, int L_max) {
+                                          const Vec3& Rv, int L_max, bool B_is_class) {
   const int N = order_;
   const int oa = std::min(N, TA.order), ob = std::min(N, TB.order);
   const int na = count(oa), nb = count(ob);
@@ -209,10 +209,9 @@ MutualTerms MutualSeries::evaluate_scaled(double G, const InertiaIntegrals& TA, 
       B_[static_cast<std::size_t>(a)] = a < nb ? TB.T[static_cast<std::size_t>(a)] * scale : 0.0;  // T'^β/R^{|β|}
       M_[static_cast<std::size_t>(a)] = 0.0;
     }
-  // Both bodies' classes modulo traces (13.9): only those enter (13.11). (B's is already reduced
-  // when evaluate turned it; reducing a class again changes nothing.)
+  // Both bodies' classes modulo traces (13.9): only those enter (13.11).
   reduction_.apply(S_.data(), oa);
-  reduction_.apply(B_.data(), ob);
+  if (!B_is_class) reduction_.apply(B_.data(), ob);
   for (const int a : free_) A_[static_cast<std::size_t>(a)] = sign_over_factorial_[static_cast<std::size_t>(a)] * S_[static_cast<std::size_t>(a)];
 
   const double* D = derivatives_at(e, L_max);

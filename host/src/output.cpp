@@ -109,7 +109,7 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
     throw OutputError("the integrator's checkpoint changed its size during the run");
   const io::FrameInput in{*m.system, m.primary, m.secondary, state, d, work, interpolated_frames, wall_seconds,
                           integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos,
-                          particles, &m.largest_moment_axes};
+                          particles, m.largest_moment_axes};
   if (m.layout.particles > 0 && (!particles || static_cast<std::size_t>(particles->cols()) != m.layout.particles))
     throw OutputError("the frame does not hold the recorded particles' positions");
   // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,

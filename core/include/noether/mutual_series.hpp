@@ -66,9 +66,10 @@ class MutualSeries {
     int target, source;
     double coefficient;
   };
-  // evaluate_rotated with D^γ computed to degree L_max ≥ N + 1 (the jacobian's N + 2).
+  // evaluate_rotated with D^γ computed to degree L_max ≥ N + 1 (the jacobian's N + 2);
+  // `B_is_class`: TB_in_A is already reduced (13.9), as HarmonicRotation leaves it.
   MutualTerms evaluate_scaled(double G, const InertiaIntegrals& TA, const InertiaIntegrals& TB_in_A, const Vec3& R,
-                              int L_max);
+                              int L_max, bool B_is_class);
   // D^γ(1/r) at the unit vector e for |γ| ≤ L (13.4), in Rj_ (stride count(L)).
   const double* derivatives_at(const Vec3& e, int L);
   // out = Ô_c X on the reduced multi-indices below n (zero elsewhere).

@@ -158,9 +158,8 @@ void secondary_euler_angles(const FrameInput& in, void* out) {
 }
 void nutation_angles(const FrameInput& in, void* out) {  // eq. 17.11, degrees
   for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
-    const Vec3 axis = in.largest_moment_axes ? (*in.largest_moment_axes)[k]
-                                             : largest_moment_axis(in.system.body(in.system.body_of_rigid(k)).inertia);
-    doubles(out)[k] = nutation_angle(axis, in.state.Pi.col(static_cast<Eigen::Index>(k))) * (180.0 / std::numbers::pi);
+    doubles(out)[k] = nutation_angle(in.largest_moment_axes[k], in.state.Pi.col(static_cast<Eigen::Index>(k))) *
+                      (180.0 / std::numbers::pi);
   }
 }
 

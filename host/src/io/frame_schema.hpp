@@ -37,8 +37,8 @@ struct FrameInput {
   // The recorded massless particles' positions at the frame's time (particles.record; none: null).
   const Eigen::Matrix3Xd* particles = nullptr;
   // Each rigid body's axis of largest moment (the nutation angle's, eq. 17.11), found once per run
-  // rather than by an eigensolver every frame; null: found here.
-  const std::vector<Vec3>* largest_moment_axes = nullptr;
+  // rather than by an eigensolver every frame.
+  const std::vector<Vec3>& largest_moment_axes;
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
