@@ -5,14 +5,17 @@
 #include <noether/diagnostics.hpp>
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>
+#include <noether/euler_angles.hpp>
 #include <noether/lie.hpp>
 
+#include "../host/src/io/checksum.hpp"
 #include "../host/src/io/safe_publish.hpp"
 #include "../host/src/io/superblock.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <bit>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -20,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <numbers>
 #include <sys/wait.h>
 #include <thread>
 #include <fcntl.h>
@@ -238,6 +242,39 @@ std::map<std::string, std::vector<std::uint64_t>> numeric_datasets(const fs::pat
   return out;
 }
 
+// Frame k of a sequence of 1000 states that change every series: both bodies' positions and
+// momenta, both attitudes.
+State varied_state(const Scene& scene, int k) {
+  State s = scene.initial;
+  s.t = 0.01 * k;
+  s.x(0, 0) = 0.67 + 1e-3 * k;
+  s.p(1, 1) = -0.99 + 1e-4 * k;
+  s.p(2, 0) = 0.05 * std::sin(0.1 * k);
+  s.R[0] = exp_so3(Vec3(0.0, 0.0, 0.09 * k));
+  s.R[1] = exp_so3(Vec3(0.3, -0.02 * k, 0.01 * k));
+  return s;
+}
+
+// Writes those 1000 frames in blocks of 7 (by count only), into series allocated for 50 frames
+// and grown 5 times: in the background or in line.
+void write_varied_frames(const fs::path& file, const Scene& scene, bool background) {
+  OutputOptions o;
+  o.block_frames = 7;
+  o.block_seconds = 1e9;  // blocks by count only: the same blocks either way
+  o.expected_frames = 50;
+  o.background_blocks = background;
+  o.overwrite = true;
+  H5Writer writer(file, scene, o);
+  WorkCounters work;
+  for (int k = 0; k < 1000; ++k) {
+    const State s = varied_state(scene, k);
+    work.steps = 50 * k;
+    writer.write_frame(s, diagnose(scene.system, s, -1.0 - 1e-3 * k), work, 0.0);
+  }
+  writer.finish(work, 0.0, "completed");
+  EXPECT_EQ(writer.frames_written(), 1000u);
+}
+
 }  // namespace
 
 // Blocks written on a thread of their own while frames keep coming (the default where HDF5 is
@@ -245,30 +282,9 @@ std::map<std::string, std::vector<std::uint64_t>> numeric_datasets(const fs::pat
 // frames, series allocated for 50 frames and grown in the background 5 times over 1000 frames.
 TEST(Output, BlocksWrittenInTheBackgroundMatchBlocksWrittenInLine) {
   const Scene scene = test::dumbbell_scene();
-  auto write = [&](const fs::path& file, bool background) {
-    OutputOptions o;
-    o.block_frames = 7;
-    o.block_seconds = 1e9;  // blocks by count only: the same blocks either way
-    o.expected_frames = 50;
-    o.background_blocks = background;
-    o.overwrite = true;
-    H5Writer writer(file, scene, o);
-    State s = scene.initial;
-    WorkCounters work;
-    for (int k = 0; k < 1000; ++k) {
-      s.t = 0.01 * k;
-      s.x(0, 0) = 0.67 + 1e-3 * k;
-      s.p(1, 1) = -0.99 + 1e-4 * k;
-      s.R[0] = exp_so3(Vec3(0.0, 0.0, 0.09 * k));
-      work.steps = 50 * k;
-      writer.write_frame(s, diagnose(scene.system, s, -1.0 - 1e-3 * k), work, 0.0);
-    }
-    writer.finish(work, 0.0, "completed");
-    EXPECT_EQ(writer.frames_written(), 1000u);
-  };
   const fs::path background = temp_file("noether-background"), in_line = temp_file("noether-in-line");
-  write(background, true);
-  write(in_line, false);
+  write_varied_frames(background, scene, true);
+  write_varied_frames(in_line, scene, false);
   const auto a = numeric_datasets(background), b = numeric_datasets(in_line);
   EXPECT_GE(a.size(), 30u);
   EXPECT_EQ(a.size(), b.size());
@@ -281,6 +297,45 @@ TEST(Output, BlocksWrittenInTheBackgroundMatchBlocksWrittenInLine) {
   EXPECT_EQ(a.at("particles/bodies/position/value").size(), 1000u * 2 * 3);
   fs::remove(background);
   fs::remove(in_line);
+}
+
+// The quantities of the state alone (velocities, quaternions, Euler angles, the binary's
+// separation…) and the checksums are computed when their block is written, on the writer's
+// thread (io::FrameFill): each frame of them is still its own frame's, in blocks of 7 frames
+// that do not divide the 1000: against the same functions applied to the states written.
+TEST(Output, QuantitiesOfTheStateAloneBelongToTheirFrames) {
+  const Scene scene = test::dumbbell_scene();
+  const fs::path file = temp_file("noether-state-alone");
+  write_varied_frames(file, scene, true);
+  const auto words = numeric_datasets(file);
+  const auto value = [&](const char* name, std::size_t i) { return std::bit_cast<double>(words.at(name).at(i)); };
+  ASSERT_EQ(words.at("particles/bodies/orientation/value").size(), 1000u * 2 * 4);
+  const double deg = 180.0 / std::numbers::pi;
+  for (int k = 0; k < 1000; ++k) {
+    const State s = varied_state(scene, k);
+    const auto f = static_cast<std::size_t>(k);
+    for (std::size_t j = 0; j < 2; ++j) {
+      const Vec4 q = quaternion_from_rotation(s.R[j]);
+      const Vec3 euler = euler_angles_321(s.R[j]) * deg;
+      for (std::size_t c = 0; c < 4; ++c)
+        ASSERT_EQ(value("particles/bodies/orientation/value", 8 * f + 4 * j + c), q(static_cast<Eigen::Index>(c)))
+            << "frame " << k;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const auto e = static_cast<Eigen::Index>(c);
+        ASSERT_EQ(value("particles/bodies/euler_angles/value", 6 * f + 3 * j + c), euler(e)) << "frame " << k;
+        ASSERT_EQ(value("particles/bodies/velocity/value", 6 * f + 3 * j + c),
+                  s.p(e, static_cast<Eigen::Index>(j)) / scene.system.body(j).mass)
+            << "frame " << k;
+      }
+    }
+    ASSERT_EQ(value("observables/separation/value", f), (s.x.col(1) - s.x.col(0)).norm()) << "frame " << k;
+    // /checkpoint/checksum's column 1 is the positions' (seeded with the frame's index).
+    const auto& checksums = words.at("checkpoint/checksum");
+    const std::size_t columns = checksums.size() / 1000;
+    const std::uint64_t* x = words.at("particles/bodies/position/value").data() + 6 * f;
+    ASSERT_EQ(checksums.at(columns * f + 1), io::checksum64(x, 6 * sizeof(std::uint64_t), f)) << "frame " << k;
+  }
+  fs::remove(file);
 }
 
 // A file built under its hidden name and then published (a continuation's, which replaces the

@@ -65,17 +65,6 @@ double Watch::gap(const System& system, const State& s) const {
   return r;
 }
 
-bool Watch::clear(const State& s) const {
-  const double r2 = (position(s, a) - position(s, b)).squaredNorm(), d2 = threshold * threshold;
-  switch (kind) {
-    case Kind::kCloseApproach: return r2 > d2;  // r > d
-    case Kind::kCollision: return r2 > d2;      // the bounding spheres apart (16.5)
-    case Kind::kEscape: return r2 < d2;
-    case Kind::kUnbound: return false;
-  }
-  return false;
-}
-
 const char* Watch::name() const {
   switch (kind) {
     case Kind::kCloseApproach: return "close approach";

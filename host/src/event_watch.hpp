@@ -25,7 +25,18 @@ struct Watch {
   double gap(const System& system, const State& state) const;
   // Whether g > 0 is certain from the centres' squared distance alone (no square root, no
   // surface): the check the stepping loop makes at every step before computing g.
-  bool clear(const State& state) const;
+  // (In line: it is most of what an event costs a step.)
+  bool clear(const State& state) const {
+    const double r2 = (state.x.col(static_cast<Eigen::Index>(a)) - state.x.col(static_cast<Eigen::Index>(b))).squaredNorm();
+    const double d2 = threshold * threshold;
+    switch (kind) {
+      case Kind::kCloseApproach: return r2 > d2;  // r > d
+      case Kind::kCollision: return r2 > d2;      // the bounding spheres apart (16.5)
+      case Kind::kEscape: return r2 < d2;
+      case Kind::kUnbound: return false;
+    }
+    return false;
+  }
   const char* name() const;  // "close approach", "collision", "escape", "unbound"
   // The stop reason: "collision: the shapes of bodies 'a' and 'b' touched at t = …".
   std::string describe(const System& system, double t) const;

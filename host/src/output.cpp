@@ -107,23 +107,14 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
   Impl& m = *impl_;
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
-  const io::FrameInput in{*m.system, m.primary, m.secondary, state, d, work, interpolated_frames, wall_seconds,
-                          integrator_checkpoint, m.layout.stm_columns, m.layout.sensitivity_columns, chaos,
-                          particles, m.largest_moment_axes};
+  const io::FrameInput in{state, d, work, interpolated_frames, wall_seconds, integrator_checkpoint,
+                          m.layout.stm_columns, m.layout.sensitivity_columns, chaos, particles};
   if (m.layout.particles > 0 && (!particles || static_cast<std::size_t>(particles->cols()) != m.layout.particles))
     throw OutputError("the frame does not hold the recorded particles' positions");
-  // Column c of /checkpoint/checksum: checksum64 of this frame of the c-th checkpointed series,
-  // seeded with the frame's index (the bytes a continued run reads back).
-  const std::uint64_t seed = m.handed + m.buffered;
-  m.sums.assign(m.checkpointed.size(), 0);
-  for (auto& column : m.columns) {
-    std::uint64_t* frame = column.series->append_frame();  // filled in place
-    column.quantity->fill(in, frame);
-    if (column.quantity->checksum_column >= 0)
-      m.sums[static_cast<std::size_t>(column.quantity->checksum_column)] =
-          io::checksum64(frame, column.series->frame_size * sizeof(std::uint64_t), seed);
-  }
-  m.checksum_series->push(m.sums.data());
+  // The run's own numbers, copied in place; the quantities of the state alone and the checksums
+  // are computed when the block is written (Impl::complete_block), off the run's thread.
+  for (auto& column : m.columns)
+    if (const auto fill = column.quantity->fill.of_run) fill(in, column.series->append_frame());
   ++m.buffered;
   const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();
   if (m.buffered < m.options.block_frames && since < m.options.block_seconds) return;

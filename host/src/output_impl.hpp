@@ -3,6 +3,7 @@
 // libnoether; output.cpp writes frames, output_layout.cpp creates the layout).
 #include <noether/output.hpp>
 
+#include "io/checksum.hpp"
 #include "io/flush.hpp"
 #include "io/frame_schema.hpp"
 #include "io/series.hpp"
@@ -53,7 +54,7 @@ struct H5Writer::Impl {
   // /checkpoint/checksum [frame][column]: checksum64 of each checkpointed series' frame, so
   // that a continued run finds a damaged frame before it trusts it.
   std::unique_ptr<Series> checksum_series;
-  std::vector<std::uint64_t> sums;  // one frame's checksums
+  io::RecordedFrame read_back;  // a frame of the block as a continued run reads it (complete_block)
   std::size_t buffered = 0;
   std::size_t handed = 0;  // frames handed to be written: those written and the block in flight
   // The block being written on a thread of its own while the run goes on (when HDF5 is built
@@ -95,10 +96,39 @@ struct H5Writer::Impl {
     if (configured) H5Fset_mdc_config(file, &saved);
   }
   void flush_file(const char* what) { io::flush_extended(file, lock, what); }
+  // Computes what the handed block [first, end) lacks: each frame's checksums of the
+  // checkpointed series (seeded with the frame's index, the bytes a continued run reads back) and
+  // the quantities of the state alone, from the frame as a continued run reads it back — so the
+  // file holds what it would hold had they been computed as the frames arrived, bit for bit.
+  void complete_block(hsize_t first, hsize_t end) {
+    const auto frames = static_cast<std::size_t>(end - first);
+    const std::size_t width = checkpointed.size();
+    std::uint64_t* sums = checksum_series->handed_block(frames);
+    std::vector<std::uint64_t*> of_state;
+    for (auto& c : columns)
+      if (c.quantity->fill.of_state) of_state.push_back(c.series->handed_block(frames));
+    for (std::size_t i = 0; i < frames; ++i) {
+      for (std::size_t k = 0; k < width; ++k) {
+        sums[i * width + k] = 0;  // an absent series' column
+        if (!checkpointed[k]) continue;
+        const Series& s = *checkpointed[k]->series;
+        sums[i * width + k] = io::checksum64(s.handed_frame(i), s.frame_size * sizeof(std::uint64_t), first + i);
+        checkpointed[k]->quantity->restore(s.handed_frame(i), s.frame_size, read_back);
+      }
+      const io::StateFrame in{*system, primary, secondary, read_back.state, largest_moment_axes};
+      std::size_t n = 0;
+      for (auto& c : columns)
+        if (const auto fill = c.quantity->fill.of_state) {
+          fill(in, of_state[n] + i * c.series->frame_size);
+          ++n;
+        }
+    }
+  }
   // Writes the handed frames [first, end) (io::Series::hand_over): the frames first, then the
   // counter that makes them part of the file, each followed by a flush, so that a kill before
   // the second flush leaves the counter at the previous block.
   void write_block(hsize_t first, hsize_t end) {
+    complete_block(first, end);
     if (end > allocated) resize_series(std::max<hsize_t>(end, 2 * allocated));  // the only metadata change while frames are written
     for (auto& c : columns) c.series->write_handed(first);
     checksum_series->write_handed(first);

@@ -35,7 +35,7 @@ Matrix matrix(const void* in, std::size_t width) {
   return Eigen::Map<const Matrix>(doubles(in), 3, static_cast<Eigen::Index>(width / 3));
 }
 
-// The fill functions, one per series (FrameQuantity::fill).
+// The quantities the run hands the writer (FrameFill::of_run), copied as each frame arrives.
 void step(const FrameInput& in, void* out) { *integers(out) = in.work.steps; }
 void time(const FrameInput& in, void* out) { copy(in.state.t, out); }
 void position(const FrameInput& in, void* out) { copy(in.state.x, out); }
@@ -59,25 +59,7 @@ void force_balance(const FrameInput& in, void* out) {  // [force][7]: Eigen's co
 }
 void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
 void particle_position(const FrameInput& in, void* out) { copy(*in.particles, out); }
-void velocity(const FrameInput& in, void* out) {  // v = γ/m
-  double* v = doubles(out);
-  for (std::size_t i = 0; i < in.system.size(); ++i)
-    for (int a = 0; a < 3; ++a) v[3 * i + a] = in.state.p(a, static_cast<Eigen::Index>(i)) / in.system.body(i).mass;
-}
-void quaternion(const FrameInput& in, void* out) {  // (w, x, y, z) of R
-  for (std::size_t k = 0; k < in.state.R.size(); ++k) {
-    const Vec4 q = quaternion_from_rotation(in.state.R[k]);
-    std::copy(q.data(), q.data() + 4, doubles(out) + 4 * k);
-  }
-}
 void spin(const FrameInput& in, void* out) { copy(in.state.Pi, out); }
-void angular_velocity(const FrameInput& in, void* out) {  // Ω = J⁻¹Π (docs/equations.md §2)
-  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
-    const Vec3 omega = in.system.body(in.system.body_of_rigid(k)).inertia_inverse *
-                       in.state.Pi.col(static_cast<Eigen::Index>(k));
-    copy(omega, doubles(out) + 3 * k);
-  }
-}
 void energy(const FrameInput& in, void* out) { copy(in.diagnostics.energy, out); }
 void kinetic_translational(const FrameInput& in, void* out) { copy(in.diagnostics.kinetic_translational, out); }
 void kinetic_rotational(const FrameInput& in, void* out) { copy(in.diagnostics.kinetic_rotational, out); }
@@ -100,30 +82,49 @@ void work(const FrameInput& in, void* out) {
   std::memcpy(out, w, sizeof w);
 }
 
-// The binary's quantities (present only when there is one: primary and secondary are set).
+// The quantities of the state alone (FrameFill::of_state), computed when their block is written.
+void velocity(const StateFrame& in, void* out) {  // v = γ/m
+  double* v = doubles(out);
+  for (std::size_t i = 0; i < in.system.size(); ++i)
+    for (int a = 0; a < 3; ++a) v[3 * i + a] = in.state.p(a, static_cast<Eigen::Index>(i)) / in.system.body(i).mass;
+}
+void quaternion(const StateFrame& in, void* out) {  // (w, x, y, z) of R
+  for (std::size_t k = 0; k < in.state.R.size(); ++k) {
+    const Vec4 q = quaternion_from_rotation(in.state.R[k]);
+    std::copy(q.data(), q.data() + 4, doubles(out) + 4 * k);
+  }
+}
+void angular_velocity(const StateFrame& in, void* out) {  // Ω = J⁻¹Π (docs/equations.md §2)
+  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
+    const Vec3 omega = in.system.body(in.system.body_of_rigid(k)).inertia_inverse *
+                       in.state.Pi.col(static_cast<Eigen::Index>(k));
+    copy(omega, doubles(out) + 3 * k);
+  }
+}
+// The binary's (present only when there is one: primary and secondary are set).
 Vec3 column(const Matrix& m, std::ptrdiff_t i) { return m.col(static_cast<Eigen::Index>(i)); }
-Vec3 relative_position(const FrameInput& in) { return column(in.state.x, in.secondary) - column(in.state.x, in.primary); }
-Vec3 relative_velocity(const FrameInput& in) {
+Vec3 relative_position(const StateFrame& in) { return column(in.state.x, in.secondary) - column(in.state.x, in.primary); }
+Vec3 relative_velocity(const StateFrame& in) {
   const auto mass = [&in](std::ptrdiff_t i) { return in.system.body(static_cast<std::size_t>(i)).mass; };
   return column(in.state.p, in.secondary) / mass(in.secondary) - column(in.state.p, in.primary) / mass(in.primary);
 }
-const Mat3& attitude_of(const FrameInput& in, std::ptrdiff_t body) {
+const Mat3& attitude_of(const StateFrame& in, std::ptrdiff_t body) {
   return in.state.R[static_cast<std::size_t>(in.system.rigid_index(static_cast<std::size_t>(body)))];
 }
-void separation(const FrameInput& in, void* out) { copy(relative_position(in).norm(), out); }
-void binary_position(const FrameInput& in, void* out) { copy(relative_position(in), out); }
-void binary_velocity(const FrameInput& in, void* out) { copy(relative_velocity(in), out); }
-void position_in_primary_frame(const FrameInput& in, void* out) {  // R_pᵀ r
+void separation(const StateFrame& in, void* out) { copy(relative_position(in).norm(), out); }
+void binary_position(const StateFrame& in, void* out) { copy(relative_position(in), out); }
+void binary_velocity(const StateFrame& in, void* out) { copy(relative_velocity(in), out); }
+void position_in_primary_frame(const StateFrame& in, void* out) {  // R_pᵀ r
   copy(Vec3(attitude_of(in, in.primary).transpose() * relative_position(in)), out);
 }
-void velocity_in_primary_frame(const FrameInput& in, void* out) {  // R_pᵀ v − Ω_p × R_pᵀ r (rotating frame)
+void velocity_in_primary_frame(const StateFrame& in, void* out) {  // R_pᵀ v − Ω_p × R_pᵀ r (rotating frame)
   const Mat3& R = attitude_of(in, in.primary);
   const auto k = static_cast<Eigen::Index>(in.system.rigid_index(static_cast<std::size_t>(in.primary)));
   const Vec3 omega = in.system.body(static_cast<std::size_t>(in.primary)).inertia_inverse * Vec3(in.state.Pi.col(k));
   const Vec3 r = R.transpose() * relative_position(in);
   copy(Vec3(R.transpose() * relative_velocity(in) - omega.cross(r)), out);
 }
-void osculating_elements(const FrameInput& in, void* out) {  // a, e, i, Ω, ω, ν (eqs. 17.5–17.8)
+void osculating_elements(const StateFrame& in, void* out) {  // a, e, i, Ω, ω, ν (eqs. 17.5–17.8)
   const double mu = in.system.G() * (in.system.body(static_cast<std::size_t>(in.primary)).mass +
                                      in.system.body(static_cast<std::size_t>(in.secondary)).mass);
   double* el = doubles(out);
@@ -138,7 +139,7 @@ void osculating_elements(const FrameInput& in, void* out) {  // a, e, i, Ω, ω,
   const double values[6] = {e.a, e.e, e.i * deg, e.Omega * deg, e.omega * deg, e.nu * deg};
   std::copy(values, values + 6, el);
 }
-void libration(const FrameInput& in, void* out) {  // the primary's direction in the secondary's body frame
+void libration(const StateFrame& in, void* out) {  // the primary's direction in the secondary's body frame
   const Vec3 u = attitude_of(in, in.secondary).transpose() * (-relative_position(in));
   double angle = std::atan2(u.y(), u.x()) * 180.0 / std::numbers::pi;  // (−180, 180]
   if (angle > 90.0) angle -= 180.0;  // the axis is a line: either end may face the primary
@@ -147,16 +148,16 @@ void libration(const FrameInput& in, void* out) {  // the primary's direction in
 }
 
 void copy_degrees(const Vec3& radians, void* out) { copy(Vec3(radians * (180.0 / std::numbers::pi)), out); }
-void euler_angles(const FrameInput& in, void* out) {  // eq. 17.9 of each rigid body's R
+void euler_angles(const StateFrame& in, void* out) {  // eq. 17.9 of each rigid body's R
   for (std::size_t k = 0; k < in.state.R.size(); ++k) copy_degrees(euler_angles_321(in.state.R[k]), doubles(out) + 3 * k);
 }
 // Eq. 17.10: the secondary's attitude in the orbit frame, whose x axis points at the primary and
 // z along the orbit normal, yaw folded into (−90, 90].
-void secondary_euler_angles(const FrameInput& in, void* out) {
+void secondary_euler_angles(const StateFrame& in, void* out) {
   const Vec3 r = relative_position(in);
   copy_degrees(orbit_frame_angles(-r, r.cross(relative_velocity(in)), attitude_of(in, in.secondary)), out);
 }
-void nutation_angles(const FrameInput& in, void* out) {  // eq. 17.11, degrees
+void nutation_angles(const StateFrame& in, void* out) {  // eq. 17.11, degrees
   for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
     doubles(out)[k] = nutation_angle(in.largest_moment_axes[k], in.state.Pi.col(static_cast<Eigen::Index>(k))) *
                       (180.0 / std::numbers::pi);
@@ -326,8 +327,10 @@ std::vector<const FrameQuantity*> checkpointed_series() {
   std::sort(out.begin(), out.end(),
             [](const FrameQuantity* a, const FrameQuantity* b) { return a->checksum_column < b->checksum_column; });
   for (std::size_t c = 0; c < out.size(); ++c)
-    if (out[c]->checksum_column != static_cast<int>(c) || !out[c]->restore)
-      throw std::logic_error("frame schema: the checksum columns must be 0, 1, 2, … each with a restore function");
+    if (out[c]->checksum_column != static_cast<int>(c) || !out[c]->restore || !out[c]->fill.of_run)
+      throw std::logic_error(
+          "frame schema: the checksum columns must be 0, 1, 2, … each with a restore function and filled from the "
+          "run (a quantity of the state alone is computed from them)");
   return out;
 }
 

@@ -21,10 +21,21 @@
 
 namespace noether::io {
 
-// What one frame is made of: the state and what the run knows about it at that moment.
-struct FrameInput {
+// What one frame's quantities of the state alone are computed from: t, x, γ, R and Π (what the
+// checkpointed series hold) and the bodies. They are computed on the block writer's thread from
+// the frame as a continued run reads it back (RecordedFrame), so the run's own thread only copies
+// the state.
+struct StateFrame {
   const System& system;
   std::ptrdiff_t primary = -1, secondary = -1;  // the binary of a two-body-like scene (binary_pair.hpp)
+  const State& state;
+  // Each rigid body's axis of largest moment (the nutation angle's, eq. 17.11), found once per run
+  // rather than by an eigensolver every frame.
+  const std::vector<Vec3>& largest_moment_axes;
+};
+
+// What one frame is made of: the state and what the run knows about it at that moment.
+struct FrameInput {
   const State& state;
   const Diagnostics& diagnostics;
   const WorkCounters& work;
@@ -36,9 +47,18 @@ struct FrameInput {
   const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
   // The recorded massless particles' positions at the frame's time (particles.record; none: null).
   const Eigen::Matrix3Xd* particles = nullptr;
-  // Each rigid body's axis of largest moment (the nutation angle's, eq. 17.11), found once per run
-  // rather than by an eigensolver every frame.
-  const std::vector<Vec3>& largest_moment_axes;
+};
+
+// How one frame of a series is computed: from what the run hands the writer (`of_run`, on the
+// run's thread as the frame arrives) or from the state alone (`of_state`, when its block is
+// written). The table names the function; its parameter type says which it is.
+struct FrameFill {
+  using OfRun = void (*)(const FrameInput& in, void* out);
+  using OfState = void (*)(const StateFrame& in, void* out);
+  constexpr FrameFill(OfRun f) : of_run(f) {}      // NOLINT: implicit, so that a table row names the function
+  constexpr FrameFill(OfState f) : of_state(f) {}  // NOLINT: idem
+  OfRun of_run = nullptr;
+  OfState of_state = nullptr;
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
@@ -106,8 +126,9 @@ struct FrameQuantity {
   // The column of /checkpoint/checksum holding this series' frame checksums, for the series a
   // continued run reads back (−1: not read back). Columns are part of the file format.
   int checksum_column;
-  // Writes one frame into `out` (double numbers, or int64 for kStepCount and kWork).
-  void (*fill)(const FrameInput& in, void* out);
+  // Writes one frame into `out` (double numbers, or int64 for kStepCount and kWork); every
+  // number of it, since the frame's memory is not cleared first.
+  FrameFill fill;
   // The checkpointed series: puts one frame read back into the run's frame (nullptr otherwise).
   void (*restore)(const void* values, std::size_t width, RecordedFrame& frame);
 };

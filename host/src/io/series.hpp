@@ -26,7 +26,6 @@ struct Series {
   hid_t type = -1;
   std::vector<hsize_t> frame_shape;
   std::size_t frame_size = 1;           // numbers per frame
-  std::vector<std::uint64_t> buffer;    // the frames not yet written, as raw 8-byte words
 
   Series(hid_t parent, const char* name, hid_t h5type, std::vector<hsize_t> shape, hsize_t frames,
          const void* fill)
@@ -61,21 +60,19 @@ struct Series {
   Series(const Series&) = delete;
   Series& operator=(const Series&) = delete;
 
-  // One frame (frame_size numbers of the series' type).
-  void push(const void* values) {
-    if (frame_size) std::memcpy(append_frame(), values, frame_size * sizeof(std::uint64_t));
-  }
-  // One frame more, zeroed, to be filled in place (valid until the next append or hand_over).
+  // One frame more, to be filled in place — every number of it: the memory is reused, not
+  // cleared (valid until the next append or hand_over).
   std::uint64_t* append_frame() {
-    const std::size_t at = buffer.size();
-    buffer.resize(at + frame_size);
-    return buffer.data() + at;
+    const std::size_t at = buffered_ * frame_size;
+    if (buffer_.size() < at + frame_size) buffer_.resize(std::max(at + frame_size, 2 * buffer_.size()));
+    ++buffered_;
+    return buffer_.data() + at;
   }
 
-  // Room for a block of `frames` frames in both buffers, so that pushing never reallocates.
+  // Room for a block of `frames` frames in both buffers, so that appending never reallocates.
   void reserve_frames(std::size_t frames) {
-    buffer.reserve(frames * frame_size);
-    handed.reserve(frames * frame_size);
+    buffer_.resize(std::max(buffer_.size(), frames * frame_size));
+    handed_.resize(std::max(handed_.size(), frames * frame_size));
   }
 
   // Sets the number of frames (growing allocates and fills the new chunks).
@@ -85,24 +82,29 @@ struct Series {
     check(H5Dset_extent(dataset, dims.data()), "resizing a dataset");
   }
 
-  // Writes the buffered frames from `first_frame` on (inside the allocated frames).
-  void write(hsize_t first_frame) {
-    hand_over();
-    write_handed(first_frame);
-  }
   // The buffered frames become the block to write (`handed`), and the buffer takes the next
-  // frames meanwhile: a block may be written on another thread while frames are pushed.
+  // frames meanwhile: a block may be written on another thread while frames are appended.
   void hand_over() {
-    std::swap(buffer, handed);
-    buffer.clear();
+    std::swap(buffer_, handed_);
+    handed_frames_ = buffered_;
+    buffered_ = 0;
+  }
+  // The handed block's frames, [frame][shape...] (to read them, or to fill a series computed
+  // when its block is written).
+  std::size_t handed_frames() const { return handed_frames_; }
+  const std::uint64_t* handed_frame(std::size_t i) const { return handed_.data() + i * frame_size; }
+  // A series that takes no frames as they arrive, filled when its block is written: its handed
+  // block made `frames` frames long, to be filled in place.
+  std::uint64_t* handed_block(std::size_t frames) {
+    if (handed_.size() < frames * frame_size) handed_.resize(frames * frame_size);
+    handed_frames_ = frames;
+    return handed_.data();
   }
   // Writes the handed block from `first_frame` on.
   void write_handed(hsize_t first_frame) {
-    if (handed.empty() || frame_size == 0) {
-      handed.clear();
-      return;
-    }
-    const hsize_t frames = handed.size() / frame_size;
+    const hsize_t frames = handed_frames_;
+    handed_frames_ = 0;
+    if (frames == 0 || frame_size == 0) return;
     std::vector<hsize_t> start{first_frame}, count{frames};
     for (auto d : frame_shape) {
       start.push_back(0);
@@ -111,15 +113,17 @@ struct Series {
     hid_t file_space = H5Dget_space(dataset);
     H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
     hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
-    const herr_t status = H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, handed.data());
+    const herr_t status = H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, handed_.data());
     H5Sclose(mem_space);
     H5Sclose(file_space);
-    handed.clear();
     check(status, "writing a block of frames");
   }
 
  private:
-  std::vector<std::uint64_t> handed;  // the block being written
+  // The frames not yet written, as raw 8-byte words: `buffered_` frames taking new ones, and the
+  // block being written (`handed_frames_` of them). Both keep their memory from block to block.
+  std::vector<std::uint64_t> buffer_, handed_;
+  std::size_t buffered_ = 0, handed_frames_ = 0;
 };
 
 }  // namespace noether::io

@@ -36,6 +36,9 @@ class DiscreteFlow {
   // The current inertial state (momenta by the discrete Legendre transform where needed) and
   // the forces there (U, inertial f, body-frame M), for output and diagnostics.
   virtual void current(State& s, Forces& f) const = 0;
+  // The current state alone (what the step loop's events watch at every step): current()'s,
+  // with `scratch` taking the forces, unless the flow has the state at hand.
+  virtual void current_state(State& s, Forces& scratch) const { current(s, scratch); }
   virtual double time() const = 0;
   // The flow's own variables beyond the State (noether::Integrator::checkpoint): none for the
   // inertial Hamiltonian form, whose variables are the State's.

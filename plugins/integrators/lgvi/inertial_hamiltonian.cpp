@@ -204,6 +204,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     s = s_;
     f = current_;
   }
+  void current_state(State& s, Forces&) const override { s = s_; }
   double time() const override { return s_.t; }
 
  private:

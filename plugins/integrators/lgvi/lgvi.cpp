@@ -117,9 +117,12 @@ class Lgvi final : public noether::Integrator {
     flow_->current(state, forces);
     state.t = t_;
   }
-  // The state alone, at every step where events are watched: into a kept Forces, so that
-  // the step loop allocates nothing.
-  void current_state(noether::State& state) override { current(state, scratch_forces_); }
+  // The state alone, at every step where events are watched (a kept Forces for a flow that
+  // computes them anyway, so that the step loop allocates nothing).
+  void current_state(noether::State& state) override {
+    flow_->current_state(state, scratch_forces_);
+    state.t = t_;
+  }
 
  private:
   // One step of size dt: the base map, or its symmetric composition γ_1 dt, …, γ_s dt
