@@ -9,6 +9,7 @@ namespace noether {
 ForceModel::~ForceModel() = default;
 std::unique_ptr<Workspace> ForceModel::make_workspace() const { return std::make_unique<Workspace>(); }
 bool ForceModel::depends_on_momenta() const { return true; }
+bool ForceModel::pull_particles(const State&, std::vector<PointPull>&) const { return false; }
 
 Eigen::Matrix<double, kBalanceRows, 1> balance_rate(const System& system, const State& state, const Forces& force) {
   Eigen::Matrix<double, kBalanceRows, 1> rate = Eigen::Matrix<double, kBalanceRows, 1>::Zero();

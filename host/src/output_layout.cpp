@@ -386,8 +386,9 @@ void H5Writer::write_particles(const ParticleSwarm& swarm, const Scene& scene) {
   std::vector<std::string> names;
   for (const Body& b : scene.system.bodies()) names.push_back(b.name);
   string_attribute(group, "description",
-                   "massless particles (the scene's particles:), each body's field as they felt it in 'fields' (" +
-                       std::to_string(names.size()) + " bodies)");
+                   "massless particles (the scene's particles:), each body's field as they felt it in 'fields' (its first " +
+                       std::to_string(names.size()) + " entries, one per body; then what each force beyond the potential "
+                       "was to them)");
   numeric_attribute<std::int64_t>(group, "verlet_steps", H5T_NATIVE_INT64, {swarm.particle_steps()});
   m.flush_file("flushing the output file");
 }

@@ -20,6 +20,7 @@ struct ParticleSwarm::Placement {
   double t = 0.0;
   std::vector<Vec3> x;  // the bodies' centres
   std::vector<Mat3> R;  // their attitudes (identity for a point mass)
+  std::vector<PointPull> pulls;  // the forces' point masses that pull the particles
 };
 
 namespace {
@@ -46,7 +47,8 @@ void hermite_path(const Vec3& xa, const Vec3& va, const Vec3& xb, const Vec3& vb
 
 }  // namespace
 
-ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies)
+ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies,
+                             std::shared_ptr<const Forcing> forcing)
     : system_(system), settings_(settings) {
   if (!(settings_.step >= 0.0)) throw SceneError("particles.step must be positive (0: the bodies' steps)");
   const auto n = static_cast<Eigen::Index>(settings_.position.size());
@@ -61,8 +63,17 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   t_ = bodies.t;
   fields_.emplace_back();
   for (const Body& b : system.bodies()) fields_[0].emplace_back(b, system.G(), BodyFieldOptions{settings_.degree, settings_.tolerance});
+  if (forcing) {
+    std::vector<PointPull> pulls;
+    for (const ForceTerm& term : *forcing) {
+      const bool pulls_particles = term.model->pull_particles(bodies, pulls);
+      if (pulls_particles) pulling_.push_back(term.model);
+      force_fields_.push_back(term.name + (pulls_particles ? ": point masses (its bodies' gravity)"
+                                                           : ": not felt by the particles"));
+    }
+  }
   // A particle that starts inside a body is refused (where it stands it would land at once).
-  const Placement at = placement_of(system, bodies);
+  const Placement at = place(bodies);
   for (Eigen::Index i = 0; i < n; ++i) {
     for (std::size_t b = 0; b < system.size(); ++b) {
       const BodyField& f = fields_[0][b];
@@ -117,22 +128,35 @@ void ParticleSwarm::recorded_positions(const State& bodies, Eigen::Matrix3Xd& ou
 std::vector<std::string> ParticleSwarm::fields() const {
   std::vector<std::string> out;
   for (const BodyField& f : fields_[0]) out.push_back(f.describe());
+  out.insert(out.end(), force_fields_.begin(), force_fields_.end());
   return out;
 }
 
-// (38.1): Σ_b R_b g_b(R_bᵀ (x − x_b)).
+ParticleSwarm::Placement ParticleSwarm::place(const State& bodies) const {
+  Placement at = placement_of(system_, bodies);
+  for (const auto& force : pulling_) force->pull_particles(bodies, at.pulls);
+  return at;
+}
+
+// (38.1): Σ_b R_b g_b(R_bᵀ (x − x_b)), and μ d/|d|³ (d = X − x) of each point mass X that pulls.
 Vec3 ParticleSwarm::acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const {
   Vec3 a = Vec3::Zero();
   for (std::size_t b = 0; b < fields.size(); ++b)
     a += at.R[b] * fields[b](at.R[b].transpose() * (x - at.x[b])).acceleration;
+  for (const PointPull& pull : at.pulls) {
+    const Vec3 d = pull.position - x;
+    const double d2 = d.squaredNorm();
+    a += (pull.mu / (d2 * std::sqrt(d2))) * d;
+  }
   return a;
 }
 
 double ParticleSwarm::energy(std::size_t i, const State& bodies) {
-  const Placement at = placement_of(system_, bodies);
+  const Placement at = place(bodies);
+  const Vec3 x = x_.col(static_cast<Eigen::Index>(i));
   double phi = 0.0;
-  for (std::size_t b = 0; b < fields_[0].size(); ++b)
-    phi += fields_[0][b](at.R[b].transpose() * (x_.col(static_cast<Eigen::Index>(i)) - at.x[b])).potential;
+  for (std::size_t b = 0; b < fields_[0].size(); ++b) phi += fields_[0][b](at.R[b].transpose() * (x - at.x[b])).potential;
+  for (const PointPull& pull : at.pulls) phi -= pull.mu / (pull.position - x).norm();
   return 0.5 * v_.col(static_cast<Eigen::Index>(i)).squaredNorm() + phi;
 }
 
@@ -155,13 +179,13 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
   // The bodies at the substeps' ends: the step's own states at its ends, Hermite between (16.2).
   std::vector<Placement> ends;
   ends.reserve(static_cast<std::size_t>(n) + 1);
-  ends.push_back(placement_of(system_, from));
+  ends.push_back(place(from));
   State probe;
   for (int s = 1; s < n; ++s) {
     hermite_state(system_, from, to, from.t + (to.t - from.t) * s / n, probe);
-    ends.push_back(placement_of(system_, probe));
+    ends.push_back(place(probe));
   }
-  ends.push_back(placement_of(system_, to));
+  ends.push_back(place(to));
   threads = std::max(1, std::min<int>(threads, static_cast<int>(size())));
   while (fields_.size() < static_cast<std::size_t>(threads)) fields_.push_back(fields_[0]);
   std::vector<State> probes(static_cast<std::size_t>(threads));
@@ -186,7 +210,7 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
     for (int s = 0; s < n; ++s) {
       halves.push_back(ends[static_cast<std::size_t>(s)]);
       hermite_state(system_, from, to, from.t + (to.t - from.t) * (2 * s + 1) / (2 * n), probe);
-      halves.push_back(placement_of(system_, probe));
+      halves.push_back(place(probe));
     }
     halves.push_back(ends.back());
     std::fill(steps.begin(), steps.end(), 0);

@@ -76,8 +76,9 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.integrator = registry.make_integrator(sc.integrator.plugin, sc.system, m.potential, sc.integrator.params);
   m.summary.integrator = sc.integrator.plugin;
+  std::shared_ptr<const Forcing> forcing;
   if (!sc.forces.empty()) {  // forces beyond the potential (docs/forces.md)
-    auto forcing = make_scene_forcing(sc, registry);
+    forcing = make_scene_forcing(sc, registry);
     if (const std::string why = m.integrator->add_forcing(forcing); !why.empty())
       throw SceneError(sc.root.at("forces").here() + "forces: integrator '" + sc.integrator.plugin +
                        "' cannot take them: " + why);
@@ -118,7 +119,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
                        "' chooses its own steps, which may be long for the particles: give particles.step (their "
                        "longest Verlet step)");
     try {
-      m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state);
+      m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state, forcing);
     } catch (const SceneError& e) {  // where in the scene: the particles' block
       throw SceneError(sc.root.at("particles").here() + e.what());
     }

@@ -20,6 +20,12 @@
 
 namespace noether {
 
+// A point mass whose gravity massless particles feel: G M and where it is.
+struct PointPull {
+  double mu = 0.0;
+  Vec3 position = Vec3::Zero();
+};
+
 class ForceModel {
  public:
   virtual ~ForceModel();
@@ -31,6 +37,12 @@ class ForceModel {
   // Whether the force depends on the momenta γ, Π (the forced LGVI then solves its closing
   // kick by iteration, (33.2)). True by default.
   virtual bool depends_on_momenta() const;
+  // What the force does to massless particles (the scene's `particles:`) at `state`: it appends
+  // the point masses whose gravity they feel to `pulls` — a body on a prescribed path pulls the
+  // particles as it pulls the bodies, so that they move in the same field — and returns true;
+  // false (the default) for a force the particles do not feel (radiation and tides act on the
+  // bodies' shapes alone).
+  virtual bool pull_particles(const State& state, std::vector<PointPull>& pulls) const;
 };
 
 // The rows of a force's balance, State::force_balance's column (33.3): the work W, the linear

@@ -33,8 +33,10 @@
 // Version 11: DynamicsParameter and ParameterForces carry the forces beyond the
 // potential made at a parameter's stencil (their layouts changed; ParameterForces::forcing,
 // with_forcing).
-// Version 12 (current): MutualSeries sums over the integrals modulo traces (its layout changed);
+// Version 12: MutualSeries sums over the integrals modulo traces (its layout changed);
 // harmonic_integrals.hpp (TraceReduction, HarmonicRotation) added.
+// Version 13 (current): ForceModel::pull_particles (the point masses a force's body pulls
+// massless particles with) and PointPull.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -52,7 +54,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 12u
+#define NOETHER_PLUGIN_API_VERSION 13u
 
 namespace noether {
 

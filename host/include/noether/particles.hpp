@@ -1,7 +1,8 @@
 #pragma once
 // Massless particles in a run (the scene's `particles:`; docs/user-guide.md, "Particles";
 // docs/equations.md §38): test particles — ejecta, boulders, spacecraft — that feel every body's
-// field (BodyField) and exert nothing. For each step the bodies' integrator takes, every particle
+// field (BodyField) and the point masses of the scene's forces that pull them (a prescribed
+// planet or Sun, ForceModel::pull_particles), and exert nothing. For each step the bodies' integrator takes, every particle
 // in flight takes steps of velocity Verlet (38.3), no longer than `step`, in the field of the bodies
 // at the substeps' ends (the step's own states at its ends, the cubic Hermite interpolant (16.2) between
 // them). The bodies' integration is untouched (the LGVI stays symplectic for them); each particle's
@@ -10,6 +11,7 @@
 // substep's cubic Hermite path by regula falsi (38.4), with where and how fast it hit, in the body
 // frame. A particle farther than `escape` from the centre has escaped.
 #include <noether/body_field.hpp>
+#include <noether/force_model.hpp>
 #include <noether/particle_check.hpp>
 #include <noether/scene.hpp>
 
@@ -31,8 +33,10 @@ struct ParticleOutcome {
 
 class ParticleSwarm {
  public:
-  // The particles of `settings` at their initial states, the bodies at `bodies` (the run's t0).
-  ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies);
+  // The particles of `settings` at their initial states, the bodies at `bodies` (the run's t0),
+  // in the field of the bodies and of the forces in `forcing` that pull particles (none: null).
+  ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies,
+                std::shared_ptr<const Forcing> forcing = nullptr);
 
   // Carries every particle in flight from the bodies' state `from` to `to` (the ends of one step
   // of their integrator, or of a shortened step at an event), on `threads` threads: each particle
@@ -52,9 +56,11 @@ class ParticleSwarm {
   // and velocities at the step's ends. A particle that has landed rides on its body, at the point
   // where it landed.
   void recorded_positions(const State& bodies, Eigen::Matrix3Xd& out) const;
-  // Particle i's energy per unit mass in the bodies' field at `bodies`: ½ v² + Σ Φ_b (38.1).
+  // Particle i's energy per unit mass in the bodies' field at `bodies`: ½ v² + Σ Φ_b (38.1), and
+  // −μ/r of each point mass that pulls it.
   double energy(std::size_t i, const State& bodies);
-  // What each body's field is (BodyField::describe), in the scene's order of bodies.
+  // What each body's field is (BodyField::describe), in the scene's order of bodies, then what
+  // each of the scene's forces is to the particles.
   std::vector<std::string> fields() const;
   std::int64_t particle_steps() const { return particle_steps_; }  // Verlet steps taken, all particles
   // The check's comparison where the run stands, the bodies at `bodies` (at time()).
@@ -70,6 +76,7 @@ class ParticleSwarm {
     Vec3 x, v, a;
     ParticleOutcome outcome;
   };
+  Placement place(const State& bodies) const;  // the bodies and the forces' point masses at `bodies`
   Vec3 acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const;
   void carry(Flight& p, const std::vector<Placement>& ends, const State& from, const State& to,
              std::vector<BodyField>& fields, State& probe) const;
@@ -82,6 +89,8 @@ class ParticleSwarm {
   const System& system_;
   ParticleSettings settings_;
   std::vector<std::vector<BodyField>> fields_;  // one copy per thread (the series holds scratch)
+  std::vector<std::shared_ptr<const ForceModel>> pulling_;  // the forces whose point masses pull the particles
+  std::vector<std::string> force_fields_;       // what each of the scene's forces is to the particles
   Eigen::Matrix3Xd x_, v_, a_;                  // a: the acceleration at x, at time t_
   Eigen::Matrix3Xd x_before_, v_before_;        // the recorded particles at the last step's start
   double t_before_ = 0.0;

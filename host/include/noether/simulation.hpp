@@ -96,7 +96,7 @@ struct ParticleSummary {
   std::size_t escaped = 0, in_flight = 0;
   std::int64_t steps = 0;  // Verlet steps, all particles
   double seconds = 0.0;    // wall time spent carrying them (the check's particles too)
-  std::vector<std::string> fields;  // each body's field as the particles feel it (BodyField::describe)
+  std::vector<std::string> fields;  // each body's field as the particles feel it (BodyField::describe), then each force's
   ParticleCheck check;              // the step-halving check (particles.check)
 };
 

@@ -13,7 +13,7 @@
 // per body as mutual-series chooses per pair (§15).
 //
 // The prescribed body feels nothing back: the scene's momenta change by what it puts in, which
-// the balance records (docs/equations.md eq. 33.3).
+// the balance records (docs/equations.md eq. 33.3). Massless particles feel it as a point mass.
 #include <noether/body_integrals.hpp>
 #include <noether/error.hpp>
 #include <noether/mutual_series.hpp>
@@ -85,6 +85,11 @@ class PrescribedBody final : public noether::ForceModel {
   }
 
   bool depends_on_momenta() const override { return false; }
+  // Massless particles feel it as the point mass it is, (35.4) per unit mass.
+  bool pull_particles(const State& s, std::vector<noether::PointPull>& pulls) const override {
+    pulls.push_back({system_.G() * mass_, conic_.position(s)});
+    return true;
+  }
 
   std::unique_ptr<noether::Workspace> make_workspace() const override {
     auto w = std::make_unique<SeriesWorkspace>();
