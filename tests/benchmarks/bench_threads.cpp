@@ -2,12 +2,14 @@
 // (K(K−1)/2 pairs, tests/test_support.hpp's lattice), at orders 2 and 4, on 1 and 2 threads —
 // the cost of an evaluation and of a force Jacobian, per pair, and the speed-up; and a swarm of
 // satellites whose pairs are mostly far, at a tolerance against the fixed order it needs
-// (docs/numerical-results.md, "Threads").
-// Run: build/release/bin/noether_benchmarks --benchmark_filter='MutualSeries(Pairs|Swarm)'
+// (docs/numerical-results.md, "Threads"); and radiation on a radar shape, facet blocks on threads.
+// Run: build/release/bin/noether_benchmarks --benchmark_filter='MutualSeries(Pairs|Swarm)|Radiation'
 #include <noether/force_jacobian.hpp>
 #include "test_support.hpp"
 
 #include <noether/evaluation_threads.hpp>
+#include <noether/lie.hpp>
+#include <noether/scene.hpp>
 
 #include <benchmark/benchmark.h>
 
@@ -99,5 +101,28 @@ BENCHMARK(BM_MutualSeriesSwarm)
     ->ArgsProduct({{8, 32, 128}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+
+// Radiation on KW4 Alpha's radar shape (9168 facets; examples/kw4-yorp.yaml): one evaluation of
+// the force and torque, on 1 and 2 threads (blocks of 64 facets). Args: threads.
+void BM_RadiationKw4Alpha(benchmark::State& st) {
+  const int threads = static_cast<int>(st.range(0));
+  const Scene scene = load_scene(test::source_path("examples/kw4-yorp.yaml"));
+  auto registry = test::bundled_plugins();
+  const auto force = registry.make_force("radiation", scene.system, scene.forces[0].params);
+  auto workspace = force->make_workspace();
+  Forces f;
+  f.resize(scene.system);
+  State s = scene.initial;
+  const EvaluationThreads in_scope(threads);
+  std::int64_t k = 0;
+  for (auto _ : st) {
+    s.R[0] = exp_so3(Vec3(0.0, 0.0, 1e-3 * static_cast<double>(k++)));  // the Sun seen from another side
+    force->evaluate(s, f, *workspace);
+    benchmark::DoNotOptimize(f.M.data());
+  }
+  st.counters["ns_per_facet"] = benchmark::Counter(static_cast<double>(st.iterations()) * 9168.0,
+                                                   benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_RadiationKw4Alpha)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 }  // namespace
