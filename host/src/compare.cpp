@@ -198,7 +198,11 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
     CompareRow row;
     row.family = run.family;
     row.label = run.label;
-    say(run.family + " " + run.label);
+    // "model mutual-series order" and "order=8" say "model mutual-series order=8".
+    const std::size_t space = run.family.rfind(' ');
+    const std::string swept = space == std::string::npos ? "" : run.family.substr(space + 1) + "=";
+    say(!swept.empty() && run.label.rfind(swept, 0) == 0 ? run.family + run.label.substr(swept.size() - 1)
+                                                          : run.family + " " + run.label);
     try {
       const Scene s = with_plugins(scene, run.integrator, run.potential);
       std::vector<double> seconds;
@@ -260,19 +264,23 @@ std::string format_compare(const CompareResult& r) {
     out << "its own error not estimated (" << r.reference_error_note << ")\n";
   else
     out << "estimated error " << r.reference_error << " (final-state difference to a 10x looser run)\n";
-  std::snprintf(line, sizeof line, "%-14s %-28s %10s %10s %10s %10s %10s %10s %10s\n", "family",
+  // The family column as wide as its longest entry ("model mutual-series tolerance"), so that a
+  // family never runs into its setting.
+  int width = 14;
+  for (const auto& row : r.rows) width = std::max(width, static_cast<int>(row.family.size()));
+  std::snprintf(line, sizeof line, "%-*s  %-28s %10s %10s %10s %10s %10s %10s %10s\n", width, "family",
                 "setting", "wall [s]", "U evals", "pos err", "att err", "max|dE|", "max dL/L",
                 "max orth");
   out << line;
   for (const auto& row : r.rows) {
     if (!row.ok) {
-      std::snprintf(line, sizeof line, "%-14s %-28s failed: %s\n", row.family.c_str(),
+      std::snprintf(line, sizeof line, "%-*s  %-28s failed: %s\n", width, row.family.c_str(),
                     row.label.c_str(), row.error.c_str());
       out << line;
       continue;
     }
     std::snprintf(line, sizeof line,
-                  "%-14s %-28s %10.4f %10lld %10.2e %10.2e %10.2e %10.2e %10.2e\n",
+                  "%-*s  %-28s %10.4f %10lld %10.2e %10.2e %10.2e %10.2e %10.2e\n", width,
                   row.family.c_str(), row.label.c_str(), row.wall_seconds,
                   row.potential_evaluations, row.final_position_error, row.final_attitude_error,
                   row.max_abs_energy_error, row.max_rel_angular_momentum_error,
