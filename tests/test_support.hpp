@@ -44,15 +44,19 @@ inline Scene dumbbell_scene(const std::vector<std::string>& overrides = {}) {
 
 // K ellipsoids (semi-axes 1, 0.8, 0.6; unit mass, G = 1) on a cubic lattice of the given
 // spacing, each turned and spinning differently, drifting slowly: a scene of K(K−1)/2 pairs
-// for the many-body tests and benchmarks. `potential`: the scene's potential, as YAML.
-inline Scene ellipsoid_lattice_scene(int K, const std::string& potential, double spacing = 4.0) {
+// for the many-body tests and benchmarks. `potential`: the scene's potential, as YAML; `body`:
+// each body's mass and shape, as YAML (kLatticeDumbbell: dumbbells for sphere-cluster).
+inline constexpr const char* kLatticeEllipsoid = "mass: 1, shape: {ellipsoid: {semi_axes: [1, 0.8, 0.6]}}";
+inline constexpr const char* kLatticeDumbbell = "mass: 1, inertia: [0.002, 0.16, 0.16], shape: {dumbbell: {length: 0.8}}";
+inline Scene ellipsoid_lattice_scene(int K, const std::string& potential, double spacing = 4.0,
+                                     const std::string& body = kLatticeEllipsoid) {
   int side = 1;
   while (side * side * side < K) ++side;
   std::string text = "G: 1\nbodies:\n";
   for (int k = 0; k < K; ++k) {
     const int i = k % side, j = (k / side) % side, l = k / (side * side);
     const double a = 0.37 * k, b = 0.11 * k;
-    text += "  - {name: e" + std::to_string(k) + ", mass: 1, shape: {ellipsoid: {semi_axes: [1, 0.8, 0.6]}}, position: [" +
+    text += "  - {name: e" + std::to_string(k) + ", " + body + ", position: [" +
             std::to_string(spacing * i + 0.1 * std::sin(a)) + ", " + std::to_string(spacing * j + 0.1 * std::cos(a)) +
             ", " + std::to_string(spacing * l) + "], velocity: [" + std::to_string(0.01 * std::cos(b)) + ", " +
             std::to_string(0.01 * std::sin(b)) + ", 0], attitude: {euler_angles: [" + std::to_string(17.0 * k) + ", " +

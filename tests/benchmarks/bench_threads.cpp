@@ -2,8 +2,9 @@
 // (K(K−1)/2 pairs, tests/test_support.hpp's lattice), at orders 2 and 4, on 1 and 2 threads —
 // the cost of an evaluation and of a force Jacobian, per pair, and the speed-up; and a swarm of
 // satellites whose pairs are mostly far, at a tolerance against the fixed order it needs
-// (docs/numerical-results.md, "Threads"); and radiation on a radar shape, facet blocks on threads.
-// Run: build/release/bin/noether_benchmarks --benchmark_filter='MutualSeries(Pairs|Swarm)|Radiation'
+// (docs/numerical-results.md, "Threads"); sphere-cluster's pairs; and radiation on a radar shape,
+// facet blocks on threads.
+// Run: build/release/bin/noether_benchmarks --benchmark_filter='MutualSeries(Pairs|Swarm)|SphereClusterPairs|Radiation'
 #include <noether/force_jacobian.hpp>
 #include "test_support.hpp"
 
@@ -101,6 +102,24 @@ BENCHMARK(BM_MutualSeriesSwarm)
     ->ArgsProduct({{8, 32, 128}, {0, 1}, {1, 2}})
     ->Unit(benchmark::kMicrosecond)
     ->UseRealTime();
+
+// sphere-cluster on K dumbbells on the same lattice (4 point pairs a body pair). Args: K, threads.
+void BM_SphereClusterPairs(benchmark::State& st) {
+  const int K = static_cast<int>(st.range(0)), threads = static_cast<int>(st.range(1));
+  const Scene scene = test::ellipsoid_lattice_scene(K, "{plugin: sphere-cluster}", 4.0, test::kLatticeDumbbell);
+  auto registry = test::bundled_plugins();
+  const auto potential = registry.make_potential("sphere-cluster", scene.system, scene.potentials[0].params);
+  auto workspace = potential->make_workspace();
+  Forces f;
+  f.resize(scene.system);
+  const EvaluationThreads in_scope(threads);
+  for (auto _ : st) {
+    potential->evaluate(scene.initial, f, *workspace);
+    benchmark::DoNotOptimize(f.U);
+  }
+  count_pairs(st, K);
+}
+BENCHMARK(BM_SphereClusterPairs)->ArgsProduct({{8, 32, 128}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // Radiation on KW4 Alpha's radar shape (9168 facets; examples/kw4-yorp.yaml): one evaluation of
 // the force and torque, on 1 and 2 threads (blocks of 64 facets). Args: threads.
