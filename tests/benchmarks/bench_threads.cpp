@@ -28,12 +28,10 @@ void count_pairs(benchmark::State& st, int K) {
                                                   benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-// Args: K, order, threads.
-void BM_MutualSeriesPairs(benchmark::State& st) {
-  const int K = static_cast<int>(st.range(0)), order = static_cast<int>(st.range(1)), threads = static_cast<int>(st.range(2));
-  const Scene scene = test::ellipsoid_lattice_scene(K, "{plugin: mutual-series, order: " + std::to_string(order) + "}");
+// One evaluation of a lattice scene's potential (its plugin), on `threads` threads, per iteration.
+void evaluate_lattice(benchmark::State& st, const Scene& scene, const std::string& plugin, int threads) {
   auto registry = test::bundled_plugins();
-  const auto potential = registry.make_potential("mutual-series", scene.system, scene.potentials[0].params);
+  const auto potential = registry.make_potential(plugin, scene.system, scene.potentials[0].params);
   auto workspace = potential->make_workspace();
   Forces f;
   f.resize(scene.system);
@@ -42,7 +40,14 @@ void BM_MutualSeriesPairs(benchmark::State& st) {
     potential->evaluate(scene.initial, f, *workspace);
     benchmark::DoNotOptimize(f.U);
   }
-  count_pairs(st, K);
+  count_pairs(st, static_cast<int>(scene.system.size()));
+}
+
+// Args: K, order, threads.
+void BM_MutualSeriesPairs(benchmark::State& st) {
+  const int K = static_cast<int>(st.range(0)), order = static_cast<int>(st.range(1)), threads = static_cast<int>(st.range(2));
+  evaluate_lattice(st, test::ellipsoid_lattice_scene(K, "{plugin: mutual-series, order: " + std::to_string(order) + "}"),
+                   "mutual-series", threads);
 }
 BENCHMARK(BM_MutualSeriesPairs)
     ->ArgsProduct({{2, 8, 32, 128}, {2, 4}, {1, 2}})
@@ -106,18 +111,8 @@ BENCHMARK(BM_MutualSeriesSwarm)
 // sphere-cluster on K dumbbells on the same lattice (4 point pairs a body pair). Args: K, threads.
 void BM_SphereClusterPairs(benchmark::State& st) {
   const int K = static_cast<int>(st.range(0)), threads = static_cast<int>(st.range(1));
-  const Scene scene = test::ellipsoid_lattice_scene(K, "{plugin: sphere-cluster}", 4.0, test::kLatticeDumbbell);
-  auto registry = test::bundled_plugins();
-  const auto potential = registry.make_potential("sphere-cluster", scene.system, scene.potentials[0].params);
-  auto workspace = potential->make_workspace();
-  Forces f;
-  f.resize(scene.system);
-  const EvaluationThreads in_scope(threads);
-  for (auto _ : st) {
-    potential->evaluate(scene.initial, f, *workspace);
-    benchmark::DoNotOptimize(f.U);
-  }
-  count_pairs(st, K);
+  evaluate_lattice(st, test::ellipsoid_lattice_scene(K, "{plugin: sphere-cluster}", 4.0, test::kLatticeDumbbell),
+                   "sphere-cluster", threads);
 }
 BENCHMARK(BM_SphereClusterPairs)->ArgsProduct({{8, 32, 128}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
 

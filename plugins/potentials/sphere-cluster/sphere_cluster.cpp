@@ -138,28 +138,29 @@ class SphereCluster final : public noether::Potential {
                                    s.R[static_cast<std::size_t>(rigid_[i])] * c.rho[p])
                             : Vec3(s.x.col(static_cast<Eigen::Index>(i)));
     }
-    w.shares.resize(pairs_.size());
-    const int threads = noether::evaluation_threads();
-    // Tasks of kPairsPerTask pairs (a pair of dumbbells is ~50 ns of work), from 4 tasks on: below
-    // that (8 dumbbells, 28 pairs: 1.5 µs) waking the threads costs more than it saves.
-    if (threads > 1 && pairs_.size() >= 4 * kPairsPerTask) {
-      const std::size_t tasks = (pairs_.size() + kPairsPerTask - 1) / kPairsPerTask;
-      noether::parallel_for_each(tasks, threads, [&](std::size_t task, int) {
-        for (std::size_t k = task * kPairsPerTask; k < std::min(pairs_.size(), (task + 1) * kPairsPerTask); ++k)
-          w.shares[k] = share_of(k, s, points);
-      });
-    } else {  // (the same shares without the threads' machinery: two dumbbells' one pair costs ~70 ns)
-      for (std::size_t k = 0; k < pairs_.size(); ++k) w.shares[k] = share_of(k, s, points);
-    }
-    for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    // Pair k's share added to the forces; in pair order, whichever thread computed it.
+    auto add = [&](std::size_t k, const Share& share) {
       const auto [i, j] = pairs_[k];
-      const Share& share = w.shares[k];
       out.U += share.U;
       out.f.col(static_cast<Eigen::Index>(i)) += share.f;
       out.f.col(static_cast<Eigen::Index>(j)) -= share.f;
       // ρ × (Rᵀ F) = Rᵀ ((Rρ) × F): the body-frame moment (docs/equations.md §2).
       if (rigid_[i] >= 0) out.M.col(rigid_[i]) += s.R[static_cast<std::size_t>(rigid_[i])].transpose() * share.ti;
       if (rigid_[j] >= 0) out.M.col(rigid_[j]) += s.R[static_cast<std::size_t>(rigid_[j])].transpose() * share.tj;
+    };
+    // Tasks of kPairsPerTask pairs (a pair of dumbbells is ~50 ns of work), from 4 tasks on: below
+    // that (8 dumbbells, 28 pairs: 1.5 µs) waking the threads costs more than it saves.
+    const int threads = pairs_.size() >= 4 * kPairsPerTask ? noether::evaluation_threads() : 1;
+    if (threads > 1) {
+      w.shares.resize(pairs_.size());
+      const std::size_t tasks = (pairs_.size() + kPairsPerTask - 1) / kPairsPerTask;
+      noether::parallel_for_each(tasks, threads, [&](std::size_t task, int) {
+        for (std::size_t k = task * kPairsPerTask; k < std::min(pairs_.size(), (task + 1) * kPairsPerTask); ++k)
+          w.shares[k] = share_of(k, s, points);
+      });
+      for (std::size_t k = 0; k < pairs_.size(); ++k) add(k, w.shares[k]);
+    } else {  // the same sums, each share added as it is made
+      for (std::size_t k = 0; k < pairs_.size(); ++k) add(k, share_of(k, s, points));
     }
   }
 
@@ -193,11 +194,7 @@ class SphereCluster final : public noether::Potential {
         const int ki = rigid_[i], kj = rigid_[j];
         for (std::size_t p = 0; p < ci.rho.size(); ++p)
           for (std::size_t q = 0; q < cj.rho.size(); ++q) {
-            const Vec3 d = points[i][p] - points[j][q];
-            const double r2 = d.squaredNorm();
-            if (!(r2 > 0.0)) collision(i, j, s.t);
-            const double r = std::sqrt(r2);
-            const double Gmm = G_ * ci.mass[p] * cj.mass[q];
+            const auto [d, r2, r, Gmm] = point_pair(i, j, p, q, points, s.t);
             const Vec3 F = (-Gmm / (r2 * r)) * d;
             const Eigen::Matrix3d B = Gmm / (r2 * r) * (Eigen::Matrix3d::Identity() - 3.0 * d * d.transpose() / r2);
             const Eigen::Matrix3d &Ap = arms[i][p], &Aq = arms[j][q];
@@ -232,6 +229,20 @@ class SphereCluster final : public noether::Potential {
   }
 
  private:
+  // The point masses p of body i and q of body j: d = y_p − y_q, r², r and G m_p m_q (a collision
+  // when they coincide).
+  struct PointPair {
+    Vec3 d;
+    double r2, r, Gmm;
+  };
+  PointPair point_pair(std::size_t i, std::size_t j, std::size_t p, std::size_t q,
+                       const std::vector<std::vector<Vec3>>& points, double t) const {
+    const Vec3 d = points[i][p] - points[j][q];
+    const double r2 = d.squaredNorm();
+    if (!(r2 > 0.0)) collision(i, j, t);
+    return {d, r2, std::sqrt(r2), G_ * clusters_[i].mass[p] * clusters_[j].mass[q]};
+  }
+
   // Pair k's share: Σ over its points' pairs of the point masses' U, the force on i and both
   // bodies' inertial torques.
   Share share_of(std::size_t k, const State& s, const std::vector<std::vector<Vec3>>& points) const {
@@ -241,11 +252,7 @@ class SphereCluster final : public noether::Potential {
     Share share;
     for (std::size_t p = 0; p < ci.rho.size(); ++p) {
       for (std::size_t q = 0; q < cj.rho.size(); ++q) {
-        const Vec3 d = points[i][p] - points[j][q];
-        const double r2 = d.squaredNorm();
-        if (!(r2 > 0.0)) collision(i, j, s.t);
-        const double r = std::sqrt(r2);
-        const double Gmm = G_ * ci.mass[p] * cj.mass[q];
+        const auto [d, r2, r, Gmm] = point_pair(i, j, p, q, points, s.t);
         share.U -= Gmm / r;
         const Vec3 F = (-Gmm / (r2 * r)) * d;  // inertial force on point p of body i
         share.f += F;
