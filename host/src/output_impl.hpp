@@ -104,9 +104,15 @@ struct H5Writer::Impl {
     const auto frames = static_cast<std::size_t>(end - first);
     const std::size_t width = checkpointed.size();
     std::uint64_t* sums = checksum_series->handed_block(frames);
-    std::vector<std::uint64_t*> of_state;
+    struct Target {  // a series of the state alone: its fill, and its handed block to fill
+      io::FrameFill::OfState fill;
+      std::uint64_t* out;
+      std::size_t frame_size;
+    };
+    std::vector<Target> of_state;
     for (auto& c : columns)
-      if (c.quantity->fill.of_state) of_state.push_back(c.series->handed_block(frames));
+      if (c.quantity->fill.of_state)
+        of_state.push_back({c.quantity->fill.of_state, c.series->handed_block(frames), c.series->frame_size});
     for (std::size_t i = 0; i < frames; ++i) {
       for (std::size_t k = 0; k < width; ++k) {
         sums[i * width + k] = 0;  // an absent series' column
@@ -116,12 +122,7 @@ struct H5Writer::Impl {
         checkpointed[k]->quantity->restore(s.handed_frame(i), s.frame_size, read_back);
       }
       const io::StateFrame in{*system, primary, secondary, read_back.state, largest_moment_axes};
-      std::size_t n = 0;
-      for (auto& c : columns)
-        if (const auto fill = c.quantity->fill.of_state) {
-          fill(in, of_state[n] + i * c.series->frame_size);
-          ++n;
-        }
+      for (const Target& t : of_state) t.fill(in, t.out + i * t.frame_size);
     }
   }
   // Writes the handed frames [first, end) (io::Series::hand_over): the frames first, then the

@@ -89,9 +89,7 @@ struct Series {
     handed_frames_ = buffered_;
     buffered_ = 0;
   }
-  // The handed block's frames, [frame][shape...] (to read them, or to fill a series computed
-  // when its block is written).
-  std::size_t handed_frames() const { return handed_frames_; }
+  // The handed block's frame i, [shape...] (read when its block is completed).
   const std::uint64_t* handed_frame(std::size_t i) const { return handed_.data() + i * frame_size; }
   // A series that takes no frames as they arrive, filled when its block is written: its handed
   // block made `frames` frames long, to be filled in place.

@@ -53,6 +53,13 @@ double positive(const Params& p, const char* key) {
 struct Sums {
   double lit_area = 0.0;
   Vec3 lit_centroid = Vec3::Zero(), normal_push = Vec3::Zero(), moment_push = Vec3::Zero();
+  Sums& operator+=(const Sums& o) {
+    lit_area += o.lit_area;
+    lit_centroid += o.lit_centroid;
+    normal_push += o.normal_push;
+    moment_push += o.moment_push;
+    return *this;
+  }
 };
 struct RadiationWorkspace final : noether::Workspace {
   std::vector<Sums> blocks;
@@ -153,12 +160,7 @@ class Radiation final : public noether::ForceModel {
       w.blocks[b] = sums;
     });
     Sums total;
-    for (const Sums& b : w.blocks) {
-      total.lit_area += b.lit_area;
-      total.lit_centroid += b.lit_centroid;
-      total.normal_push += b.normal_push;
-      total.moment_push += b.moment_push;
-    }
+    for (const Sums& b : w.blocks) total += b;
     const Vec3 f = -P * ((1.0 - specular_) * total.lit_area * u + total.normal_push);
     const Vec3 M = -P * ((1.0 - specular_) * total.lit_centroid.cross(u) + total.moment_push);
     out.f.col(body_) = R * f;
