@@ -277,3 +277,115 @@ TEST(PrescribedBody, ParticlesFeelItAsTheyFeelTheIntegratedPlanet) {
   ASSERT_EQ(prescribed.particle_fields.size(), 3u);  // alpha, beta, then the force
   EXPECT_EQ(prescribed.particle_fields[2], "prescribed-body planet: point masses (its bodies' gravity)");
 }
+
+namespace {
+
+// A planet of mass 1 and radius 1 (G = 1) moving at 0.5 across the scene, 1e5 from its one body
+// (a grain of mass 1e-15, which it hardly moves); particles in `states`, relative to the planet
+// (x, y, z, vx, vy, vz), at the particles' Verlet `step`.
+Scene planet_and_particles(const std::string& states, double step, const std::string& extra = "") {
+  std::ostringstream yaml;
+  yaml.precision(17);
+  const Vec3 X(1e5, 0, 0), V(0, 0.5, 0);
+  yaml << "G: 1\nbodies:\n  - {name: grain, mass: 1.0e-15, position: [0, 0, 0], velocity: [0, 0, 0]" << extra
+       << "}\npotential: {plugin: point-mass}\n"
+       << "forces: [{plugin: prescribed-body, name: planet, mass: 1, radius: 1, position: [" << X.x() << ", 0, 0], "
+       << "velocity: [0, " << V.y() << ", 0]}]\n"
+       << "integrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 3, output_every: 1}\n"
+       << "particles: {escape: 0, check: 0, step: " << step << ", states: [" << states << "]}\n";
+  Scene scene = parse_scene(yaml.str(), "planet");
+  // The states were given relative to the planet: make them inertial.
+  for (std::size_t i = 0; i < scene.particles.position.size(); ++i) {
+    scene.particles.position[i] += X;
+    scene.particles.velocity[i] += V;
+  }
+  return scene;
+}
+
+}  // namespace
+
+// A prescribed body with a radius is a sphere the particles land on: a particle let go at rest
+// 2 radii from the planet's centre falls radially, and lands when the radial Kepler fall says,
+// t* = √(r0³/2μ) (√(u(1−u)) + arccos √u), u = R/r0 (= 1 + π/2 here), at speed √(2μ(1/R − 1/r0))
+// = 1 relative to the planet, at the point of its sphere on its line — by the Verlet steps'
+// order 2: the landing time's error falls by 4 when the step halves. (The planet's own
+// acceleration about the scene's barycentre, 1e-10, moves t* by ~1e-10.)
+TEST(PrescribedBody, ParticlesLandOnItsSphereWhenTheRadialFallSays) {
+  const double t_star = 1 + M_PI / 2;
+  double error[2];
+  for (int k = 0; k < 2; ++k) {
+    const Scene scene = planet_and_particles("[2, 0, 0, 0, 0, 0]", 0.01 / (2 << k));
+    Simulation sim(scene, registry());
+    sim.integrate(scene.run.t_end);
+    const ParticleSwarm& swarm = *sim.particles();
+    ASSERT_EQ(swarm.surfaces(), (std::vector<std::string>{"grain", "prescribed-body planet"}));
+    const ParticleOutcome& o = swarm.outcomes()[0];
+    ASSERT_EQ(o.fate, ParticleFate::impact);
+    ASSERT_EQ(o.body, 1);
+    error[k] = o.t - t_star;
+    std::printf("step %.4f: landed at t = %.10f (radial fall %.10f, error %.3e), point (%.3e, %.3e, %.3e), relative "
+                "velocity (%.6f, %.3e, %.3e)\n",
+                0.01 / (2 << k), o.t, t_star, error[k], o.point.x(), o.point.y(), o.point.z(), o.velocity.x(),
+                o.velocity.y(), o.velocity.z());
+    EXPECT_NEAR(o.point.norm(), 1.0, 1e-12);  // on the sphere (the root's precision)
+    EXPECT_LT((o.point - Vec3::UnitX()).norm(), 1e-6);
+    EXPECT_LT((o.velocity + Vec3::UnitX()).norm(), 1e-4);
+    const RunSummary summary = sim.finish();
+    EXPECT_EQ(summary.particles.impacts, (std::vector<std::size_t>{0, 1}));
+    // It rides on the planet after: recorded where the planet is, plus the landing point.
+    Eigen::Matrix3Xd recorded;
+    swarm.recorded_positions(sim.state(), recorded);
+    const Vec3 planet = Vec3(1e5, 0.5 * sim.state().t, 0);
+    EXPECT_LT((Vec3(recorded.col(0)) - planet - o.point).norm(), 1e-6);
+  }
+  EXPECT_LT(std::abs(error[0]), 1e-5);
+  EXPECT_GT(std::abs(error[0] / error[1]), 3.5);
+  EXPECT_LT(std::abs(error[0] / error[1]), 4.5);
+}
+
+// What cannot be: a particle that starts inside the prescribed body's sphere; a body whose
+// bounding sphere meets it (the run stops with an error at that time); a particle that meets a
+// radius-less point mass's centre exactly (its state is no longer finite: the run says so
+// instead of carrying NaN).
+TEST(PrescribedBody, ImpossibleContactsAreErrorsNamingWhatMet) {
+  try {
+    Simulation sim(planet_and_particles("[0.5, 0.5, 0, 0, 0, 0]", 0.01), registry());
+    FAIL() << "a particle inside the planet was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("starts inside 'prescribed-body planet' (within its radius 1"), std::string::npos)
+        << e.what();
+  }
+  {
+    std::ostringstream yaml;
+    yaml << "G: 1\nbodies:\n  - {name: rock, mass: 1, radius: 2, position: [0, 0, 0], velocity: [0, 0, 0]}\n"
+         << "potential: {plugin: point-mass}\nforces: [{plugin: prescribed-body, name: planet, mass: 1.0e-6, radius: 1, "
+         << "position: [10, 0, 0], velocity: [-1, 0, 0]}]\nintegrator: {plugin: lgvi, step: 0.01}\n"
+         << "run: {t_end: 20, output_every: 1}\n";
+    const Scene scene = parse_scene(yaml.str(), "collision");
+    Simulation sim(scene, registry());
+    try {
+      sim.integrate(scene.run.t_end);
+      FAIL() << "the planet passed through the rock";
+    } catch (const IntegrationError& e) {
+      EXPECT_NE(std::string(e.what()).find("body 'rock' came within"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("less than its radius 1 and the body's 2"), std::string::npos) << e.what();
+      EXPECT_GT(e.t_reached(), 5.0);  // it falls in from 10 at 1 and more: meets r = 3 before t = 7
+      EXPECT_LT(e.t_reached(), 7.0);
+    }
+  }
+  {
+    // One Verlet step of 0.5 from x = 1, v = −1.75 in −1/r² lands on x = 1 + 0.5 (−1.75 − 0.25) = 0 exactly.
+    const std::string yaml =
+        "G: 1\nbodies:\n  - {name: sun, mass: 1, position: [0, 0, 0], velocity: [0, 0, 0]}\n"
+        "potential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 0.5}\nrun: {t_end: 2, output_every: 1}\n"
+        "particles: {escape: 0, check: 0, states: [[1, 0, 0, -1.75, 0, 0]]}\n";
+    const Scene scene = parse_scene(yaml, "centre");
+    Simulation sim(scene, registry());
+    try {
+      sim.integrate(scene.run.t_end);
+      FAIL() << "a particle through a point mass's centre went on";
+    } catch (const IntegrationError& e) {
+      EXPECT_NE(std::string(e.what()).find("particle 0 (from 0) is no longer finite"), std::string::npos) << e.what();
+    }
+  }
+}

@@ -63,6 +63,14 @@ Vec3 PrescribedConic::center(const State& s) const {
   return sum / scene_mass_;
 }
 
+Vec3 PrescribedConic::velocity(const State& s) const {
+  Vec3 rho, rho_dot;
+  orbit_.state(s.t, rho, rho_dot);
+  if (center_ >= 0) return rho_dot + s.p.col(center_) / masses_[static_cast<std::size_t>(center_)];
+  if (center_ == -2) return rho_dot;
+  return rho_dot + Vec3(s.p.rowwise().sum()) / scene_mass_;  // the barycentre's: Σ γ_i / Σ m_i
+}
+
 Vec3 PrescribedConic::position(const State& s) const {
   Vec3 rho, rho_dot;
   orbit_.state(s.t, rho, rho_dot);

@@ -377,12 +377,17 @@ void H5Writer::write_particles(const ParticleSwarm& swarm, const Scene& scene) {
                 "each particle's velocity where the run ended, or when it landed or escaped (inertial)", u.of_velocity());
   table_dataset(group, "fate", H5T_NATIVE_INT, fate, 1, "0: in flight at the end, 1: landed on a body, 2: escaped", "");
   table_dataset(group, "time", H5T_NATIVE_DOUBLE, t, 1, "the time of the landing or escape (NaN: in flight)", u.of_time());
-  table_dataset(group, "body", H5T_NATIVE_INT, body, 1, "the body landed on, by its index in /particles/bodies/name (-1: none)", "");
+  table_dataset(group, "body", H5T_NATIVE_INT, body, 1,
+                "what it landed on, by its index in 'surfaces' (-1: none): the bodies as in /particles/bodies/name, "
+                "then the point masses that pull the particles (a prescribed body with a radius)", "");
   table_dataset(group, "impact_point", H5T_NATIVE_DOUBLE, point, 3,
-                "where it landed, in the body's frame (centre of mass, principal axes)", u.of_length());
+                "where it landed, in the body's frame (centre of mass, principal axes); on a prescribed body, from its "
+                "centre in inertial axes", u.of_length());
   table_dataset(group, "impact_velocity", H5T_NATIVE_DOUBLE, velocity, 3,
-                "its velocity relative to the spinning surface where it landed, body frame", u.of_velocity());
+                "its velocity relative to the spinning surface where it landed, body frame (on a prescribed body: "
+                "relative to its centre, inertial)", u.of_velocity());
   string_list_dataset(group, "fields", swarm.fields());
+  string_list_dataset(group, "surfaces", swarm.surfaces());
   std::vector<std::string> names;
   for (const Body& b : scene.system.bodies()) names.push_back(b.name);
   string_attribute(group, "description",

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 namespace noether {
@@ -62,14 +63,22 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   outcomes_.assign(static_cast<std::size_t>(n), {});
   t_ = bodies.t;
   fields_.emplace_back();
-  for (const Body& b : system.bodies()) fields_[0].emplace_back(b, system.G(), BodyFieldOptions{settings_.degree, settings_.tolerance});
+  for (const Body& b : system.bodies()) {
+    fields_[0].emplace_back(b, system.G(), BodyFieldOptions{settings_.degree, settings_.tolerance});
+    surfaces_.push_back(b.name);
+  }
   if (forcing) {
     std::vector<PointPull> pulls;
     for (const ForceTerm& term : *forcing) {
+      const std::size_t first = pulls.size();
       const bool pulls_particles = term.model->pull_particles(bodies, pulls);
       if (pulls_particles) pulling_.push_back(term.model);
       force_fields_.push_back(term.name + (pulls_particles ? ": point masses (its bodies' gravity)"
                                                            : ": not felt by the particles"));
+      for (std::size_t j = first; j < pulls.size(); ++j) {
+        surfaces_.push_back(pulls.size() - first > 1 ? term.name + " #" + std::to_string(j - first) : term.name);
+        pull_radius_.push_back(pulls[j].radius);
+      }
     }
   }
   // A particle that starts inside a body is refused (where it stands it would land at once).
@@ -83,7 +92,15 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
         throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
                          "inside body '" + system.body(b).name + "' (its surface, eq. 16.5); start it outside");
     }
+    for (std::size_t j = 0; j < at.pulls.size(); ++j)
+      if (!((x_.col(i) - at.pulls[j].position).norm() > at.pulls[j].radius))
+        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
+                         "inside '" + surfaces_[system.size() + j] + "' (within its radius " +
+                         std::to_string(at.pulls[j].radius) + " of its centre); start it outside");
     a_.col(i) = acceleration(x_.col(i), at, fields_[0]);
+    if (!a_.col(i).allFinite() || !v_.col(i).allFinite())
+      throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
+                       "where its state or the field is not finite (at the centre of a point mass?); start it elsewhere");
   }
   // The check's particles: k n / K for k < K, spread evenly through the list.
   const std::size_t K = std::min(settings_.check, outcomes_.size());
@@ -104,10 +121,16 @@ void ParticleSwarm::recorded_positions(const State& bodies, Eigen::Matrix3Xd& ou
   const auto recorded = static_cast<Eigen::Index>(settings_.record);
   const double t = bodies.t;
   out = x_.leftCols(recorded);
+  std::optional<Placement> at;  // where the pulling point masses are, for particles landed on them
   for (Eigen::Index i = 0; i < recorded; ++i) {
     const ParticleOutcome& o = outcomes_[static_cast<std::size_t>(i)];
     if (o.fate == ParticleFate::impact && o.t <= t) {  // on its body: x_b + R_b r
       const auto b = static_cast<std::size_t>(o.body);
+      if (b >= system_.size()) {  // on a point mass's sphere: X + r
+        if (!at) at = place(bodies);
+        out.col(i) = at->pulls[b - system_.size()].position + o.point;
+        continue;
+      }
       const int k = system_.rigid_index(b);
       out.col(i) = bodies.x.col(static_cast<Eigen::Index>(b)) +
                    (k >= 0 ? bodies.R[static_cast<std::size_t>(k)] : Mat3::Identity()) * o.point;
@@ -204,6 +227,7 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
     steps[static_cast<std::size_t>(thread)] += n;
   });
   for (const std::int64_t s : steps) particle_steps_ += s;
+  check_finite(to.t);
   if (!checked_.empty()) {  // the check's particles at half the step: the bodies at the midpoints too
     std::vector<Placement> halves;
     halves.reserve(2 * ends.size() - 1);
@@ -268,7 +292,8 @@ ParticleCheck ParticleSwarm::check(const State& bodies) const {
       const double r = (x - c).norm();
       if (r > 0) out.position = std::max(out.position, (x - Vec3(x_half_.col(static_cast<Eigen::Index>(k)))).norm() / r);
     } else if (h.fate == ParticleFate::impact) {
-      const double radius = fields_[0][static_cast<std::size_t>(h.body)].bounding_radius();
+      const auto b = static_cast<std::size_t>(h.body);
+      const double radius = b < system_.size() ? fields_[0][b].bounding_radius() : pull_radius_[b - system_.size()];
       out.landing_point = std::max(out.landing_point, (h.point - half.point).norm() / radius);
       out.landing_time = std::max(out.landing_time, std::abs(h.t - half.t));
     }
@@ -295,6 +320,12 @@ void ParticleSwarm::carry(Flight& p, const std::vector<Placement>& ends, const S
       // Of two bodies hit in one substep, the first.
       if (p.outcome.fate == ParticleFate::in_flight || landed.t < p.outcome.t) p.outcome = landed;
     }
+    for (std::size_t j = 0; j < ends[s].pulls.size(); ++j) {  // a pulling point mass's sphere
+      const PointPull& pull = ends[s].pulls[j];
+      if (!(pull.radius > 0.0) || (x1 - pull.position).squaredNorm() > pull.radius * pull.radius) continue;
+      ParticleOutcome landed = landing(fields.size() + j, ends[s - 1].t, ends[s].t, x, v, x1, v1, from, to, probe);
+      if (p.outcome.fate == ParticleFate::in_flight || landed.t < p.outcome.t) p.outcome = landed;
+    }
     if (p.outcome.fate == ParticleFate::impact) {
       // The particle stays where it landed, with the velocity it landed with (inertial).
       const double u = (p.outcome.t - ends[s - 1].t) / h;
@@ -307,42 +338,64 @@ void ParticleSwarm::carry(Flight& p, const std::vector<Placement>& ends, const S
   p.x = x, p.v = v, p.a = a;
 }
 
-// (38.4): the time in [ta, tb] where the particle's Hermite path meets body b's surface, which
-// it is outside of at ta and inside of at tb, by the Illinois variant of regula falsi on the gap
-// (16.5) between the path and the body at its interpolated place (16.2).
-ParticleOutcome ParticleSwarm::landing(std::size_t b, double ta, double tb, const Vec3& xa, const Vec3& va,
+// (38.4): the time in [ta, tb] where the particle's Hermite path meets surface `surface` (a body's,
+// eq. 16.5, or a pulling point mass's sphere), which it is outside of at ta and inside of at tb,
+// by the Illinois variant of regula falsi on the gap between the path and the surface at its
+// interpolated place (16.2).
+ParticleOutcome ParticleSwarm::landing(std::size_t surface, double ta, double tb, const Vec3& xa, const Vec3& va,
                                        const Vec3& xb, const Vec3& vb, const State& from, const State& to,
                                        State& probe) const {
-  const BodyField& f = fields_[0][b];
+  const std::size_t bodies = system_.size();
   const double h = tb - ta;
-  const int k = system_.rigid_index(b);
-  // The particle relative to the body at time t: its place in the body frame, and (when `rel`)
-  // its velocity relative to the spinning surface there.
+  // The particle relative to the surface at time t: its place in the body frame (from a point
+  // mass's centre, inertial axes), and (when `rel`) its velocity relative to the spinning surface.
   auto relative = [&](double t, Vec3* rel) {
     Vec3 x, v;
     hermite_path(xa, va, xb, vb, h, (t - ta) / h, x, v);
     hermite_state(system_, from, to, t, probe);
-    const auto c = static_cast<Eigen::Index>(b);
+    if (surface >= bodies) {
+      const PointPull pull = place(probe).pulls[surface - bodies];
+      if (rel) *rel = v - pull.velocity;
+      return Vec3(x - pull.position);
+    }
+    const int k = system_.rigid_index(surface);
+    const auto c = static_cast<Eigen::Index>(surface);
     const Mat3 R = k >= 0 ? probe.R[static_cast<std::size_t>(k)] : Mat3::Identity();
     const Vec3 r = R.transpose() * (x - probe.x.col(c));
     if (rel) {
-      *rel = R.transpose() * (v - probe.p.col(c) / system_.body(b).mass);
+      *rel = R.transpose() * (v - probe.p.col(c) / system_.body(surface).mass);
       if (k >= 0) {  // Ω = J⁻¹ Π, Π linear in time over the step
         const double u = (t - from.t) / (to.t - from.t);
         const Vec3 Pi = (1 - u) * from.Pi.col(k) + u * to.Pi.col(k);
-        *rel -= (system_.body(b).inertia_inverse * Pi).cross(r);
+        *rel -= (system_.body(surface).inertia_inverse * Pi).cross(r);
       }
     }
     return r;
   };
-  auto gap = [&](double t) { return f.surface_gap(relative(t, nullptr)); };
+  auto gap = [&](double t) {
+    const Vec3 r = relative(t, nullptr);
+    return surface < bodies ? fields_[0][surface].surface_gap(r) : r.norm() - pull_radius_[surface - bodies];
+  };
   const double c = detail::illinois_root(gap, ta, tb, gap(ta), gap(tb), 1e-15);
   ParticleOutcome out;
   out.fate = ParticleFate::impact;
   out.t = c;
-  out.body = static_cast<int>(b);
+  out.body = static_cast<int>(surface);
   out.point = relative(c, &out.velocity);
   return out;
+}
+
+// A particle's state stops being finite only where a point mass without a radius pulls it from
+// zero distance: the run cannot go on with it.
+void ParticleSwarm::check_finite(double t) const {
+  for (std::size_t i = 0; i < outcomes_.size(); ++i) {
+    const auto c = static_cast<Eigen::Index>(i);
+    if (x_.col(c).allFinite() && v_.col(c).allFinite()) continue;
+    throw IntegrationError("particles: particle " + std::to_string(i) +
+                               " (from 0) is no longer finite: it met the centre of a point mass that has no radius "
+                               "(give the point-mass body, or the prescribed body, a `radius` and the particles land on it)",
+                           t);
+  }
 }
 
 }  // namespace noether

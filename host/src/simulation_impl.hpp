@@ -120,8 +120,8 @@ struct Simulation::Impl {
     ParticleSummary s;
     if (!particles) return s;
     s.count = particles->size();
-    s.impacts.assign(scene.system.size(), 0);
-    for (const Body& b : scene.system.bodies()) s.bodies.push_back(b.name);
+    s.bodies = particles->surfaces();
+    s.impacts.assign(s.bodies.size(), 0);
     for (const ParticleOutcome& o : particles->outcomes()) {
       if (o.fate == ParticleFate::impact) ++s.impacts[static_cast<std::size_t>(o.body)];
       if (o.fate == ParticleFate::escape) ++s.escaped;

@@ -310,8 +310,9 @@ class Simulation:
         """The scene's massless particles where the run stands (docs/user-guide.md, "Particles"):
         a dict of position and velocity (inertial; a landed particle's at its landing),
         initial_position, initial_velocity, fate (0 in flight, 1 landed, 2 escaped), time (of
-        the landing or escape; NaN in flight), body (landed on; -1 none), impact_point and
-        impact_velocity (body frame) and fields — the arrays /test_particles is written from;
+        the landing or escape; NaN in flight), body (landed on, an index in surfaces: the bodies,
+        then the prescribed bodies; -1 none), impact_point and impact_velocity (body frame),
+        fields and surfaces — the arrays /test_particles is written from;
         None when the scene has no particles."""
         return self._sim.particles
 

@@ -56,7 +56,7 @@ class Output:
             self.particles = {}
             if "test_particles" in f:
                 for name, d in f["test_particles"].items():
-                    self.particles[name] = [_text(v) for v in d[()]] if name == "fields" else d[()]
+                    self.particles[name] = [_text(v) for v in d[()]] if name in ("fields", "surfaces") else d[()]
             if "particles/bodies/inertia" in f:
                 self.inertias = f["particles/bodies/inertia"][()]
             # Each solid body's shape in its body frame: {"kind": "ellipsoid", "semi_axes": [a, b, c]}

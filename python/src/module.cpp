@@ -308,6 +308,7 @@ class PySimulation {
     out["impact_point"] = point;
     out["impact_velocity"] = impact;
     out["fields"] = swarm->fields();
+    out["surfaces"] = swarm->surfaces();
     return out;
   }
 

@@ -20,10 +20,13 @@
 
 namespace noether {
 
-// A point mass whose gravity massless particles feel: G M and where it is.
+// A point mass whose gravity massless particles feel: G M, where it is and how fast it moves,
+// and its radius — a sphere the particles land on (0: none, they pass through).
 struct PointPull {
   double mu = 0.0;
   Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
+  double radius = 0.0;
 };
 
 class ForceModel {

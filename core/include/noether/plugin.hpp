@@ -35,8 +35,10 @@
 // with_forcing).
 // Version 12: MutualSeries sums over the integrals modulo traces (its layout changed);
 // harmonic_integrals.hpp (TraceReduction, HarmonicRotation) added.
-// Version 13 (current): ForceModel::pull_particles (the point masses a force's body pulls
+// Version 13: ForceModel::pull_particles (the point masses a force's body pulls
 // massless particles with) and PointPull.
+// Version 14 (current): PointPull carries the point mass's velocity and radius (particles land
+// on it); PrescribedConic::velocity.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -54,7 +56,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 13u
+#define NOETHER_PLUGIN_API_VERSION 14u
 
 namespace noether {
 

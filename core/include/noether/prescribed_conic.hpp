@@ -24,6 +24,8 @@ class PrescribedConic {
 
   // X(t) where the run stands at s (35.1)–(35.3).
   Vec3 position(const State& s) const;
+  // Ẋ(t) where the run stands at s: the center's velocity and the conic's.
+  Vec3 velocity(const State& s) const;
   // The center c(t) where the run stands at s.
   Vec3 center(const State& s) const;
   const KeplerOrbit& orbit() const { return orbit_; }

@@ -9,7 +9,8 @@
 // map is symplectic in the field of the bodies at those times, of order 2. A particle that ends a
 // substep inside a body's surface (its real shape, eq. 16.5) has landed: the time is found on the
 // substep's cubic Hermite path by regula falsi (38.4), with where and how fast it hit, in the body
-// frame. A particle farther than `escape` from the centre has escaped.
+// frame. A point mass that pulls them with a radius (a prescribed planet's) is a sphere they land
+// on the same way. A particle farther than `escape` from the centre has escaped.
 #include <noether/body_field.hpp>
 #include <noether/force_model.hpp>
 #include <noether/particle_check.hpp>
@@ -26,9 +27,13 @@ enum class ParticleFate : int { in_flight = 0, impact = 1, escape = 2 };
 struct ParticleOutcome {
   ParticleFate fate = ParticleFate::in_flight;
   double t = std::numeric_limits<double>::quiet_NaN();  // of the impact or escape
-  int body = -1;                  // the body hit
-  Vec3 point = Vec3::Zero();      // impact: where, in the body frame (centre of mass, principal axes)
-  Vec3 velocity = Vec3::Zero();   // impact: the particle's velocity relative to the spinning surface there, body frame
+  int body = -1;                  // what it landed on: its index in ParticleSwarm::surfaces()
+  // impact: where, in the body frame (centre of mass, principal axes); on a point mass's sphere,
+  // from its centre in inertial axes
+  Vec3 point = Vec3::Zero();
+  // impact: the particle's velocity relative to the spinning surface there, body frame (on a
+  // point mass's sphere: relative to its centre, inertial)
+  Vec3 velocity = Vec3::Zero();
 };
 
 class ParticleSwarm {
@@ -62,6 +67,10 @@ class ParticleSwarm {
   // What each body's field is (BodyField::describe), in the scene's order of bodies, then what
   // each of the scene's forces is to the particles.
   std::vector<std::string> fields() const;
+  // What a particle can land on, as ParticleOutcome::body indexes it: the scene's bodies, then the
+  // point masses of the forces that pull the particles (a prescribed body: landed on when it has a
+  // radius), by the force's name.
+  const std::vector<std::string>& surfaces() const { return surfaces_; }
   std::int64_t particle_steps() const { return particle_steps_; }  // Verlet steps taken, all particles
   // The check's comparison where the run stands, the bodies at `bodies` (at time()).
   ParticleCheck check(const State& bodies) const;
@@ -83,7 +92,9 @@ class ParticleSwarm {
   Vec3 centre(const State& bodies) const;  // what `escape` is measured from
   // Every particle of (x, outcomes) in flight farther than `escape` from the centre has escaped at `bodies`.
   void mark_escapes(const State& bodies, const Eigen::Matrix3Xd& x, std::vector<ParticleOutcome>& outcomes) const;
-  ParticleOutcome landing(std::size_t body, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,
+  // Throws IntegrationError when a particle in flight is no longer finite after the step to `t`.
+  void check_finite(double t) const;
+  ParticleOutcome landing(std::size_t surface, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,
                           const Vec3& vb, const State& from, const State& to, State& probe) const;
 
   const System& system_;
@@ -91,6 +102,8 @@ class ParticleSwarm {
   std::vector<std::vector<BodyField>> fields_;  // one copy per thread (the series holds scratch)
   std::vector<std::shared_ptr<const ForceModel>> pulling_;  // the forces whose point masses pull the particles
   std::vector<std::string> force_fields_;       // what each of the scene's forces is to the particles
+  std::vector<std::string> surfaces_;           // the bodies' names, then the pulling point masses'
+  std::vector<double> pull_radius_;             // each pulling point mass's radius (0: none)
   Eigen::Matrix3Xd x_, v_, a_;                  // a: the acceleration at x, at time t_
   Eigen::Matrix3Xd x_before_, v_before_;        // the recorded particles at the last step's start
   double t_before_ = 0.0;

@@ -91,7 +91,7 @@ struct ForceSummary {
 // What became of the scene's massless particles (`particles:`; docs/user-guide.md, "Particles").
 struct ParticleSummary {
   std::size_t count = 0;
-  std::vector<std::string> bodies;   // the scene's bodies
+  std::vector<std::string> bodies;   // what they can land on: the scene's bodies, then the prescribed bodies
   std::vector<std::size_t> impacts;  // landed on each body, in the scene's order
   std::size_t escaped = 0, in_flight = 0;
   std::int64_t steps = 0;  // Verlet steps, all particles

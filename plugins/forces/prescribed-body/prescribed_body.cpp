@@ -14,6 +14,8 @@
 //
 // The prescribed body feels nothing back: the scene's momenta change by what it puts in, which
 // the balance records (docs/equations.md eq. 33.3). Massless particles feel it as a point mass.
+// With a `radius` it is a sphere: a particle that reaches it lands on it, and a body whose
+// bounding sphere meets it stops the run (an impact noether does not model).
 #include <noether/body_integrals.hpp>
 #include <noether/error.hpp>
 #include <noether/mutual_series.hpp>
@@ -49,7 +51,13 @@ class PrescribedBody final : public noether::ForceModel {
  public:
   PrescribedBody(const System& system, const Params& p)
       : system_(system), mass_(positive_mass(p)), conic_(system, p, mass_, "prescribed-body"),
-        point_(noether::point_integrals({mass_}, {Vec3::Zero()}, 0)) {
+        point_(noether::point_integrals({mass_}, {Vec3::Zero()}, 0)),
+        name_(p.has("name") ? p.at("name").as_string() : std::string()) {
+    if (p.has("radius")) {
+      surface_radius_ = p.at("radius").as_double();
+      if (!(surface_radius_ > 0.0) || !std::isfinite(surface_radius_))
+        throw SceneError(p.at("radius").here() + "prescribed-body: radius must be positive (leave it out for a point)");
+    }
     const bool tolerance = p.has("tolerance");
     if (tolerance && noether::given(p, "order"))
       throw SceneError(p.at("order").here() + "prescribed-body: give 'order' or 'tolerance', not both");
@@ -87,7 +95,7 @@ class PrescribedBody final : public noether::ForceModel {
   bool depends_on_momenta() const override { return false; }
   // Massless particles feel it as the point mass it is, (35.4) per unit mass.
   bool pull_particles(const State& s, std::vector<noether::PointPull>& pulls) const override {
-    pulls.push_back({system_.G() * mass_, conic_.position(s)});
+    pulls.push_back({system_.G() * mass_, conic_.position(s), conic_.velocity(s), surface_radius_});
     return true;
   }
 
@@ -109,7 +117,7 @@ class PrescribedBody final : public noether::ForceModel {
       const auto c = static_cast<Eigen::Index>(i);
       const Vec3 d = X - Vec3(s.x.col(c));
       const double d2 = d.squaredNorm(), dn = std::sqrt(d2);
-      if (!(dn > 0)) throw noether::IntegrationError("prescribed-body: a body reached the prescribed body", s.t);
+      if (!(dn > surface_radius_ + system_.body(i).radius)) collision(i, dn, s.t);
       const int order = w.order[i];
       if (order == 0) {
         out.f.col(c) = (G * mass_ * system_.body(i).mass / (d2 * dn)) * d;  // (35.4)
@@ -177,6 +185,17 @@ class PrescribedBody final : public noether::ForceModel {
     throw noether::IntegrationError(msg.str(), t);
   }
 
+  // Body i's bounding sphere meets the prescribed body's (a point when it has no radius).
+  [[noreturn]] void collision(std::size_t i, double distance, double t) const {
+    std::ostringstream msg;
+    msg << "prescribed-body" << (name_.empty() ? "" : " " + name_) << ": body '" << system_.body(i).name
+        << "' came within " << distance << " of its centre";
+    if (surface_radius_ > 0.0 || system_.body(i).radius > 0.0)
+      msg << ", less than its radius " << surface_radius_ << " and the body's " << system_.body(i).radius;
+    msg << ": the bodies collide, which noether does not model (check the conic's position and velocity)";
+    throw noether::IntegrationError(msg.str(), t);
+  }
+
   static double positive_mass(const Params& p) {
     const double m = p.at("mass").as_double();
     if (!(m > 0) || !std::isfinite(m)) throw SceneError(p.at("mass").here() + "prescribed-body: mass must be positive");
@@ -190,6 +209,8 @@ class PrescribedBody final : public noether::ForceModel {
   int order_ = 2;                                  // the fixed order (rigid bodies)
   noether::OrderSelection selection_{0.0, 12, 24, 1};  // tolerance 0: a fixed order
   double min_separation_ = 0.0;
+  std::string name_;
+  double surface_radius_ = 0.0;  // `radius` (0: a point)
   std::string tolerance_where_;
   std::vector<noether::InertiaIntegrals> integrals_;  // per body (rigid: to the order needed)
   std::vector<double> radius_;                        // per body (integrals_radius)
@@ -198,6 +219,8 @@ class PrescribedBody final : public noether::ForceModel {
 const noether::ParamDoc params[] = {
     {"name", "string", "(none)", "what the summary and the output call it: \"prescribed-body NAME\""},
     {"mass", "number", nullptr, "its mass M, in the scene's unit of mass"},
+    {"radius", "number", "(none: a point)",
+     "its radius R: massless particles that reach it land on it, and a body whose bounding sphere meets it stops the run"},
     {"position", "list", nullptr, "its position at `epoch` relative to `center`, [x, y, z]"},
     {"velocity", "list", nullptr, "its velocity at `epoch` relative to `center`, [vx, vy, vz]"},
     {"epoch", "number", "0", "the time of `position` and `velocity`"},
