@@ -567,3 +567,87 @@ TEST(Particles, AThrowStraightUpFallsBackWhenKeplerSays) {
   const BodyField field(scene.system.body(0), scene.system.G(), BodyFieldOptions{});
   EXPECT_EQ(checked.landing_point, (landed[0].point - landed[1].point).norm() / field.bounding_radius());
 }
+
+// A run with particles saved and loaded (a fresh simulation: its own fields and its own check)
+// continues bit for bit: every particle's state and fate — one landed and one escaped before the
+// save, the others in flight through it —, the check's particles at half the step and the Verlet
+// steps counted. A run's output file holds only the first `record` particles, so loading it, or
+// continuing it (--resume), is refused by name.
+TEST(Particles, ASavedRunWithParticlesContinuesBitwise) {
+  const std::string particles =
+      "particles={around: didymos, orbits: [{a: 1190, M: 180}, {a: 800, e: 0.3}, {a: 600, e: 0.1, i: 90}], "
+      "states: [[1189, 0, 200, 0, 0.17, -0.1], [1300, 0, 300, 2, 0, 0]], escape: 3000, step: 5}";
+  const Scene scene = load_scene(source_path("examples/didymos.yaml"), {"run.t_end=3600", "run.output_every=600", particles});
+  PluginRegistry registry = test::bundled_plugins();
+  const std::string tag = std::to_string(::getpid());
+  const auto saved = std::filesystem::temp_directory_path() / ("noether-particles-saved-" + tag + ".h5");
+  const auto output = std::filesystem::temp_directory_path() / ("noether-particles-output-" + tag + ".h5");
+  Simulation whole(scene, registry);
+  whole.integrate(3600);
+  {
+    RunOptions options;
+    options.output = output;
+    options.overwrite = true;
+    Simulation first(scene, registry, options);
+    first.integrate(1800);
+    first.save(saved);
+    const std::vector<ParticleOutcome>& o = first.particles()->outcomes();
+    EXPECT_EQ(std::count_if(o.begin(), o.end(), [](const ParticleOutcome& p) { return p.fate == ParticleFate::in_flight; }), 3);
+    first.finish();
+  }
+  const auto loaded = Simulation::load(saved, registry);
+  loaded->integrate(3600);
+  const ParticleSwarm &a = *whole.particles(), &b = *loaded->particles();
+  EXPECT_EQ(a.positions(), b.positions());
+  EXPECT_EQ(a.velocities(), b.velocities());
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const ParticleOutcome &p = a.outcomes()[i], &q = b.outcomes()[i];
+    EXPECT_EQ(p.fate, q.fate) << i;
+    EXPECT_EQ(p.body, q.body) << i;
+    EXPECT_TRUE(p.t == q.t || (std::isnan(p.t) && std::isnan(q.t))) << i;
+    EXPECT_EQ(p.point, q.point) << i;
+    EXPECT_EQ(p.velocity, q.velocity) << i;
+  }
+  EXPECT_EQ(a.particle_steps(), b.particle_steps());
+  const ParticleCheck ca = a.check(whole.state()), cb = b.check(loaded->state());
+  EXPECT_EQ(ca.checked, 5u);
+  EXPECT_EQ(ca.steps, cb.steps);
+  EXPECT_EQ(ca.position, cb.position);
+  EXPECT_GT(ca.position, 0.0);
+  EXPECT_EQ(ca.fates_differ, cb.fates_differ);
+  const RunSummary sa = whole.finish(), sb = loaded->finish();
+  EXPECT_EQ(sa.particles.impacts, sb.particles.impacts);
+  EXPECT_EQ(sa.particles.escaped, 1u);
+  EXPECT_EQ(sb.particles.escaped, 1u);
+  try {
+    Simulation::load(output, registry);
+    ADD_FAILURE() << "a run's output was loaded without its particles";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("only a file Simulation.save wrote holds"), std::string::npos) << e.what();
+  }
+  try {
+    Simulation::resume(output, registry, RunOptions{}, 3600);
+    ADD_FAILURE() << "a run with particles was continued";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("massless particles (particles:) is not supported yet"), std::string::npos) << e.what();
+  }
+  {  // one number of the particles' checkpoint changed: the load is refused, naming it
+    const hid_t f = H5Fopen(saved.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "/checkpoint/particles/rows", H5P_DEFAULT);
+    std::vector<double> rows(5 * 18 * 2);
+    ASSERT_GE(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), 0);
+    rows[20] = std::nextafter(rows[20], 1e300);
+    ASSERT_GE(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), 0);
+    H5Dclose(d);
+    H5Fclose(f);
+    try {
+      Simulation::load(saved, registry);
+      ADD_FAILURE() << "a damaged particle checkpoint was loaded";
+    } catch (const OutputError& e) {
+      EXPECT_NE(std::string(e.what()).find("/checkpoint/particles does not match its checksum"), std::string::npos) << e.what();
+    }
+  }
+  std::filesystem::remove(saved);
+  std::filesystem::remove(output);
+}

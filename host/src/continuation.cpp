@@ -27,16 +27,18 @@ namespace {
 
 // What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
 // tangent's frames but not the state of its integration: the chaos indicators' sums, the
-// parameters' stencils), a scene with impulses (which of them a continuation has passed) and one
-// with particles. Forces beyond the potential are continued: every frame holds their balance,
-// and a saved simulation the largest momenta they exchanged (the verdict's scales).
-void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
+// parameters' stencils), a scene with impulses (which of them a continuation has passed) and —
+// unless `particles` (save and load: the checkpoint holds them) — one with particles, whose
+// output file holds only the first `record` of them. Forces beyond the potential are continued:
+// every frame holds their balance, and a saved simulation the largest momenta they exchanged
+// (the verdict's scales).
+void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice, bool particles) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
-  if (!scene.particles.empty())
+  if (!scene.particles.empty() && !particles)
     throw Error(doing + " a run whose scene has massless particles (particles:) is not supported yet" + advice);
 }
 
@@ -108,7 +110,8 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
+  refuse_unsupported(scene, file.string() + ": continuing",
+                     "; run it again whole (or, from Python, save() the Simulation and load() it)", false);
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
@@ -206,7 +209,14 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  refuse_unsupported(m.scene, "save: saving", "");
+  refuse_unsupported(m.scene, "save: saving", "", true);
+  if (m.particles && m.particles->time() != m.state.t) {
+    std::ostringstream why;
+    why.precision(17);
+    why << "save: the particles stand at t = " << m.particles->time() << ", the bodies at " << m.state.t
+        << " (between the integrator's steps); save where a call to integrate() ended";
+    throw Error(why.str());
+  }
   // The file is built under a hidden name and published once complete (io/safe_publish.hpp):
   // a kill while saving leaves the previous checkpoint; a link, or the simulation's own output
   // file, is refused.
@@ -223,8 +233,10 @@ void Simulation::save(const std::filesystem::path& path) const {
   m.potential->evaluate(m.state, forces, *workspace);
   const WorkCounters work = m.work();
   const double wall = m.wall_now();
-  writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall,
-                     m.summary.interpolated_frames, m.integrator->checkpoint());
+  Eigen::Matrix3Xd recorded;  // the first `record` particles, as every frame holds them
+  if (m.particles) m.particles->recorded_positions(m.state, recorded);
+  writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall, m.summary.interpolated_frames,
+                     m.integrator->checkpoint(), ChaosValues{}, m.particles ? &recorded : nullptr);
   writer.flush();
   const RunSummary& s = m.summary;
   const auto [p_scale, L_scale] = m.observer->scales();
@@ -242,6 +254,7 @@ void Simulation::save(const std::filesystem::path& path) const {
     const auto [p, L] = m.observer->exchanged();
     numbers.push_back({"exchanged_momenta", {p, L}});
   }
+  if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint());
   writer.write_summary_values(
       numbers,
       {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
@@ -266,7 +279,13 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
-  refuse_unsupported(scene, path.string() + ": loading", "");
+  refuse_unsupported(scene, path.string() + ": loading", "", true);
+  if (!scene.particles.empty()) {  // the particles from the checkpoint (a run's output file holds only `record` of them)
+    if (!run.particles)
+      throw Error(path.string() + ": its scene has massless particles, which only a file Simulation.save wrote holds "
+                  "(a run's output has the first particles.record of them); load a saved simulation, or run the scene again");
+    scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
+  }
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);

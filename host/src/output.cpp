@@ -3,6 +3,7 @@
 // creates is in output_layout.cpp.
 #include <noether/error.hpp>
 #include <noether/output.hpp>
+#include <noether/particles.hpp>
 
 #include "h5_helpers.hpp"
 #include "io/checksum.hpp"
@@ -206,6 +207,27 @@ void H5Writer::write_summary_values(const std::vector<std::pair<std::string, std
   for (const auto& [name, values] : numbers) numeric_attribute<double>(g, name.c_str(), H5T_NATIVE_DOUBLE, values);
   for (const auto& [name, text] : texts) string_attribute(g, name.c_str(), text);
   numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::summary_checksum(numbers, texts)});
+  m.flush_file("flushing the output file");
+}
+
+void H5Writer::write_particle_checkpoint(const ParticleCheckpoint& particles) {
+  Impl& m = *impl_;
+  settle();
+  const io::H5Handle g(make_group(m.file, "/checkpoint/particles"));
+  string_attribute(g, "description",
+                   "the massless particles where Simulation.save was called, from which Simulation.load carries them "
+                   "on: 'rows' [particle][18] (x, v, a, fate, t, body, impact point, impact velocity), the particles "
+                   "then the check's at half the step; 'header' t, Verlet steps, the check's steps, seconds");
+  constexpr auto w = static_cast<hsize_t>(ParticleCheckpoint::kColumns);
+  const hsize_t dims[2] = {particles.rows.size() / w, w};
+  const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
+  const io::H5Handle d(check_id(H5Dcreate2(g, "rows", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                "/checkpoint/particles/rows"));
+  if (!particles.rows.empty())
+    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, particles.rows.data()), "/checkpoint/particles/rows");
+  const std::vector<double> header{particles.t, particles.particle_steps, particles.check_steps, particles.seconds};
+  numeric_attribute<double>(g, "header", H5T_NATIVE_DOUBLE, header);
+  numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::particle_checksum(header, particles.rows)});
   m.flush_file("flushing the output file");
 }
 

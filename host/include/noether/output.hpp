@@ -86,6 +86,8 @@ class H5Writer {
   // (Simulation::save), checksummed together (attribute checksum).
   void write_summary_values(const std::vector<std::pair<std::string, std::vector<double>>>& numbers,
                             const std::vector<std::pair<std::string, std::string>>& texts);
+  // /checkpoint/particles: the massless particles where they stand (Simulation::save), checksummed.
+  void write_particle_checkpoint(const ParticleCheckpoint& particles);
   // Appends an integrator's per-step records to /integrator/<name> (created on first use).
   void append_step_series(const std::vector<StepSeries>& records);
   std::size_t frames_written() const { return frames_written_; }

@@ -36,10 +36,23 @@ struct ParticleOutcome {
   Vec3 velocity = Vec3::Zero();
 };
 
+// A swarm where it stands, every number that carries it on bit for bit (Simulation::save and
+// load): a row of kColumns numbers per particle, then per particle of the check at half the step
+// — x, v, a (the acceleration at x), fate, t, body, point, velocity (ParticleOutcome) —, and the
+// swarm's time and counters.
+struct ParticleCheckpoint {
+  static constexpr std::size_t kColumns = 18;
+  double t = 0.0;
+  double particle_steps = 0.0, check_steps = 0.0, seconds = 0.0;  // (whole numbers up to 2^53)
+  std::vector<double> rows;  // row-major
+};
+
 class ParticleSwarm {
  public:
   // The particles of `settings` at their initial states, the bodies at `bodies` (the run's t0),
-  // in the field of the bodies and of the forces in `forcing` that pull particles (none: null).
+  // in the field of the bodies and of the forces in `forcing` that pull particles (none: null);
+  // or, when `settings.restored`, where that checkpoint has them (Error when it does not fit:
+  // another number of particles, another time than the bodies').
   ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies,
                 std::shared_ptr<const Forcing> forcing = nullptr);
 
@@ -75,6 +88,8 @@ class ParticleSwarm {
   // The check's comparison where the run stands, the bodies at `bodies` (at time()).
   ParticleCheck check(const State& bodies) const;
   double seconds() const { return seconds_; }                      // wall time spent in advance()
+  // Every number that carries the swarm on where it stands (Simulation::save).
+  ParticleCheckpoint checkpoint() const;
 
   struct Placement;  // the bodies' positions and attitudes at one time
 
@@ -92,6 +107,7 @@ class ParticleSwarm {
   Vec3 centre(const State& bodies) const;  // what `escape` is measured from
   // Every particle of (x, outcomes) in flight farther than `escape` from the centre has escaped at `bodies`.
   void mark_escapes(const State& bodies, const Eigen::Matrix3Xd& x, std::vector<ParticleOutcome>& outcomes) const;
+  void restore(const ParticleCheckpoint& from, double t_bodies);
   // Throws IntegrationError when a particle in flight is no longer finite after the step to `t`.
   void check_finite(double t) const;
   ParticleOutcome landing(std::size_t surface, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,

@@ -8,6 +8,7 @@
 #include <noether/units.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,6 +69,8 @@ struct Impulse {
 
 // Massless particles (the scene's `particles:`; docs/user-guide.md, "Particles"): their initial
 // states and how they are carried (particles.hpp).
+struct ParticleCheckpoint;  // particles.hpp
+
 struct ParticleSettings {
   std::vector<Vec3> position, velocity;  // initial, inertial, in the scene's units
   // `around`: the body the states are given relative to (`states`, `file`) or about (`orbits`),
@@ -84,6 +87,9 @@ struct ParticleSettings {
   // How many particles, spread evenly through the list, are carried a second time at half the
   // step for the verdict (docs/user-guide.md, "Particles"; 0: none).
   std::size_t check = 32;
+  // Where a loaded simulation's particles stand (Simulation::load): the swarm starts from it,
+  // not from `position` and `velocity` (which stay the t0 states); none for a new run.
+  std::shared_ptr<const ParticleCheckpoint> restored;
   bool empty() const { return position.empty(); }
 };
 

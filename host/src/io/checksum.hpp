@@ -54,6 +54,11 @@ inline std::uint64_t scene_checksum(const std::string& text, const std::string& 
   return checksum_of_texts({&text, &path, &overrides, &custom});
 }
 
+// /checkpoint/particles: its header (time and counters) and its rows.
+inline std::uint64_t particle_checksum(const std::vector<double>& header, const std::vector<double>& rows) {
+  return checksum64(rows.data(), rows.size() * sizeof(double), checksum64(header.data(), header.size() * sizeof(double)));
+}
+
 // /checkpoint/summary's named numbers and texts, names included, in order.
 // Order does not matter (HDF5 lists attributes by name).
 inline std::uint64_t summary_checksum(std::vector<std::pair<std::string, std::vector<double>>> numbers,

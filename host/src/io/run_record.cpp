@@ -175,6 +175,29 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
                           " (the forces' balance); it cannot be continued: run it again whole");
   }
   read_summary();
+  read_particles();
+}
+
+void RunRecord::read_particles() {
+  if (H5Lexists(h5_, "/checkpoint/particles", H5P_DEFAULT) <= 0) return;
+  const H5Handle group(H5Gopen2(h5_, "/checkpoint/particles", H5P_DEFAULT));
+  const H5Handle rows = open_dataset(h5_, "/checkpoint/particles/rows");
+  const std::vector<hsize_t> dims = extent(rows);
+  constexpr std::size_t w = ParticleCheckpoint::kColumns;
+  if (!group.valid() || dims.size() != 2 || dims[1] != w) damaged("/checkpoint/particles/rows is not [particle][18]");
+  std::vector<double> header(4);
+  const H5Handle a(H5Aexists(group, "header") > 0 ? H5Aopen(group, "header", H5P_DEFAULT) : -1);
+  const H5Handle space(a.valid() ? H5Aget_space(a) : -1);
+  if (!space.valid() || H5Sget_simple_extent_npoints(space) != 4 || H5Aread(a, H5T_NATIVE_DOUBLE, header.data()) < 0)
+    damaged("/checkpoint/particles' header does not read");
+  ParticleCheckpoint c;
+  c.rows.resize(dims[0] * w);
+  if (!c.rows.empty() && H5Dread(rows, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.rows.data()) < 0)
+    damaged("/checkpoint/particles/rows does not read");
+  if (read_u64_attribute(group, "checksum") != particle_checksum(header, c.rows))
+    damaged("/checkpoint/particles does not match its checksum");
+  c.t = header[0], c.particle_steps = header[1], c.check_steps = header[2], c.seconds = header[3];
+  particles = std::move(c);
 }
 
 std::vector<std::string> RunRecord::body_names() const {

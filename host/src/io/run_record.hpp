@@ -7,6 +7,7 @@
 #include "h5_handle.hpp"
 
 #include <noether/integrator.hpp>
+#include <noether/particles.hpp>
 #include <noether/state.hpp>
 
 #include <csignal>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,8 @@ class RunRecord {
   std::vector<std::pair<std::string, std::vector<double>>> summary_numbers;
   std::vector<std::pair<std::string, std::string>> summary_texts;
   bool saved() const { return !summary_numbers.empty(); }
+  // A saved simulation's massless particles (/checkpoint/particles), verified; none when absent.
+  std::optional<ParticleCheckpoint> particles;
   const std::vector<double>& summary_number(const std::string& name, std::size_t size) const;
   std::string summary_text(const std::string& name) const;
 
@@ -55,6 +59,7 @@ class RunRecord {
 
  private:
   void read_summary();
+  void read_particles();
   [[noreturn]] void damaged(const std::string& what) const;
   std::filesystem::path file_;
   H5Handle h5_;
