@@ -42,6 +42,26 @@ void refuse_unsupported(const Scene& scene, const std::string& doing, const std:
     throw Error(doing + " a run whose scene has massless particles (particles:) is not supported yet" + advice);
 }
 
+// A run with particles continues only from their checkpoint at its last frame (written with each
+// block of frames whose last frame is a step's end, H5Writer::checkpoint_particles).
+void refuse_without_particles(const io::RunRecord& run, const std::filesystem::path& file, std::size_t last,
+                              double t_last) {
+  std::ostringstream why;
+  why.precision(17);
+  why << file.string() << ": continuing a run with massless particles needs them where they stood at its last frame "
+      << last << " (t = " << t_last << "), ";
+  if (!run.particles)
+    why << "and the file holds none (written by a noether before they were kept, or killed before its first block)";
+  else if (run.particles->frame != static_cast<std::int64_t>(last) || run.particles->t != t_last)
+    why << "and the file holds them at frame " << run.particles->frame << " (t = " << run.particles->t
+        << ") — the last frame falls between an adaptive integrator's steps, or the run was killed while they were "
+           "written";
+  else
+    return;
+  why << "; run it again whole, or give the particles a fixed-step integrator";
+  throw Error(why.str());
+}
+
 // Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied
 // into its output file, if it has one), a block at a time. False when interrupted.
 bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
@@ -55,7 +75,9 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     }
     forces.U = f.U;
     const Diagnostics d = m.observer->account(f.state, forces);
-    if (m.writer) m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator);
+    if (m.writer)
+      m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator, ChaosValues{},
+                            f.particles.cols() > 0 ? &f.particles : nullptr);
   }, interrupt);
 }
 
@@ -110,14 +132,14 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing",
-                     "; run it again whole (or, from Python, save() the Simulation and load() it)", false);
+  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole", true);
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
   const double t_last = at_last.state.t, t_origin = origin_of(run);
+  if (!scene.particles.empty()) refuse_without_particles(run, file, last, t_last);
   if (!(scene.run.t_end > t_last)) {
     std::ostringstream why;
     why.precision(10);
@@ -152,6 +174,11 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   m.summary.interpolated_frames = at_last.interpolated;
   m.steps_before = steps_to(m, t_last);
   m.restore(at_last, file);
+  if (m.particles) {  // where they stood at the last frame, which the new file holds from now on
+    m.particles->restore(*run.particles, t_last);
+    m.writer->write_particle_checkpoint(*run.particles, static_cast<std::int64_t>(last));
+    m.checkpoint_particles();
+  }
   m.options = std::move(options);
   m.options.output = file;
   return sim;
@@ -254,7 +281,7 @@ void Simulation::save(const std::filesystem::path& path) const {
     const auto [p, L] = m.observer->exchanged();
     numbers.push_back({"exchanged_momenta", {p, L}});
   }
-  if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint());
+  if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint(), 0);
   writer.write_summary_values(
       numbers,
       {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
@@ -280,17 +307,15 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
   refuse_unsupported(scene, path.string() + ": loading", "", true);
-  if (!scene.particles.empty()) {  // the particles from the checkpoint (a run's output file holds only `record` of them)
-    if (!run.particles)
-      throw Error(path.string() + ": its scene has massless particles, which only a file Simulation.save wrote holds "
-                  "(a run's output has the first particles.record of them); load a saved simulation, or run the scene again");
-    scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
-  }
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
+  if (!scene.particles.empty()) {  // the particles where they stood at that frame
+    refuse_without_particles(run, path, last, at_last.state.t);
+    scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
+  }
   const bool with_output = options.output.has_value();
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
   if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();

@@ -101,6 +101,48 @@ H5Writer::~H5Writer() {
   abandon();  // an unpublished file is removed; the path keeps what it held
 }
 
+// /checkpoint/particles (H5Writer::write_particle_checkpoint): two slots, 0 and 1, written in
+// turn in place (each created at its first use) — its rows, its header (t, the Verlet steps, the
+// check's steps, seconds, the frame) and the checksum of both, then a flush. A kill while one is
+// written leaves it not matching its checksum and the other as it was, a block of frames earlier.
+void H5Writer::Impl::write_particles(const ParticleCheckpoint& particles, std::int64_t frame) {
+  Impl& m = *this;
+  constexpr auto w = static_cast<hsize_t>(ParticleCheckpoint::kColumns);
+  const std::vector<double> header{particles.t, particles.particle_steps, particles.check_steps, particles.seconds,
+                                   static_cast<double>(frame)};
+  const std::uint64_t checksum = io::particle_checksum(header, particles.rows);
+  const char* const path = "/checkpoint/particles";
+  const std::string slot = std::to_string(particle_slot), rows_name = "rows_" + slot, header_name = "header_" + slot,
+                    checksum_name = "checksum_" + slot;
+  particle_slot = 1 - particle_slot;
+  if (H5Lexists(m.file, path, H5P_DEFAULT) <= 0) {
+    const io::H5Handle g(make_group(m.file, path));
+    string_attribute(g, "description",
+                     "the massless particles where they stood at an output frame, from which Simulation.load or a "
+                     "continued run carries them on, in two slots written in turn: 'rows_K' [particle][18] (x, v, a, "
+                     "fate, t, body, impact point, impact velocity), the particles then the check's at half the step; "
+                     "'header_K' t, Verlet steps, the check's steps, seconds, frame; 'checksum_K'");
+  }
+  const io::H5Handle g(check_id(H5Gopen2(m.file, path, H5P_DEFAULT), path));
+  if (H5Lexists(g, rows_name.c_str(), H5P_DEFAULT) <= 0) {
+    const hsize_t dims[2] = {particles.rows.size() / w, w};
+    const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
+    H5Dclose(check_id(H5Dcreate2(g, rows_name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                      "/checkpoint/particles' rows"));
+    numeric_attribute<double>(g, header_name.c_str(), H5T_NATIVE_DOUBLE, header);
+    numeric_attribute<std::uint64_t>(g, checksum_name.c_str(), H5T_NATIVE_UINT64, {0});
+  }
+  const io::H5Handle rows(check_id(H5Dopen2(g, rows_name.c_str(), H5P_DEFAULT), "/checkpoint/particles' rows"));
+  if (!particles.rows.empty())
+    check(H5Dwrite(rows, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, particles.rows.data()),
+          "/checkpoint/particles' rows");
+  const io::H5Handle h(check_id(H5Aopen(g, header_name.c_str(), H5P_DEFAULT), "/checkpoint/particles' header"));
+  check(H5Awrite(h, H5T_NATIVE_DOUBLE, header.data()), "/checkpoint/particles' header");
+  const io::H5Handle c(check_id(H5Aopen(g, checksum_name.c_str(), H5P_DEFAULT), "/checkpoint/particles' checksum"));
+  check(H5Awrite(c, H5T_NATIVE_UINT64, &checksum), "/checkpoint/particles' checksum");
+  m.flush_file("flushing the particles' checkpoint");
+}
+
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
                            const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos,
@@ -117,6 +159,7 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
   for (auto& column : m.columns)
     if (const auto fill = column.quantity->fill.of_run) fill(in, column.series->append_frame());
   ++m.buffered;
+  m.last_frame_t = state.t;
   const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();
   if (m.buffered < m.options.block_frames && since < m.options.block_seconds) return;
   if (!m.background_blocks || !m.published) return flush();
@@ -124,10 +167,11 @@ void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkC
   // (its error, if any, is this call's).
   settle();
   const hsize_t first = m.handed, end = first + m.buffered;
+  auto swarm = m.particle_source ? m.particle_source(m.last_frame_t) : std::nullopt;
   hand_over();
-  m.block_in_flight = std::async(std::launch::async, [&m, first, end] {
+  m.block_in_flight = std::async(std::launch::async, [&m, first, end, swarm = std::move(swarm)] {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // each thread has its own error stack
-    m.write_block(first, end);
+    m.write_block(first, end, swarm ? &*swarm : nullptr);
   });
 }
 
@@ -154,10 +198,13 @@ void H5Writer::flush() {
   settle();
   if (m.buffered == 0) return;
   const hsize_t first = m.handed, end = first + m.buffered;
+  const auto particles = m.particle_source ? m.particle_source(m.last_frame_t) : std::nullopt;
   hand_over();
-  m.write_block(first, end);
+  m.write_block(first, end, particles ? &*particles : nullptr);
   frames_written_ = end;
 }
+
+void H5Writer::checkpoint_particles(ParticleSource source) { impl_->particle_source = std::move(source); }
 
 void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
   Impl& m = *impl_;
@@ -210,25 +257,9 @@ void H5Writer::write_summary_values(const std::vector<std::pair<std::string, std
   m.flush_file("flushing the output file");
 }
 
-void H5Writer::write_particle_checkpoint(const ParticleCheckpoint& particles) {
-  Impl& m = *impl_;
+void H5Writer::write_particle_checkpoint(const ParticleCheckpoint& particles, std::int64_t frame) {
   settle();
-  const io::H5Handle g(make_group(m.file, "/checkpoint/particles"));
-  string_attribute(g, "description",
-                   "the massless particles where Simulation.save was called, from which Simulation.load carries them "
-                   "on: 'rows' [particle][18] (x, v, a, fate, t, body, impact point, impact velocity), the particles "
-                   "then the check's at half the step; 'header' t, Verlet steps, the check's steps, seconds");
-  constexpr auto w = static_cast<hsize_t>(ParticleCheckpoint::kColumns);
-  const hsize_t dims[2] = {particles.rows.size() / w, w};
-  const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
-  const io::H5Handle d(check_id(H5Dcreate2(g, "rows", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                                "/checkpoint/particles/rows"));
-  if (!particles.rows.empty())
-    check(H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, particles.rows.data()), "/checkpoint/particles/rows");
-  const std::vector<double> header{particles.t, particles.particle_steps, particles.check_steps, particles.seconds};
-  numeric_attribute<double>(g, "header", H5T_NATIVE_DOUBLE, header);
-  numeric_attribute<std::uint64_t>(g, "checksum", H5T_NATIVE_UINT64, {io::particle_checksum(header, particles.rows)});
-  m.flush_file("flushing the output file");
+  impl_->write_particles(particles, frame);
 }
 
 void H5Writer::set_verdict(const std::string& verdict, const std::string& reasons,

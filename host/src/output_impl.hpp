@@ -71,6 +71,11 @@ struct H5Writer::Impl {
   std::map<std::string, StepRecords> step_records;
   hid_t integrator_group = -1;
   std::string verdict, verdict_reasons, energy_scale;  // set_verdict
+  H5Writer::ParticleSource particle_source;  // checkpoint_particles
+  double last_frame_t = 0.0;                  // the time of the last frame written
+  int particle_slot = 0;                      // the slot of /checkpoint/particles written next
+  // /checkpoint/particles, created or written in place (H5Writer::write_particle_checkpoint).
+  void write_particles(const ParticleCheckpoint& particles, std::int64_t frame);
   double relative_energy_error = 0.0;
 
   // Sets every series' length, then flushes: one change of the file. HDF5's metadata cache
@@ -126,14 +131,16 @@ struct H5Writer::Impl {
     }
   }
   // Writes the handed frames [first, end) (io::Series::hand_over): the frames first, then the
-  // counter that makes them part of the file, each followed by a flush, so that a kill before
-  // the second flush leaves the counter at the previous block.
-  void write_block(hsize_t first, hsize_t end) {
+  // particles where they stand at its last frame (if given), then the counter that makes them
+  // part of the file, each followed by a flush, so that a kill before the last flush leaves the
+  // counter at the previous block, and the particles' other slot at its last frame.
+  void write_block(hsize_t first, hsize_t end, const ParticleCheckpoint* particles = nullptr) {
     complete_block(first, end);
     if (end > allocated) resize_series(std::max<hsize_t>(end, 2 * allocated));  // the only metadata change while frames are written
     for (auto& c : columns) c.series->write_handed(first);
     checksum_series->write_handed(first);
     flush_file("flushing the output file");
+    if (particles) write_particles(*particles, static_cast<std::int64_t>(end) - 1);
     write_complete(static_cast<std::int64_t>(end));
     flush_file("flushing the output file");
   }

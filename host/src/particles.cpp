@@ -24,17 +24,27 @@ struct ParticleSwarm::Placement {
   std::vector<PointPull> pulls;  // the forces' point masses that pull the particles
 };
 
+struct ParticleSwarm::Scratch {
+  std::vector<Placement> ends, halves;  // the bodies at the substeps' ends (and midpoints)
+  State probe;
+  std::vector<State> probes;            // one per thread
+  std::vector<std::int64_t> steps;      // Verlet steps, per thread
+};
+
+ParticleSwarm::~ParticleSwarm() = default;
+
 namespace {
 
-ParticleSwarm::Placement placement_of(const System& system, const State& s) {
-  ParticleSwarm::Placement at;
+// The bodies at `s` into `at`, reusing its memory (a run places them a few times each step).
+void place_bodies(const System& system, const State& s, ParticleSwarm::Placement& at) {
   at.t = s.t;
+  at.x.resize(system.size());
+  at.R.resize(system.size());
   for (std::size_t b = 0; b < system.size(); ++b) {
-    at.x.push_back(s.x.col(static_cast<Eigen::Index>(b)));
+    at.x[b] = s.x.col(static_cast<Eigen::Index>(b));
     const int k = system.rigid_index(b);
-    at.R.push_back(k >= 0 ? s.R[static_cast<std::size_t>(k)] : Mat3::Identity());
+    at.R[b] = k >= 0 ? s.R[static_cast<std::size_t>(k)] : Mat3::Identity();
   }
-  return at;
 }
 
 // The cubic Hermite path of a particle over [0, h] from (xa, va) to (xb, vb), at s ∈ [0, 1]:
@@ -50,7 +60,7 @@ void hermite_path(const Vec3& xa, const Vec3& va, const Vec3& xb, const Vec3& vb
 
 ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies,
                              std::shared_ptr<const Forcing> forcing)
-    : system_(system), settings_(settings) {
+    : system_(system), settings_(settings), scratch_(std::make_unique<Scratch>()) {
   if (!(settings_.step >= 0.0)) throw SceneError("particles.step must be positive (0: the bodies' steps)");
   const auto n = static_cast<Eigen::Index>(settings_.position.size());
   x_.resize(3, n);
@@ -226,9 +236,15 @@ std::vector<std::string> ParticleSwarm::fields() const {
 }
 
 ParticleSwarm::Placement ParticleSwarm::place(const State& bodies) const {
-  Placement at = placement_of(system_, bodies);
-  for (const auto& force : pulling_) force->pull_particles(bodies, at.pulls);
+  Placement at;
+  place(bodies, at);
   return at;
+}
+
+void ParticleSwarm::place(const State& bodies, Placement& at) const {
+  place_bodies(system_, bodies, at);
+  at.pulls.clear();
+  for (const auto& force : pulling_) force->pull_particles(bodies, at.pulls);
 }
 
 // (38.1): Σ_b R_b g_b(R_bᵀ (x − x_b)), and μ d/|d|³ (d = X − x) of each point mass X that pulls.
@@ -270,19 +286,22 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
   }
   const int n = std::max(1, static_cast<int>(substeps));
   // The bodies at the substeps' ends: the step's own states at its ends, Hermite between (16.2).
-  std::vector<Placement> ends;
-  ends.reserve(static_cast<std::size_t>(n) + 1);
-  ends.push_back(place(from));
-  State probe;
+  // (The buffers are the swarm's, reused from step to step.)
+  std::vector<Placement>& ends = scratch_->ends;
+  ends.resize(static_cast<std::size_t>(n) + 1);
+  State& probe = scratch_->probe;
+  place(from, ends[0]);
   for (int s = 1; s < n; ++s) {
     hermite_state(system_, from, to, from.t + (to.t - from.t) * s / n, probe);
-    ends.push_back(place(probe));
+    place(probe, ends[static_cast<std::size_t>(s)]);
   }
-  ends.push_back(place(to));
+  place(to, ends[static_cast<std::size_t>(n)]);
   threads = std::max(1, std::min<int>(threads, static_cast<int>(size())));
   while (fields_.size() < static_cast<std::size_t>(threads)) fields_.push_back(fields_[0]);
-  std::vector<State> probes(static_cast<std::size_t>(threads));
-  std::vector<std::int64_t> steps(static_cast<std::size_t>(threads), 0);
+  std::vector<State>& probes = scratch_->probes;
+  probes.resize(static_cast<std::size_t>(threads));
+  std::vector<std::int64_t>& steps = scratch_->steps;
+  steps.assign(static_cast<std::size_t>(threads), 0);
   // One particle's flight through `through`, read from and written back to columns c of (x, v, a).
   auto fly = [&](Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& v, Eigen::Matrix3Xd& a, Eigen::Index c, ParticleOutcome& outcome,
                  const std::vector<Placement>& through, int thread) {
@@ -299,14 +318,14 @@ void ParticleSwarm::advance(const State& from, const State& to, int threads) {
   for (const std::int64_t s : steps) particle_steps_ += s;
   check_finite(to.t);
   if (!checked_.empty()) {  // the check's particles at half the step: the bodies at the midpoints too
-    std::vector<Placement> halves;
-    halves.reserve(2 * ends.size() - 1);
+    std::vector<Placement>& halves = scratch_->halves;
+    halves.resize(2 * ends.size() - 1);
     for (int s = 0; s < n; ++s) {
-      halves.push_back(ends[static_cast<std::size_t>(s)]);
+      halves[2 * static_cast<std::size_t>(s)] = ends[static_cast<std::size_t>(s)];
       hermite_state(system_, from, to, from.t + (to.t - from.t) * (2 * s + 1) / (2 * n), probe);
-      halves.push_back(place(probe));
+      place(probe, halves[2 * static_cast<std::size_t>(s) + 1]);
     }
-    halves.push_back(ends.back());
+    halves.back() = ends.back();
     std::fill(steps.begin(), steps.end(), 0);
     parallel_for_each(checked_.size(), threads, [&](std::size_t k, int thread) {
       if (outcomes_half_[k].fate != ParticleFate::in_flight) return;

@@ -139,6 +139,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   if (m.options.output) {
     m.writer = std::make_unique<H5Writer>(*m.options.output, sc, m.output_options(false));
     m.writer->write_pair_models(m.summary.pair_models);
+    m.checkpoint_particles();
   }
   if (!start_failure.empty()) {
     m.finish_output("failed: " + start_failure);  // no frame: the initial state is not valid

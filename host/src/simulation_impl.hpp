@@ -167,6 +167,15 @@ struct Simulation::Impl {
     base_work = at.work + WorkCounters{0, -evaluations, 0, 0};
     wall_seconds = at.wall_seconds;
   }
+  // The output's blocks carry the particles where they stand (H5Writer::checkpoint_particles),
+  // so that a continued run can restore them.
+  void checkpoint_particles() {
+    if (!particles || !writer) return;
+    writer->checkpoint_particles([this](double t) -> std::optional<ParticleCheckpoint> {
+      if (particles->time() != t) return std::nullopt;
+      return particles->checkpoint();
+    });
+  }
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
       if (!writer) return;

@@ -3,8 +3,8 @@ continued each time with `noether run --resume` ends with a file equal, bit for 
 uninterrupted run writes (docs/user-guide.md, "Continuing a run").
 
 For the LGVI (inertial Hamiltonian, and relative Lagrangian: a method whose variables are not the
-State, restored from /checkpoint/integrator; and the forced LGVI with tides, whose balance is read
-back) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
+State, restored from /checkpoint/integrator; the forced LGVI with tides, whose balance is read
+back; and with massless particles, restored from /checkpoint/particles) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
 killed at a random moment, resumed and killed again, KILLS times (at least 5), then resumed to the
 end. Asserted:
   * every frame is in the file exactly once: the times are the uninterrupted run's, in order;
@@ -60,7 +60,12 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
                           ["integrator={plugin: lgvi, step: 0.0002, frame: relative, form: lagrangian}"]),
                          # a force beyond the potential: its balance (W, ΔP, ΔL) is read back with every
                          # frame, and the forced LGVI's opening kick starts from it
-                         ("lgvi-tides", ["forces=[{plugin: tides, body: beta, k2: 0.3, time_lag: 0.0001, radius: 0.25}]"])]:
+                         ("lgvi-tides", ["forces=[{plugin: tides, body: beta, k2: 0.3, time_lag: 0.0001, radius: 0.25}]"]),
+                         # massless particles: where they stand is read back from the checkpoint the
+                         # last complete block wrote (/checkpoint/particles), their recorded positions
+                         # with every frame, their fates at the end
+                         ("lgvi-particles", ["particles={states: [[3, 0, 0, 0, 0.577, 0], [0.67, 0, 1.2, 0, 0.67, -0.5]], "
+                                             "check: 1}"])]:
     sets = ["--set", f"run.t_end={t_end}", "--set", "run.output_every=0.01"]
     for o in overrides:
         sets += ["--set", o]
@@ -124,7 +129,11 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
                             f"the uninterrupted run has {len(ta)}")
         elif not (np.diff(tb) > 0).all():
             failures.append(f"{label}: the times are not strictly increasing: a frame is missing or repeated")
-        for key in COMPARED + (["observables/force_balance/value"] if "observables/force_balance" in a else []):
+        extra = ["observables/force_balance/value"] if "observables/force_balance" in a else []
+        if "test_particles" in a:
+            extra += ["particles/test_particles/position/value"] + [
+                "test_particles/" + k for k in ("position", "velocity", "fate", "time", "body", "impact_point")]
+        for key in COMPARED + extra:
             x, y = a[key][()], b[key][()]
             if x.shape != y.shape or x.tobytes() != y.tobytes():
                 bad = np.argwhere((x != y).reshape(len(x), -1).any(axis=1)).ravel() if x.shape == y.shape else []

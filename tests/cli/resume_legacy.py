@@ -1,7 +1,8 @@
 """resume_legacy.py NOETHER SOURCE_DIR WORK_DIR: files from before /observables/force_balance
-was checkpointed (/checkpoint/checksum with 9 columns, not 10) are still continued — bit for bit
-the uninterrupted run — unless they hold a forces' balance that no checksum covers, which is
-refused by name with the file unchanged (docs/user-guide.md, "Continuing a run")."""
+was checkpointed (/checkpoint/checksum with 9 columns) or the recorded particles' positions were
+(10 columns; now 11) are still continued — bit for bit the uninterrupted run — unless they hold a
+forces' balance that no checksum covers, which is refused by name with the file unchanged
+(docs/user-guide.md, "Continuing a run")."""
 import hashlib
 import os
 import subprocess
@@ -22,14 +23,17 @@ def run(*args):
     return subprocess.run([noether, *args, "--no-progress"], capture_output=True, text=True)
 
 
-def as_legacy(path):
-    """Rewrites /checkpoint/checksum with its first 9 columns, as a noether before forces wrote it."""
+COLUMNS = 11  # /checkpoint/checksum's columns now
+
+
+def as_legacy(path, columns):
+    """Rewrites /checkpoint/checksum with its first `columns`, as an older noether wrote it."""
     with h5py.File(path, "r+", locking=False) as f:
         sums = f["checkpoint/checksum"]
-        assert sums.shape[1] == 10, sums.shape
-        kept, attrs = sums[:, :9], dict(sums.attrs)
+        assert sums.shape[1] == COLUMNS, sums.shape
+        kept, attrs = sums[:, :columns], dict(sums.attrs)
         del f["checkpoint/checksum"]
-        new = f.create_dataset("checkpoint/checksum", data=kept, maxshape=(None, 9), chunks=(256, 9))
+        new = f.create_dataset("checkpoint/checksum", data=kept, maxshape=(None, columns), chunks=(256, columns))
         for k, v in attrs.items():
             new.attrs[k] = v
 
@@ -39,7 +43,7 @@ def digest(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
-for label, more in [("plain", []), ("tides", ["--set", TIDES])]:
+for label, more, columns in [("plain", [], 9), ("plain", [], 10), ("tides", ["--set", TIDES], 9)]:
     full, part = f"legacy-{label}-full.h5", f"legacy-{label}-part.h5"
     for name in (full, part):
         if os.path.exists(name):
@@ -50,20 +54,20 @@ for label, more in [("plain", []), ("tides", ["--set", TIDES])]:
     if run("run", scene, "-o", part, "--set", "run.t_end=2", *more).returncode != 0:
         failures.append(f"{label}: the first half failed")
         continue
-    as_legacy(part)
+    as_legacy(part, columns)
     before = digest(part)
     resumed = run("run", "--resume", part, "--t-end", "4")
     if label == "plain":
         if resumed.returncode != 0:
-            failures.append(f"plain: a 9-column file was not continued: {resumed.stderr.strip()}")
+            failures.append(f"plain: a {columns}-column file was not continued: {resumed.stderr.strip()}")
             continue
         with h5py.File(full, "r") as a, h5py.File(part, "r") as b:
             for key in ["particles/bodies/position/value", "checkpoint/linear_momentum", "checkpoint/attitude"]:
                 if a[key][()].tobytes() != b[key][()].tobytes():
                     failures.append(f"plain: {key} differs from the uninterrupted run")
-            if b["checkpoint/checksum"].shape[1] != 10:
-                failures.append("plain: the continued file's checksums are not 10 columns")
-        print("plain: a 9-column file continued, bit for bit the uninterrupted run")
+            if b["checkpoint/checksum"].shape[1] != COLUMNS:
+                failures.append(f"plain: the continued file's checksums are not {COLUMNS} columns")
+        print(f"plain: a {columns}-column file continued, bit for bit the uninterrupted run")
     else:
         message = resumed.stderr.strip()
         if resumed.returncode == 0 or "older noether" not in message or "force_balance" not in message:

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -86,8 +87,14 @@ class H5Writer {
   // (Simulation::save), checksummed together (attribute checksum).
   void write_summary_values(const std::vector<std::pair<std::string, std::vector<double>>>& numbers,
                             const std::vector<std::pair<std::string, std::string>>& texts);
-  // /checkpoint/particles: the massless particles where they stand (Simulation::save), checksummed.
-  void write_particle_checkpoint(const ParticleCheckpoint& particles);
+  // /checkpoint/particles: the massless particles where they stand at frame `frame`, checksummed
+  // (Simulation::save; a continued run's first frame), written in place of the last.
+  void write_particle_checkpoint(const ParticleCheckpoint& particles, std::int64_t frame);
+  // The particles where they stand when a block of frames is written, if they stand at its last
+  // frame's time `t` (a step's end; none between an adaptive method's steps): written with the
+  // block, after /frames_complete, so that a continued run finds them at its last frame.
+  using ParticleSource = std::function<std::optional<ParticleCheckpoint>(double t)>;
+  void checkpoint_particles(ParticleSource source);
   // Appends an integrator's per-step records to /integrator/<name> (created on first use).
   void append_step_series(const std::vector<StepSeries>& records);
   std::size_t frames_written() const { return frames_written_; }

@@ -17,6 +17,7 @@
 #include <noether/scene.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,7 @@ struct ParticleCheckpoint {
   static constexpr std::size_t kColumns = 18;
   double t = 0.0;
   double particle_steps = 0.0, check_steps = 0.0, seconds = 0.0;  // (whole numbers up to 2^53)
+  std::int64_t frame = 0;  // the output frame it was written with (read back from a file)
   std::vector<double> rows;  // row-major
 };
 
@@ -55,6 +57,7 @@ class ParticleSwarm {
   // another number of particles, another time than the bodies').
   ParticleSwarm(const System& system, const ParticleSettings& settings, const State& bodies,
                 std::shared_ptr<const Forcing> forcing = nullptr);
+  ~ParticleSwarm();
 
   // Carries every particle in flight from the bodies' state `from` to `to` (the ends of one step
   // of their integrator, or of a shortened step at an event), on `threads` threads: each particle
@@ -90,6 +93,9 @@ class ParticleSwarm {
   double seconds() const { return seconds_; }                      // wall time spent in advance()
   // Every number that carries the swarm on where it stands (Simulation::save).
   ParticleCheckpoint checkpoint() const;
+  // Carries on from `from`, the bodies standing at `t_bodies` (Error when it does not fit:
+  // another number of particles, another time).
+  void restore(const ParticleCheckpoint& from, double t_bodies);
 
   struct Placement;  // the bodies' positions and attitudes at one time
 
@@ -101,13 +107,13 @@ class ParticleSwarm {
     ParticleOutcome outcome;
   };
   Placement place(const State& bodies) const;  // the bodies and the forces' point masses at `bodies`
+  void place(const State& bodies, Placement& at) const;  // the same into `at`, reusing its memory
   Vec3 acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const;
   void carry(Flight& p, const std::vector<Placement>& ends, const State& from, const State& to,
              std::vector<BodyField>& fields, State& probe) const;
   Vec3 centre(const State& bodies) const;  // what `escape` is measured from
   // Every particle of (x, outcomes) in flight farther than `escape` from the centre has escaped at `bodies`.
   void mark_escapes(const State& bodies, const Eigen::Matrix3Xd& x, std::vector<ParticleOutcome>& outcomes) const;
-  void restore(const ParticleCheckpoint& from, double t_bodies);
   // Throws IntegrationError when a particle in flight is no longer finite after the step to `t`.
   void check_finite(double t) const;
   ParticleOutcome landing(std::size_t surface, double ta, double tb, const Vec3& xa, const Vec3& va, const Vec3& xb,
@@ -132,6 +138,8 @@ class ParticleSwarm {
   double t_ = 0.0;
   std::int64_t particle_steps_ = 0;
   double seconds_ = 0.0;
+  struct Scratch;  // advance()'s buffers, kept from step to step
+  std::unique_ptr<Scratch> scratch_;
 };
 
 }  // namespace noether

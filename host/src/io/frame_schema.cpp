@@ -170,6 +170,7 @@ void restore_force_balance(const void* in, std::size_t width, RecordedFrame& f) 
                                                             static_cast<Eigen::Index>(width / kBalanceRows));
 }
 void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
+void restore_particle_position(const void* in, std::size_t width, RecordedFrame& f) { f.particles = matrix(in, width); }
 void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
 void restore_momentum(const void* in, std::size_t width, RecordedFrame& f) { f.state.p = matrix(in, width); }
 void restore_spin(const void* in, std::size_t width, RecordedFrame& f) { f.state.Pi = matrix(in, width); }
@@ -298,7 +299,7 @@ const FrameQuantity kFrameSchema[] = {
      "position of each recorded massless particle (the scene's first particles.record particles, docs/user-guide.md "
      "\"Particles\"), inertial frame [frame][particle][xyz]; a landed particle rides on its body at the point "
      "where it landed",
-     -1, particle_position, nullptr},
+     10, particle_position, restore_particle_position},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,

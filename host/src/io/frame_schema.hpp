@@ -70,6 +70,7 @@ struct RecordedFrame {
   std::int64_t interpolated = 0;
   double wall_seconds = 0.0;
   std::vector<double> integrator;
+  Eigen::Matrix3Xd particles;  // the recorded particles' positions (particles.record; none without)
 };
 
 // The shape of one frame of a series (the file's dataset is [frame] followed by it).

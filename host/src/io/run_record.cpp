@@ -147,6 +147,7 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
     const std::size_t axis = dims.size() > 1 ? dims[1] : 0;
     FrameLayout layout{axis, axis, axis, true, true, true};
     layout.forces = axis;
+    layout.particles = axis;
     const std::vector<std::size_t> shape = frame_shape(*q, layout);
     if (dims.size() != shape.size() + 1 || !std::equal(shape.begin(), shape.end(), dims.begin() + 1))
       damaged(p + " is not " + describe_extent(q->extent));
@@ -164,9 +165,12 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   if (checksummed) {
     const std::vector<hsize_t> dims = extent(open_dataset(file, kChecksumPath));
     const std::size_t columns = checkpointed_series().size();
-    // A file from before /observables/force_balance was checkpointed has one column fewer
-    // (kChecksumColumnsBeforeForces): readable, unless it holds that series unchecked.
-    if (dims.size() != 2 || (dims[1] != columns && dims[1] != kChecksumColumnsBeforeForces) || dims[0] < n)
+    // A file from before /observables/force_balance, or the particles' positions, were
+    // checkpointed has fewer columns (kChecksumColumnsBeforeForces, …BeforeParticles): readable,
+    // unless it holds such a series unchecked.
+    if (dims.size() != 2 ||
+        (dims[1] != columns && dims[1] != kChecksumColumnsBeforeParticles && dims[1] != kChecksumColumnsBeforeForces) ||
+        dims[0] < n)
       damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(columns) + "]");
     checksum_columns_ = dims[1];
     for (const FrameQuantity* q : checkpointed_series())
@@ -178,26 +182,43 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   read_particles();
 }
 
+// /checkpoint/particles' slots (H5Writer::write_particle_checkpoint): the one at the last
+// complete frame, else the latest that matches its checksum (a continuation then says where it
+// is); damaged when no slot does.
 void RunRecord::read_particles() {
   if (H5Lexists(h5_, "/checkpoint/particles", H5P_DEFAULT) <= 0) return;
   const H5Handle group(H5Gopen2(h5_, "/checkpoint/particles", H5P_DEFAULT));
-  const H5Handle rows = open_dataset(h5_, "/checkpoint/particles/rows");
-  const std::vector<hsize_t> dims = extent(rows);
+  if (!group.valid()) damaged("/checkpoint/particles does not open");
   constexpr std::size_t w = ParticleCheckpoint::kColumns;
-  if (!group.valid() || dims.size() != 2 || dims[1] != w) damaged("/checkpoint/particles/rows is not [particle][18]");
-  std::vector<double> header(4);
-  const H5Handle a(H5Aexists(group, "header") > 0 ? H5Aopen(group, "header", H5P_DEFAULT) : -1);
-  const H5Handle space(a.valid() ? H5Aget_space(a) : -1);
-  if (!space.valid() || H5Sget_simple_extent_npoints(space) != 4 || H5Aread(a, H5T_NATIVE_DOUBLE, header.data()) < 0)
-    damaged("/checkpoint/particles' header does not read");
-  ParticleCheckpoint c;
-  c.rows.resize(dims[0] * w);
-  if (!c.rows.empty() && H5Dread(rows, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.rows.data()) < 0)
-    damaged("/checkpoint/particles/rows does not read");
-  if (read_u64_attribute(group, "checksum") != particle_checksum(header, c.rows))
-    damaged("/checkpoint/particles does not match its checksum");
-  c.t = header[0], c.particle_steps = header[1], c.check_steps = header[2], c.seconds = header[3];
-  particles = std::move(c);
+  bool slot_damaged = false;
+  for (const char* slot : {"0", "1"}) {
+    const std::string rows_name = std::string("rows_") + slot, header_name = std::string("header_") + slot,
+                      checksum_name = std::string("checksum_") + slot;
+    if (H5Lexists(group, rows_name.c_str(), H5P_DEFAULT) <= 0) continue;
+    const H5Handle rows(H5Dopen2(group, rows_name.c_str(), H5P_DEFAULT));
+    const std::vector<hsize_t> dims = extent(rows);
+    if (dims.size() != 2 || dims[1] != w) damaged("/checkpoint/particles/" + rows_name + " is not [particle][18]");
+    std::vector<double> header(5);
+    const H5Handle a(H5Aexists(group, header_name.c_str()) > 0 ? H5Aopen(group, header_name.c_str(), H5P_DEFAULT) : -1);
+    const H5Handle space(a.valid() ? H5Aget_space(a) : -1);
+    if (!space.valid() || H5Sget_simple_extent_npoints(space) != 5 || H5Aread(a, H5T_NATIVE_DOUBLE, header.data()) < 0)
+      damaged("/checkpoint/particles' " + header_name + " does not read");
+    ParticleCheckpoint c;
+    c.rows.resize(dims[0] * w);
+    if (!c.rows.empty() && H5Dread(rows, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, c.rows.data()) < 0)
+      damaged("/checkpoint/particles/" + rows_name + " does not read");
+    if (read_u64_attribute(group, checksum_name.c_str()) != particle_checksum(header, c.rows)) {
+      slot_damaged = true;  // (killed while it was written: the other slot is a block earlier)
+      continue;
+    }
+    c.t = header[0], c.particle_steps = header[1], c.check_steps = header[2], c.seconds = header[3];
+    c.frame = static_cast<std::int64_t>(header[4]);
+    const bool at_last = c.frame == frames - 1;
+    if (!particles || (at_last && particles->frame != frames - 1) ||
+        (at_last == (particles->frame == frames - 1) && c.frame > particles->frame))
+      particles = std::move(c);
+  }
+  if (!particles && slot_damaged) damaged("/checkpoint/particles does not match its checksum");
 }
 
 std::vector<std::string> RunRecord::body_names() const {

@@ -68,5 +68,7 @@ class RunRecord {
 
 // The columns of /checkpoint/checksum before /observables/force_balance became column 9.
 inline constexpr std::size_t kChecksumColumnsBeforeForces = 9;
+// … and before /particles/test_particles/position became column 10.
+inline constexpr std::size_t kChecksumColumnsBeforeParticles = 10;
 
 }  // namespace noether::io
