@@ -706,3 +706,62 @@ TEST(Particles, ARunWithParticlesContinuesBitwise) {
   std::filesystem::remove(saved);
   std::filesystem::remove(output);
 }
+
+// set_state with particles keeps them where they stand, in the bodies' new field: the same state
+// set again mid-run continues as the uninterrupted run (each particle's acceleration made again in
+// the same field); a state at another time, or one that puts a body over a particle in flight, is
+// refused by name and changes nothing.
+TEST(Particles, SetStateKeepsTheParticlesWhereTheyStand) {
+  const std::string particles =
+      "particles={around: didymos, orbits: [{a: 1190, M: 180}, {a: 800, e: 0.3}, {a: 600, e: 0.1, i: 90}], "
+      "states: [[1189, 0, 200, 0, 0.17, -0.1], [1300, 0, 300, 2, 0, 0]], escape: 3000, step: 5}";
+  const Scene scene = load_scene(source_path("examples/didymos.yaml"), {"run.t_end=3600", "run.output_every=600", particles});
+  PluginRegistry registry = test::bundled_plugins();
+  Simulation whole(scene, registry);
+  whole.integrate(3600);
+  Simulation again(scene, registry);
+  again.integrate(1800);
+  const State here = again.state();
+  State later = here;
+  later.t = 1801;
+  try {
+    again.set_state(later);
+    ADD_FAILURE() << "a state at another time than the particles' was set";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the particles stand at t = 1800, the new state of the bodies is at t = 1801"),
+              std::string::npos) << e.what();
+  }
+  State over = here;  // didymos moved onto particle 2 (in flight; 0 has landed, 1 escaped)
+  ASSERT_EQ(again.particles()->outcomes()[2].fate, ParticleFate::in_flight);
+  over.x.col(0) = again.particles()->positions().col(2);
+  try {
+    again.set_state(over);
+    ADD_FAILURE() << "a body was set over a particle";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("particle 2 (from 0) would be inside body 'didymos'"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(again.state().x, here.x);
+  again.set_state(here);
+  again.integrate(3600);
+  const ParticleSwarm &a = *whole.particles(), &b = *again.particles();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a.outcomes()[i].fate, b.outcomes()[i].fate) << i;
+    const double scale = a.positions().col(static_cast<Eigen::Index>(i)).norm();
+    const double difference = (a.positions().col(static_cast<Eigen::Index>(i)) - b.positions().col(static_cast<Eigen::Index>(i))).norm();
+    std::printf("particle %zu after set_state: %.3e of its distance from the origin off the uninterrupted run\n", i,
+                difference / scale);
+    EXPECT_LT(difference, 1e-12 * scale) << i;  // (0 here: the same bits)
+  }
+  // The new field from the next step on: a swarm made at t0 whose bodies are then set (didymos
+  // 20 m over) steps as one made with the bodies there; one that kept the old accelerations does not.
+  State moved = scene.initial, next = scene.initial;
+  moved.x(0, 0) += 20.0;
+  next.x(0, 0) += 20.5;
+  next.t += 10.0;
+  ParticleSwarm made_there(scene.system, scene.particles, moved), set_there(scene.system, scene.particles, scene.initial),
+      not_set(scene.system, scene.particles, scene.initial);
+  set_there.set_bodies(moved);
+  for (ParticleSwarm* swarm : {&made_there, &set_there, &not_set}) swarm->advance(moved, next, 1);
+  EXPECT_EQ(made_there.positions(), set_there.positions());
+  EXPECT_NE(made_there.positions(), not_set.positions());
+}

@@ -94,19 +94,9 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   // A particle that starts inside a body is refused (where it stands it would land at once).
   const Placement at = place(bodies);
   for (Eigen::Index i = 0; i < n && !settings_.restored; ++i) {
-    for (std::size_t b = 0; b < system.size(); ++b) {
-      const BodyField& f = fields_[0][b];
-      if (!f.has_surface()) continue;
-      const Vec3 r = at.R[b].transpose() * (x_.col(i) - at.x[b]);
-      if (r.norm() <= f.bounding_radius() && f.surface_gap(r) <= 0.0)
-        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
-                         "inside body '" + system.body(b).name + "' (its surface, eq. 16.5); start it outside");
-    }
-    for (std::size_t j = 0; j < at.pulls.size(); ++j)
-      if (!((x_.col(i) - at.pulls[j].position).norm() > at.pulls[j].radius))
-        throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
-                         "inside '" + surfaces_[system.size() + j] + "' (within its radius " +
-                         std::to_string(at.pulls[j].radius) + " of its centre); start it outside");
+    if (const std::string where = inside(x_.col(i), at); !where.empty())
+      throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
+                       "inside " + where + "; start it outside");
     a_.col(i) = acceleration(x_.col(i), at, fields_[0]);
     if (!a_.col(i).allFinite() || !v_.col(i).allFinite())
       throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
@@ -226,6 +216,47 @@ void ParticleSwarm::recorded_positions(const State& bodies, Eigen::Matrix3Xd& ou
                  (t - t_before_) / (end - t_before_), x, v);
     out.col(i) = x;
   }
+}
+
+// What x is inside of at `at` — "body 'NAME' (its surface, eq. 16.5)", or a pulling point mass's
+// sphere (within its radius, or at its centre) — or "" when it is outside everything.
+std::string ParticleSwarm::inside(const Vec3& x, const Placement& at) const {
+  for (std::size_t b = 0; b < system_.size(); ++b) {
+    const BodyField& f = fields_[0][b];
+    if (!f.has_surface()) continue;
+    const Vec3 r = at.R[b].transpose() * (x - at.x[b]);
+    if (r.norm() <= f.bounding_radius() && f.surface_gap(r) <= 0.0)
+      return "body '" + system_.body(b).name + "' (its surface, eq. 16.5)";
+  }
+  for (std::size_t j = 0; j < at.pulls.size(); ++j)
+    if (!((x - at.pulls[j].position).norm() > at.pulls[j].radius))
+      return "'" + surfaces_[system_.size() + j] + "' (within its radius " + std::to_string(at.pulls[j].radius) +
+             " of its centre)";
+  return "";
+}
+
+void ParticleSwarm::set_bodies(const State& bodies) {
+  if (bodies.t != t_) {
+    std::ostringstream why;
+    why.precision(17);
+    why << "the particles stand at t = " << t_ << ", the new state of the bodies is at t = " << bodies.t
+        << ": give the bodies a state at the particles' time (or make a Simulation for the new state)";
+    throw Error(why.str());
+  }
+  const Placement at = place(bodies);
+  // All checked before any is changed: a refusal leaves the swarm as it was.
+  for (std::size_t i = 0; i < outcomes_.size(); ++i)
+    if (outcomes_[i].fate == ParticleFate::in_flight)
+      if (const std::string where = inside(x_.col(static_cast<Eigen::Index>(i)), at); !where.empty())
+        throw Error("particle " + std::to_string(i) + " (from 0) would be inside " + where +
+                    " in the new state of the bodies");
+  auto refit = [&](const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& a, const std::vector<ParticleOutcome>& outcomes) {
+    for (std::size_t k = 0; k < outcomes.size(); ++k)
+      if (outcomes[k].fate == ParticleFate::in_flight)
+        a.col(static_cast<Eigen::Index>(k)) = acceleration(x.col(static_cast<Eigen::Index>(k)), at, fields_[0]);
+  };
+  refit(x_, a_, outcomes_);
+  refit(x_half_, a_half_, outcomes_half_);
 }
 
 std::vector<std::string> ParticleSwarm::fields() const {

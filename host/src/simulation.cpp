@@ -422,9 +422,6 @@ void Simulation::set_state(const State& s) {
     }
   }
   const Eigen::Index N = State::tangent_rows(sys);
-  if (m.particles)
-    throw Error("set_state: this run carries massless particles (particles:), which a new state of the bodies would "
-                "leave behind; make a Simulation for the new state instead");
   if (!m.scene.run.sensitivities.empty())
     throw Error("set_state: this run carries sensitivities to its scene's initial state (run.sensitivities), which "
                 "a state set here would no longer start from; make a Simulation for the new state instead");
@@ -433,6 +430,13 @@ void Simulation::set_state(const State& s) {
   if (s.tangent.size() > 0 && (s.tangent.rows() != N || s.tangent.cols() != N || !s.tangent.allFinite()))
     throw Error("set_state: the tangent must be " + std::to_string(N) + " × " + std::to_string(N) +
                 " (6 coordinates per body and 6 per rigid body, docs/equations.md eq. 21.1) and finite");
+  if (m.particles) {  // where they stand, in the new bodies' field (or refused before anything changes)
+    try {
+      m.particles->set_bodies(s);
+    } catch (const Error& e) {
+      throw Error(std::string("set_state: ") + e.what());
+    }
+  }
   m.state = s;
   // What the forces put in starts again with the segment's references (docs/forces.md).
   if (!m.scene.forces.empty())

@@ -91,6 +91,10 @@ class ParticleSwarm {
   // The check's comparison where the run stands, the bodies at `bodies` (at time()).
   ParticleCheck check(const State& bodies) const;
   double seconds() const { return seconds_; }                      // wall time spent in advance()
+  // The bodies were set to `bodies` where the particles stand (Simulation::set_state): each
+  // particle in flight feels their field there from now on (its acceleration made again). Error
+  // when `bodies` is at another time, or a particle in flight would be inside a body (named).
+  void set_bodies(const State& bodies);
   // Every number that carries the swarm on where it stands (Simulation::save).
   ParticleCheckpoint checkpoint() const;
   // Carries on from `from`, the bodies standing at `t_bodies` (Error when it does not fit:
@@ -106,6 +110,7 @@ class ParticleSwarm {
     Vec3 x, v, a;
     ParticleOutcome outcome;
   };
+  std::string inside(const Vec3& x, const Placement& at) const;  // what x is inside of ("": nothing)
   Placement place(const State& bodies) const;  // the bodies and the forces' point masses at `bodies`
   void place(const State& bodies, Placement& at) const;  // the same into `at`, reusing its memory
   Vec3 acceleration(const Vec3& x, const Placement& at, std::vector<BodyField>& fields) const;
