@@ -595,6 +595,15 @@ void expect_same_swarm(const Simulation& x, const Simulation& y, const char* how
   EXPECT_EQ(ca.fates_differ, cb.fates_differ) << how;
 }
 
+// The Didymos binary with five particles for an hour (frames every 600 s): 0 lands on dimorphos
+// and 1 (thrown at 2 m/s) escapes before t = 1800, the three on orbits stay in flight.
+Scene didymos_with_five_particles() {
+  const std::string particles =
+      "particles={around: didymos, orbits: [{a: 1190, M: 180}, {a: 800, e: 0.3}, {a: 600, e: 0.1, i: 90}], "
+      "states: [[1189, 0, 200, 0, 0.17, -0.1], [1300, 0, 300, 2, 0, 0]], escape: 3000, step: 5}";
+  return load_scene(source_path("examples/didymos.yaml"), {"run.t_end=3600", "run.output_every=600", particles});
+}
+
 // /checkpoint/particles' latest slot (its frame the highest): header (t, steps, the check's steps,
 // seconds, frame) and rows, read, or written back with a checksum that matches them.
 void particle_checkpoint(const std::filesystem::path& file, std::vector<double>& header, std::vector<double>& rows,
@@ -639,10 +648,7 @@ void particle_checkpoint(const std::filesystem::path& file, std::vector<double>&
 // output's blocks carry the particles where they stand at their last frame; a file whose
 // particles are not at its last frame, or do not match their checksum, is refused by name.
 TEST(Particles, ARunWithParticlesContinuesBitwise) {
-  const std::string particles =
-      "particles={around: didymos, orbits: [{a: 1190, M: 180}, {a: 800, e: 0.3}, {a: 600, e: 0.1, i: 90}], "
-      "states: [[1189, 0, 200, 0, 0.17, -0.1], [1300, 0, 300, 2, 0, 0]], escape: 3000, step: 5}";
-  const Scene scene = load_scene(source_path("examples/didymos.yaml"), {"run.t_end=3600", "run.output_every=600", particles});
+  const Scene scene = didymos_with_five_particles();
   PluginRegistry registry = test::bundled_plugins();
   const std::string tag = std::to_string(::getpid());
   const auto saved = std::filesystem::temp_directory_path() / ("noether-particles-saved-" + tag + ".h5");
@@ -712,10 +718,7 @@ TEST(Particles, ARunWithParticlesContinuesBitwise) {
 // the same field); a state at another time, or one that puts a body over a particle in flight, is
 // refused by name and changes nothing.
 TEST(Particles, SetStateKeepsTheParticlesWhereTheyStand) {
-  const std::string particles =
-      "particles={around: didymos, orbits: [{a: 1190, M: 180}, {a: 800, e: 0.3}, {a: 600, e: 0.1, i: 90}], "
-      "states: [[1189, 0, 200, 0, 0.17, -0.1], [1300, 0, 300, 2, 0, 0]], escape: 3000, step: 5}";
-  const Scene scene = load_scene(source_path("examples/didymos.yaml"), {"run.t_end=3600", "run.output_every=600", particles});
+  const Scene scene = didymos_with_five_particles();
   PluginRegistry registry = test::bundled_plugins();
   Simulation whole(scene, registry);
   whole.integrate(3600);
