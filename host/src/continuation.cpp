@@ -27,19 +27,16 @@ namespace {
 
 // What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
 // tangent's frames but not the state of its integration: the chaos indicators' sums, the
-// parameters' stencils), a scene with impulses (which of them a continuation has passed) and —
-// unless `particles` (save and load: the checkpoint holds them) — one with particles, whose
-// output file holds only the first `record` of them. Forces beyond the potential are continued:
-// every frame holds their balance, and a saved simulation the largest momenta they exchanged
-// (the verdict's scales).
-void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice, bool particles) {
+// parameters' stencils) and a scene with impulses (which of them a continuation has passed).
+// Forces beyond the potential are continued: every frame holds their balance, and a saved
+// simulation the largest momenta they exchanged (the verdict's scales); particles from their
+// checkpoint (refuse_without_particles).
+void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
   if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
     throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
                 "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
-  if (!scene.particles.empty() && !particles)
-    throw Error(doing + " a run whose scene has massless particles (particles:) is not supported yet" + advice);
 }
 
 // A run with particles continues only from their checkpoint at its last frame (written with each
@@ -132,7 +129,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole", true);
+  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
@@ -236,7 +233,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  refuse_unsupported(m.scene, "save: saving", "", true);
+  refuse_unsupported(m.scene, "save: saving", "");
   if (m.particles && m.particles->time() != m.state.t) {
     std::ostringstream why;
     why.precision(17);
@@ -306,7 +303,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
-  refuse_unsupported(scene, path.string() + ": loading", "", true);
+  refuse_unsupported(scene, path.string() + ": loading", "");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);

@@ -65,7 +65,7 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   const auto n = static_cast<Eigen::Index>(settings_.position.size());
   x_.resize(3, n);
   v_.resize(3, n);
-  a_.resize(3, n);
+  a_.setZero(3, n);  // (made below, or restored)
   for (Eigen::Index i = 0; i < n; ++i) {
     x_.col(i) = settings_.position[static_cast<std::size_t>(i)];
     v_.col(i) = settings_.velocity[static_cast<std::size_t>(i)];
