@@ -141,3 +141,36 @@ TEST(OrderSelection, WarnsWhenAPairComesCloserThanItsOrderWasChosenFor) {
   EXPECT_GE(m.exceeded_time, t_first);
   EXPECT_GE(m.exceeded_separation, 0.99 * R_first - 1e-9);
 }
+
+// The orders are chosen where the scene starts (Potential::choose_models, made by
+// make_scene_potential), not where a workspace first evaluates: a model made for the KW4
+// ellipsoids 54 km apart at 1e-6 evaluates with the orders it chose there at any state — here
+// the binary 2.5 km apart, where a model that chooses at its first evaluation takes a higher one
+// — and its forces there are those of that fixed order, bit for bit.
+TEST(OrderSelection, ChosenWhereTheSceneStartsWhateverAWorkspaceSeesFirst) {
+  auto registry = bundled_plugins();
+  const auto kw4 = source_path("examples/kw4-ellipsoids.yaml");
+  const Scene far = load_scene(kw4, {"potential={plugin: mutual-series, tolerance: 1e-6}", "bodies.beta.position=[54000, 0, 0]",
+                                     "bodies.alpha.position=[0, 0, 0]", "bodies.beta.velocity=[0, 0.05547, 0]",
+                                     "bodies.alpha.velocity=[0, 0, 0]"});
+  const Scene near = load_scene(kw4, {"potential={plugin: mutual-series, tolerance: 1e-6}"});
+  const auto chosen_far = make_scene_potential(far, registry);
+  const auto order_of = [&](const std::shared_ptr<const Potential>& model, const State& first) {
+    PotentialEvaluator evaluate(model);
+    Forces f;
+    f.resize(near.system);
+    evaluate(first, f);
+    const auto models = evaluate.pair_models();  // none for a fixed order
+    return std::pair{models.empty() ? -1 : models[0].order, f};
+  };
+  const auto [far_order, far_forces] = order_of(chosen_far, near.initial);
+  const int near_order = order_of(registry.make_potential("mutual-series", near.system, near.potentials[0].params),
+                                  near.initial).first;
+  std::printf("chosen 54 km apart: order %d; 2.5 km apart: order %d\n", far_order, near_order);
+  EXPECT_LT(far_order, near_order);
+  EXPECT_EQ(far_order, order_of(make_scene_potential(far, registry), far.initial).first);
+  const auto fixed = load_scene(kw4, {"potential={plugin: mutual-series, order: " + std::to_string(far_order) + "}"});
+  const Forces fixed_forces = order_of(make_scene_potential(fixed, registry), near.initial).second;
+  EXPECT_EQ((far_forces.f - fixed_forces.f).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((far_forces.M - fixed_forces.M).cwiseAbs().maxCoeff(), 0.0);
+}

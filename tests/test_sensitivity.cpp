@@ -417,3 +417,28 @@ TEST(Sensitivity, RefusesWhatItCannotDerive) {
     EXPECT_NE(std::string(e.what()).find("carries sensitivities"), std::string::npos) << e.what();
   }
 }
+
+// A parameter whose stencil (p ± δ, p ± 2δ) changes what a tolerance chooses is refused, naming
+// the choice: the models at the stencil would not be the run's model. The KW4 ellipsoids with the
+// tolerance set to the estimated error of the order it chose at 1e-6 — a choice on its edge,
+// which Beta's semi-axes moved by 1e-4 of themselves tip over; at 1e-6 itself they do not.
+TEST(Sensitivity, RefusesAParameterThatChangesWhatAToleranceChose) {
+  const auto kw4 = test::source_path("examples/kw4-ellipsoids.yaml");
+  const Scene chosen = load_scene(kw4, {"potential={plugin: mutual-series, tolerance: 1e-6}"});
+  const std::vector<PairModel> models = Simulation(chosen, registry()).summary().pair_models;
+  ASSERT_EQ(models.size(), 1u);
+  char edge[64];
+  std::snprintf(edge, sizeof edge, "%.17g", models[0].estimated_error);
+  const std::string keys = "run.sensitivities=[bodies.beta.shape.ellipsoid.semi_axes]";
+  EXPECT_NO_THROW(Simulation(load_scene(kw4, {"potential={plugin: mutual-series, tolerance: 1e-6}", keys}), registry()));
+  try {
+    Simulation sim(load_scene(kw4, {std::string("potential={plugin: mutual-series, tolerance: ") + edge + "}", keys}),
+                   registry());
+    ADD_FAILURE() << "a stencil that changes the chosen order was accepted";
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the model's choices (alpha–beta: series order " + std::to_string(models[0].order) + ") change"),
+              std::string::npos) << what;
+    EXPECT_NE(what.find("fix the model's order instead of a tolerance"), std::string::npos) << what;
+  }
+}

@@ -9,6 +9,8 @@ namespace noether {
 ForceModel::~ForceModel() = default;
 std::unique_ptr<Workspace> ForceModel::make_workspace() const { return std::make_unique<Workspace>(); }
 bool ForceModel::depends_on_momenta() const { return true; }
+void ForceModel::choose_models(const State&) {}
+std::vector<PairModel> ForceModel::pair_models() const { return {}; }
 bool ForceModel::pull_particles(const State&, std::vector<PointPull>&) const { return false; }
 
 Eigen::Matrix<double, kBalanceRows, 1> balance_rate(const System& system, const State& state, const Forces& force) {

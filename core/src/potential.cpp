@@ -14,6 +14,7 @@ void Potential::evaluate(const State& state, Forces& forces) const {
   const auto workspace = make_workspace();
   evaluate(state, forces, *workspace);
 }
+void Potential::choose_models(const State&) {}
 std::vector<PairModel> Potential::pair_models(const Workspace&) const { return {}; }
 bool Potential::force_jacobian(const State&, Eigen::MatrixXd&, Workspace&) const { return false; }
 

@@ -316,7 +316,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   const bool with_output = options.output.has_value();
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
   if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();
-  scene.initial = at_last.state;  // frame 0 of the loaded simulation is where the file stood
+  scene.models_chosen_at = scene.initial;  // the run's models, chosen where it started
+  scene.initial = at_last.state;            // frame 0 of the loaded simulation is where the file stood
   auto sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;

@@ -331,11 +331,12 @@ std::shared_ptr<T> keep_library_alive(std::unique_ptr<T> object, std::shared_ptr
 
 std::shared_ptr<const Potential> PluginRegistry::make_potential(const std::string& name,
                                                                 const System& system,
-                                                                const Params& params) {
+                                                                const Params& params, const State* initial) {
   const Loaded& l = load_kind(name, PluginKind::Potential);
   check_params(l.info, params);
   const Params filled = with_defaults(l.info, params);
   auto object = construct(l.info, [&] { return l.descriptor->make_potential(system, filled); });
+  if (initial) object->choose_models(*initial);
   return std::make_shared<FiniteChecked>(
       keep_library_alive<Potential>(std::move(object), l.library), name, system);
 }
@@ -352,11 +353,12 @@ std::shared_ptr<Integrator> PluginRegistry::make_integrator(
 }
 
 std::shared_ptr<const ForceModel> PluginRegistry::make_force(const std::string& name, const System& system,
-                                                             const Params& params) {
+                                                             const Params& params, const State* initial) {
   const Loaded& l = load_kind(name, PluginKind::Force);
   check_params(l.info, params);
   const Params filled = with_defaults(l.info, params);
   auto object = construct(l.info, [&] { return l.descriptor->make_force(system, filled); });
+  if (initial) object->choose_models(*initial);
   return keep_library_alive<ForceModel>(std::move(object), l.library);
 }
 

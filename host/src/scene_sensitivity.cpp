@@ -262,11 +262,16 @@ std::optional<Scene> scene_with(const Scene& scene, const std::string& assignmen
   }
 }
 
-// The pair models (what a tolerance chose) of a model, for comparison with a perturbed one's.
-std::vector<std::string> choices(const Potential& potential) {
+// The pair models (what a tolerance chose at the scene's initial state) of a model and of a
+// scene's forces, for comparison with a perturbed scene's.
+std::vector<std::string> choices(const Potential& potential, const Forcing* forcing) {
   std::vector<std::string> out;
   for (const PairModel& pair : potential.pair_models(*potential.make_workspace()))
     out.push_back(pair.body_a + "–" + pair.body_b + ": " + pair.model);
+  if (forcing)
+    for (const ForceTerm& term : *forcing)
+      for (const PairModel& pair : term.model->pair_models())
+        out.push_back(pair.body_a + "–" + term.name + ": " + pair.model);
   return out;
 }
 
@@ -313,10 +318,12 @@ SceneSensitivity scene_sensitivity(const Scene& scene, const std::vector<std::st
         p.forcings.push_back(make_forcing(*other));
         p.systems.push_back(other->system);
       }
-      if (!potential_moves) continue;
-      p.models.push_back(make_potential(*other));
-      if (!base_choices) base_choices = choices(model);
-      if (choices(*p.models.back()) != *base_choices) {
+      // The stencil's models must be the run's: the same orders chosen where a tolerance chooses.
+      if (!base_choices) base_choices = choices(model, scene.forces.empty() ? nullptr : make_forcing(scene).get());
+      const std::shared_ptr<const Potential> moved_model = potential_moves ? make_potential(*other) : nullptr;
+      if (moved_model) p.models.push_back(moved_model);
+      if (choices(moved_model ? *moved_model : model, p.forcings.empty() ? nullptr : p.forcings.back().get()) !=
+          *base_choices) {
         std::string was;
         for (const std::string& c : *base_choices) was += (was.empty() ? "" : "; ") + c;
         throw SceneError("run.sensitivities: '" + name + "': the model's choices (" + was +

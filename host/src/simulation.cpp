@@ -21,7 +21,7 @@ std::shared_ptr<const Potential> make_scene_potential(const Scene& scene,
                                                       PluginRegistry& registry) {
   std::vector<std::shared_ptr<const Potential>> terms;
   for (const auto& p : scene.potentials)
-    terms.push_back(registry.make_potential(p.plugin, scene.system, p.params));
+    terms.push_back(registry.make_potential(p.plugin, scene.system, p.params, &scene.models_state()));
   return terms.size() == 1 ? terms.front() : std::make_shared<SumPotential>(terms);
 }
 namespace {
@@ -52,7 +52,7 @@ std::shared_ptr<const Forcing> make_scene_forcing(const Scene& scene, PluginRegi
     std::string name = base;
     for (int k = 2; std::any_of(forcing->begin(), forcing->end(), [&](const ForceTerm& t) { return t.name == name; }); ++k)
       name = base + " " + std::to_string(k);
-    forcing->push_back({name, registry.make_force(f.plugin, scene.system, f.params)});
+    forcing->push_back({name, registry.make_force(f.plugin, scene.system, f.params, &scene.models_state())});
   }
   return forcing;
 }
@@ -76,7 +76,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.integrator = registry.make_integrator(sc.integrator.plugin, sc.system, m.potential, sc.integrator.params);
   m.summary.integrator = sc.integrator.plugin;
-  std::shared_ptr<const Forcing> forcing;
+  std::shared_ptr<const Forcing>& forcing = m.forcing;
   if (!sc.forces.empty()) {  // forces beyond the potential (docs/forces.md)
     forcing = make_scene_forcing(sc, registry);
     if (const std::string why = m.integrator->add_forcing(forcing); !why.empty())

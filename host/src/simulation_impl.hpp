@@ -25,6 +25,7 @@ struct Simulation::Impl {
   RunOptions options;
   int threads = 1;  // RunOptions::threads resolved (the environment's when 0)
   std::shared_ptr<const Potential> potential;
+  std::shared_ptr<const Forcing> forcing;  // the scene's forces (none: null)
   std::shared_ptr<Integrator> integrator;
   std::unique_ptr<H5Writer> writer;
   RunSummary summary;
@@ -137,9 +138,18 @@ struct Simulation::Impl {
   double wall_now() const {
     return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
   }
+  // What the tolerance-driven models chose: the potential's pairs (with what the steps saw), then
+  // each force's bodies, named by the force.
   std::vector<PairModel> pair_models() const {
     const PotentialEvaluator* evaluator = integrator->potential_evaluator();
-    return evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
+    std::vector<PairModel> out = evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
+    if (forcing)
+      for (const ForceTerm& term : *forcing)
+        for (PairModel model : term.model->pair_models()) {
+          model.body_b = term.name;
+          out.push_back(std::move(model));
+        }
+    return out;
   }
   // A new segment of statistics (set_state, and the replay of a resumed run): the next frame
   // observed gives the references (E0, the momentum scales, what the scene conserves).

@@ -7,6 +7,7 @@
 // did and the linear and angular momentum each put in — in State::force_balance, so that a run
 // judges E − W, P − ΔP and L − ΔL, the quantities its forced flow conserves (33.3).
 #include <noether/forces.hpp>
+#include <noether/potential.hpp>
 #include <noether/state.hpp>
 #include <noether/system.hpp>
 #include <noether/workspace.hpp>
@@ -34,6 +35,14 @@ class ForceModel {
   virtual ~ForceModel();
   // A workspace for one evaluating thread (empty by default), as Potential::make_workspace.
   virtual std::unique_ptr<Workspace> make_workspace() const;
+  // Makes the model's choices at `initial`, the scene's initial state, before it is shared, as
+  // Potential::choose_models (PluginRegistry::make_force with an initial state); the default
+  // does nothing.
+  virtual void choose_models(const State& initial);
+  // What the model chose for each body it acts on with a chosen model (a prescribed body's
+  // series order from a tolerance), as Potential::pair_models: body_a the body, body_b the
+  // force (the host writes the force's name there). Empty by default and before choose_models.
+  virtual std::vector<PairModel> pair_models() const;
   // Fills f_i (inertial, every body) and M_k (body frame, rigid bodies) at `state`; `forces`
   // comes sized for the system; implementations overwrite every entry (U is not used: 0).
   virtual void evaluate(const State& state, Forces& forces, Workspace& workspace) const = 0;

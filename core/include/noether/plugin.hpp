@@ -37,8 +37,10 @@
 // harmonic_integrals.hpp (TraceReduction, HarmonicRotation) added.
 // Version 13: ForceModel::pull_particles (the point masses a force's body pulls
 // massless particles with) and PointPull.
-// Version 14 (current): PointPull carries the point mass's velocity and radius (particles land
-// on it); PrescribedConic::velocity.
+// Version 14: PointPull carries the point mass's velocity and radius (particles land on it);
+// PrescribedConic::velocity.
+// Version 15 (current): Potential::choose_models and ForceModel::choose_models (a tolerance's
+// choices made at the scene's initial state, before the model is shared), ForceModel::pair_models.
 // Exported: every header of core/include/noether wraps its declarations in
 // `#pragma GCC visibility push(default)` … `pop`; the library is otherwise built hidden.
 // `api_version` stays the first member in every version, so a registry can
@@ -56,7 +58,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 14u
+#define NOETHER_PLUGIN_API_VERSION 15u
 
 namespace noether {
 

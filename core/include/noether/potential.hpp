@@ -37,6 +37,13 @@ class Potential {
   // A workspace for one evaluating thread. The default is empty: models that write nothing
   // while evaluating need not override it.
   virtual std::unique_ptr<Workspace> make_workspace() const;
+  // Makes the model's choices (a tolerance's series orders, docs/equations.md §15) at `initial`,
+  // the scene's initial state, before the model is shared: the one non-const call, made once by
+  // the host (PluginRegistry::make_potential with an initial state). Every workspace made after
+  // it evaluates with those choices, whatever state it first sees, so that a run continued from
+  // any of its frames (resumed, loaded) models each pair as the run from t0 did. A model never
+  // told chooses at its workspace's first evaluation. The default does nothing.
+  virtual void choose_models(const State& initial);
   // Fills U, f_i = −∂U/∂x_i and, for rigid bodies, the body-frame moments M_k, writing only
   // into `workspace` (made by this potential's make_workspace()). `forces` is already sized
   // for the system; implementations overwrite every entry.

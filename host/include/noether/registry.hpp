@@ -44,13 +44,15 @@ class PluginRegistry {
 
   // Makes a model or an integrator; `params` is checked against the plugin's ParamDoc list
   // (unknown keys, missing required keys) before the factory sees it. `params` may contain the
-  // key "plugin", which is ignored.
+  // key "plugin", which is ignored. With `initial` (the scene's initial state) a model makes its
+  // choices there before it is shared (Potential::choose_models): what a scene's run does.
   std::shared_ptr<const Potential> make_potential(const std::string& name, const System& system,
-                                                  const Params& params);
+                                                  const Params& params, const State* initial = nullptr);
   std::shared_ptr<Integrator> make_integrator(const std::string& name, const System& system,
                                               std::shared_ptr<const Potential> potential,
                                               const Params& params);
-  std::shared_ptr<const ForceModel> make_force(const std::string& name, const System& system, const Params& params);
+  std::shared_ptr<const ForceModel> make_force(const std::string& name, const System& system, const Params& params,
+                                               const State* initial = nullptr);
 
  private:
   struct Loaded {

@@ -101,6 +101,12 @@ struct Scene {
   Units units;                           // as declared (`units:`), or the scene's own
   System system;
   State initial;
+  // Where the models make their choices (a tolerance's orders, Potential::choose_models): the
+  // initial state, unless the scene continues a run from another state (a loaded simulation,
+  // whose initial state is where the file stood) — then the run's own initial state, so that it
+  // goes on with the models the run had. models_state() says which.
+  std::optional<State> models_chosen_at;
+  const State& models_state() const { return models_chosen_at ? *models_chosen_at : initial; }
   std::vector<PluginConfig> potentials;  // summed when more than one
   std::vector<PluginConfig> forces;      // forces beyond the potential (`forces:`), none by default
   PluginConfig integrator;

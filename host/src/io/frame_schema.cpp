@@ -309,7 +309,7 @@ const FrameQuantity kFrameSchema[] = {
      "wall time spent by the run up to each frame", 7, wall_time, restore_wall},
     {"integrator_checkpoint", "/checkpoint/integrator", E::kIntegrator, D::kMixed, kPlain,
      "the integrator's own variables at each frame (Integrator::checkpoint: a relative frame's coordinates, a "
-     "two-step form's previous step), from which a continued run restores it",
+     "two-step form's previous step, a fixed step's clock t0 + k h), from which a continued run restores it",
      8, integrator, restore_integrator},
     {"work", "/checkpoint/work", E::kWork, D::kOne, kPlain,
      "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, frames interpolated "

@@ -10,7 +10,8 @@
 // inertia integrals (§13; order 2 is MacCullagh's quadrupole force and gravity-gradient torque,
 // (35.5)): the force ∂U/∂R and the torque on the body, in its frame, at R = Rᵀ d. N is `order`, or
 // the lowest order meeting `tolerance` at the closest the conic comes to the body (35.6), chosen
-// per body as mutual-series chooses per pair (§15).
+// per body at the scene's initial state as mutual-series chooses per pair (§15), and reported
+// (pair_models: the summary's and the output's pair models).
 //
 // The prescribed body feels nothing back: the scene's momenta change by what it puts in, which
 // the balance records (docs/equations.md eq. 33.3). Massless particles feel it as a point mass.
@@ -24,6 +25,7 @@
 #include <noether/prescribed_conic.hpp>
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -38,12 +40,17 @@ using noether::State;
 using noether::System;
 using noether::Vec3;
 
-// Per body: the series order (0: a point mass) and, with a tolerance, the separation it was chosen
-// for — chosen at the first evaluation (where the run starts) and watched.
-struct SeriesWorkspace final : noether::Workspace {
-  noether::SeriesBank bank;  // the series evaluators, by order (scratch)
+// Per body: the series order (0: a point mass) and, with a tolerance, the separation below which
+// it is watched — chosen at the scene's initial state (or, in a model never told it, at the
+// workspace's first evaluation).
+struct Choice {
   std::vector<int> order;
   std::vector<double> check_below;
+  std::vector<noether::PairModel> report;  // per rigid body, with a tolerance
+};
+struct SeriesWorkspace final : noether::Workspace {
+  noether::SeriesBank bank;  // the series evaluators, by order (scratch)
+  Choice choice;
   bool chosen = false;
 };
 
@@ -101,15 +108,30 @@ class PrescribedBody final : public noether::ForceModel {
 
   std::unique_ptr<noether::Workspace> make_workspace() const override {
     auto w = std::make_unique<SeriesWorkspace>();
-    for (const auto& body : system_.bodies()) w->order.push_back(body.rigid ? order_ : 0);
-    w->check_below.assign(system_.size(), 0.0);
+    for (const auto& body : system_.bodies()) w->choice.order.push_back(body.rigid ? order_ : 0);
+    w->choice.check_below.assign(system_.size(), 0.0);
     w->chosen = selection_.tolerance == 0.0;
+    if (chosen_) w->choice = *chosen_, w->chosen = true;
     return w;
+  }
+
+  void choose_models(const State& initial) override {
+    if (selection_.tolerance == 0.0) return;
+    noether::SeriesBank bank;
+    Choice c;
+    c.order.assign(system_.size(), 0);
+    c.check_below.assign(system_.size(), 0.0);
+    choose(initial, bank, c);
+    chosen_ = std::move(c);
+  }
+
+  std::vector<noether::PairModel> pair_models() const override {
+    return chosen_ ? chosen_->report : std::vector<noether::PairModel>{};
   }
 
   void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "prescribed-body");
-    if (!w.chosen) choose(s, w);
+    if (!w.chosen) choose(s, w.bank, w.choice), w.chosen = true;
     out.set_zero();
     const Vec3 X = conic_.position(s);
     const double G = system_.G();
@@ -118,7 +140,7 @@ class PrescribedBody final : public noether::ForceModel {
       const Vec3 d = X - Vec3(s.x.col(c));
       const double d2 = d.squaredNorm(), dn = std::sqrt(d2);
       if (!(dn > surface_radius_ + system_.body(i).radius)) collision(i, dn, s.t);
-      const int order = w.order[i];
+      const int order = w.choice.order[i];
       if (order == 0) {
         out.f.col(c) = (G * mass_ * system_.body(i).mass / (d2 * dn)) * d;  // (35.4)
         continue;
@@ -126,7 +148,7 @@ class PrescribedBody final : public noether::ForceModel {
       const auto k = static_cast<std::size_t>(system_.rigid_index(i));
       const Mat3& R = s.R[k];
       const Vec3 d_body = R.transpose() * d;
-      if (dn < w.check_below[i]) watch(i, d_body, w, s.t);
+      if (dn < w.choice.check_below[i]) watch(i, d_body, w, s.t);
       // (35.5): the series of §13 with the body as A, the prescribed point mass as B, in A's frame.
       const noether::MutualTerms terms = w.bank.at(order).evaluate(G, integrals_[i], point_, d_body, Mat3::Identity());
       out.f.col(c) = R * terms.dU_dR;
@@ -136,9 +158,9 @@ class PrescribedBody final : public noether::ForceModel {
 
  private:
   // Each rigid body's order from the tolerance at the closest the conic comes to it (35.6): the
-  // conic's periapsis about its center less the body's distance from the center now, × 0.9 — or
-  // min_separation.
-  void choose(const State& s, SeriesWorkspace& w) const {
+  // conic's periapsis about its center less the body's distance from the center at `s`, × 0.9 —
+  // or min_separation.
+  void choose(const State& s, noether::SeriesBank& bank, Choice& c) const {
     const double periapsis = conic_.orbit().periapsis();
     const Vec3 center = conic_.center(s);
     for (std::size_t i = 0; i < system_.size(); ++i) {
@@ -154,7 +176,7 @@ class PrescribedBody final : public noether::ForceModel {
         throw SceneError(msg.str());
       }
       const noether::OrderChoice choice = noether::choose_series_order(
-          w.bank, system_.G(), integrals_[i], point_, radius_[i], 0.0, closest, Vec3::UnitX(), Mat3::Identity(), selection_);
+          bank, system_.G(), integrals_[i], point_, radius_[i], 0.0, closest, Vec3::UnitX(), Mat3::Identity(), selection_);
       if (!choice.met) {
         std::ostringstream msg;
         msg << tolerance_where_ << "prescribed-body: no order up to max_order " << selection_.max_order
@@ -163,23 +185,31 @@ class PrescribedBody final : public noether::ForceModel {
             << "): raise max_order, loosen the tolerance, or give min_separation if it never comes that close";
         throw SceneError(msg.str());
       }
-      w.order[i] = choice.order;
-      w.check_below[i] = closest;
+      c.order[i] = choice.order;
+      c.check_below[i] = closest;
+      noether::PairModel report;
+      report.body_a = name;
+      report.body_b = "prescribed-body" + (name_.empty() ? std::string() : " " + name_);
+      report.order = choice.order;
+      report.model = choice.order == 0 ? "point masses" : "series order " + std::to_string(choice.order);
+      report.tolerance = selection_.tolerance;
+      report.estimated_error = choice.estimated_error;
+      report.separation = closest;
+      c.report.push_back(std::move(report));
     }
-    w.chosen = true;
   }
 
   // Closer than its order was chosen for: the error estimate (15.2) here, which must still meet the
   // tolerance, or the run stops.
   void watch(std::size_t i, const Vec3& d_body, SeriesWorkspace& w, double t) const {
     const double dn = d_body.norm();
-    w.check_below[i] = 0.99 * dn;  // again only once it is 1 % closer
-    const double estimate = noether::series_error_estimate(w.bank, w.order[i], system_.G(), integrals_[i], point_,
+    w.choice.check_below[i] = 0.99 * dn;  // again only once it is 1 % closer
+    const double estimate = noether::series_error_estimate(w.bank, w.choice.order[i], system_.G(), integrals_[i], point_,
                                                            radius_[i], 0.0, d_body, Mat3::Identity());
     if (estimate <= selection_.tolerance) return;
     std::ostringstream msg;
     msg << "prescribed-body: it came within " << dn << " of body '" << system_.body(i).name
-        << "', where the error of series order " << w.order[i] << " is estimated at " << estimate
+        << "', where the error of series order " << w.choice.order[i] << " is estimated at " << estimate
         << ", above the tolerance " << selection_.tolerance
         << ": give a smaller min_separation (the closest it comes) or a fixed order";
     throw noether::IntegrationError(msg.str(), t);
@@ -214,6 +244,7 @@ class PrescribedBody final : public noether::ForceModel {
   std::string tolerance_where_;
   std::vector<noether::InertiaIntegrals> integrals_;  // per body (rigid: to the order needed)
   std::vector<double> radius_;                        // per body (integrals_radius)
+  std::optional<Choice> chosen_;                      // at the scene's initial state (choose_models)
 };
 
 const noether::ParamDoc params[] = {

@@ -31,8 +31,10 @@ class DiscreteFlow {
   virtual ~DiscreteFlow() = default;
   // Starts at an inertial state (evaluates the potential there).
   virtual void start(const State& s) = 0;
-  // One step of size h. The Lagrangian (two-step) forms need the same h every step.
-  virtual void advance(double h) = 0;
+  // One step of size h, ending at the time t_next (the plugin's t0 + k h: a time that a continued
+  // run, restarted at a step's end, gives the forces exactly as the uninterrupted run did, which
+  // a sum of steps would not). The Lagrangian (two-step) forms need the same h every step.
+  virtual void advance(double h, double t_next) = 0;
   // The current inertial state (momenta by the discrete Legendre transform where needed) and
   // the forces there (U, inertial f, body-frame M), for output and diagnostics.
   virtual void current(State& s, Forces& f) const = 0;
@@ -43,6 +45,7 @@ class DiscreteFlow {
   // The flow's own variables beyond the State (noether::Integrator::checkpoint): none for the
   // inertial Hamiltonian form, whose variables are the State's.
   virtual std::vector<double> checkpoint() const { return {}; }
+  virtual std::size_t checkpoint_size() const { return 0; }  // checkpoint().size(), fixed for the flow
   virtual void restore(const State& s, const std::vector<double>&) { start(s); }
   // Sensitivities to parameters of the dynamics (noether::Integrator::carry_parameters): false
   // for a form without a tangent map.

@@ -71,8 +71,8 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
   // (x, γ, R, Π)_k → (x, γ, R, Π)_{k+1}; on failure the state stays at k.
-  void advance(double h) override {
-    if (!forcing_) return conservative_step(h);
+  void advance(double h, double t_next) override {
+    if (!forcing_) return conservative_step(h, t_next);
     before_ = s_;
     before_forces_ = current_;
     try {
@@ -90,7 +90,7 @@ class InertialHamiltonian final : public DiscreteFlow {
       s_.p += (0.5 * h) * forcing_->total().f;
       s_.Pi += (0.5 * h) * forcing_->total().M;
       forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
-      conservative_step(h);
+      conservative_step(h, t_next);
       closing_kick(h);
       if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻  [+ (h/2) B G^F_{k+1}]  (33.7), (33.9)
         forcing_->jacobian(s_, forcing_jacobian_);
@@ -154,7 +154,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     }
   }
 
-  void conservative_step(double h) {
+  void conservative_step(double h, double t_next) {
     const Forces& fk = current_;
     // h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ                                        (93)
     for (std::size_t r = 0; r < system_.rigid_count(); ++r) {
@@ -176,7 +176,7 @@ class InertialHamiltonian final : public DiscreteFlow {
     }
     // R_{k+1} = R_k F_k                                                              (95)
     for (std::size_t r = 0; r < system_.rigid_count(); ++r) s_.R[r] = s_.R[r] * F_[r];
-    s_.t += h;
+    s_.t = t_next;
     try {
       evaluate(s_, next_);  // the only potential evaluation of the step
       tangent_.at_next(s_, evaluate_, work);

@@ -54,9 +54,10 @@ class InertialLagrangian final : public DiscreteFlow {
     }
     return out;
   }
+  std::size_t checkpoint_size() const override { return 1 + 3 * system_.size() + 3 * system_.rigid_count(); }
   void restore(const State& s, const std::vector<double>& data) override {
     const std::size_t n = system_.size(), nr = system_.rigid_count();
-    if (data.size() != 1 + 3 * n + 3 * nr) throw noether::Error("lgvi: a Lagrangian checkpoint of the wrong size");
+    if (data.size() != checkpoint_size()) throw noether::Error("lgvi: a Lagrangian checkpoint of the wrong size");
     start(s);
     h_ = data[0];
     if (h_ == 0) return;
@@ -65,7 +66,7 @@ class InertialLagrangian final : public DiscreteFlow {
     for (std::size_t r = 0; r < nr; ++r) L_[r] = Vec3(data[1 + 3 * n + 3 * r], data[2 + 3 * n + 3 * r], data[3 + 3 * n + 3 * r]);
   }
 
-  void advance(double h) override {
+  void advance(double h, double t_next) override {
     const std::size_t n = system_.size(), nr = system_.rigid_count();
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
       h_ = h;
@@ -101,7 +102,7 @@ class InertialLagrangian final : public DiscreteFlow {
       s_.R[r] = s_.R[r] * F[r].F;  // (80)
       L_[r] = lagrangian_momentum(F[r].f, system_.body(system_.body_of_rigid(r)).inertia);
     }
-    s_.t += h;
+    s_.t = t_next;
     evaluate_(s_, forces_);
     ++work.potential_evaluations;
     ++work.steps;

@@ -8,6 +8,7 @@
 
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
+#include <noether/step_clock.hpp>
 
 #include <cmath>
 #include <limits>
@@ -72,36 +73,36 @@ class Lgvi final : public noether::Integrator {
 
   void start(const noether::State& state) override {
     flow_->start(state);
-    t0_ = state.t;
-    k_ = 0;
-    t_ = state.t;
+    clock_.start(state.t, h_);
   }
 
   // One step of size h, or a shorter one that ends at t_max (the loop's landing on an event).
   void step(double t_max) override {
-    const double remaining = t_max - t_;
-    // A whole step unless t_max is clearly closer: t_ = t0 + k h and t_max carry rounding of
-    // order ε|t|, which over 10^7 steps exceeds 1e-9 h (a shortened last step would make a
-    // continued run differ from an uninterrupted one in the last bits).
-    const bool whole = remaining >= h_ * (1.0 - 1e-9) - 16 * std::numeric_limits<double>::epsilon() * std::abs(t_max);
-    advance(whole ? h_ : remaining);
-    if (whole) {
-      t_ = t0_ + static_cast<double>(++k_) * h_;  // exactly t0 + k h, not a sum of steps
-    } else {
-      t_ = t_max;
-      t0_ = t_max;
-      k_ = 0;
-    }
+    const noether::ClockStep next = clock_.next(t_max);
+    advance(next.dt, next.t_next);
+    clock_.advance(next);
   }
 
-  double time() const override { return t_; }
-  std::vector<double> checkpoint() const override { return flow_->checkpoint(); }
+  double time() const override { return clock_.time(); }
+  // The flow's variables, then the clock (step_clock.hpp): a run continued from a step's end steps
+  // through the uninterrupted run's times to the bit.
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out = flow_->checkpoint();
+    clock_.checkpoint(out);
+    return out;
+  }
   void restore(const noether::State& state, const std::vector<double>& data) override {
     if (data.empty()) return start(state);
-    flow_->restore(state, data);
-    t0_ = state.t;
-    k_ = 0;
-    t_ = state.t;
+    const std::size_t flow = flow_->checkpoint_size(), clock = noether::StepClock::kCheckpointSize;
+    if (data.size() != flow && data.size() != flow + clock)
+      throw noether::Error("lgvi: a checkpoint of " + std::to_string(data.size()) + " numbers, not the " +
+                           std::to_string(flow + clock) + " of the " + form_ + " form");
+    if (flow == 0)
+      flow_->start(state);
+    else
+      flow_->restore(state, std::vector<double>(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(flow)));
+    clock_.start(state.t, h_);  // a file written before the clock was kept: it restarts here
+    if (data.size() == flow + clock) clock_.restore(state.t, h_, data.data() + flow, "lgvi");
   }
   double fixed_step() const override { return h_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
@@ -115,26 +116,31 @@ class Lgvi final : public noether::Integrator {
 
   void current(noether::State& state, noether::Forces& forces) override {
     flow_->current(state, forces);
-    state.t = t_;
+    state.t = clock_.time();
   }
   // The state alone, at every step where events are watched (a kept Forces for a flow that
   // computes them anyway, so that the step loop allocates nothing).
   void current_state(noether::State& state) override {
     flow_->current_state(state, scratch_forces_);
-    state.t = t_;
+    state.t = clock_.time();
   }
 
  private:
-  // One step of size dt: the base map, or its symmetric composition γ_1 dt, …, γ_s dt
-  // (docs/equations.md §4, compositions.hpp), of order 4 or 6. A failure inside the composition
-  // restarts from the step's start, so the integrator stays at the last valid state.
-  void advance(double dt) {
+  // One step of size dt to t_next: the base map, or its symmetric composition γ_1 dt, …, γ_s dt
+  // (docs/equations.md §4, compositions.hpp), of order 4 or 6, its stages ending at t + (γ_1 + …
+  // + γ_i) dt and the last at t_next. A failure inside the composition restarts from the step's
+  // start, so the integrator stays at the last valid state.
+  void advance(double dt, double t_next) {
     if (gamma_.empty()) {
-      flow_->advance(dt);
+      flow_->advance(dt, t_next);
     } else {
       flow_->current(before_, scratch_forces_);
       try {
-        for (const double g : gamma_) flow_->advance(g * dt);
+        double sum = 0.0;
+        for (std::size_t i = 0; i < gamma_.size(); ++i) {
+          sum += gamma_[i];
+          flow_->advance(gamma_[i] * dt, i + 1 == gamma_.size() ? t_next : clock_.time() + sum * dt);
+        }
       } catch (const noether::Error&) {
         flow_->start(before_);
         collect();
@@ -154,8 +160,7 @@ class Lgvi final : public noether::Integrator {
   int order_ = 2;
   std::vector<double> gamma_;  // composition coefficients (empty: the base map, order 2)
   std::string form_;           // "inertial hamiltonian", …
-  double t0_ = 0.0, t_ = 0.0;  // the time is t0_ + k_ h between restarts
-  std::int64_t k_ = 0;
+  noether::StepClock clock_;  // t = t0 + k h between restarts
   noether::State before_;
   noether::Forces scratch_forces_;  // what current_state() and a composition's start drop
 };

@@ -37,7 +37,7 @@ class RelativeHamiltonian final : public DiscreteFlow {
     return tangent_.carry_parameters(std::move(parameters));
   }
 
-  void advance(double h) override {
+  void advance(double h, double t_next) override {
     const ReducedForces& fk = current_;
     const Mat3 J2_inverse = frame_.J2.inverse();
     const Mat3 F2 = solve_attitude(h * (r_.Pi2 + 0.5 * h * fk.M2), frame_.J2, J2_inverse, settings_, frame_.name2,
@@ -48,7 +48,7 @@ class RelativeHamiltonian final : public DiscreteFlow {
                                   r_.Pi, work).F;                            // (123)
     tangent_.before(r_, fk, F, F2, h);
     Reduced next = r_;
-    next.t = r_.t + h;
+    next.t = t_next;
     next.X = F2.transpose() * (r_.X + (h / frame_.m) * r_.Gamma - (0.5 * h * h / frame_.m) * fk.dU_dX);  // (118)
     next.R = F2.transpose() * F * r_.R;                                                   // (122)
     next.x2 = r_.x2 + (h / frame_.m2) * r_.gamma2 + (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX);  // (125)
@@ -78,6 +78,7 @@ class RelativeHamiltonian final : public DiscreteFlow {
     pack(r_, out);
     return out;
   }
+  std::size_t checkpoint_size() const override { return kReducedSize; }
   void restore(const State& s, const std::vector<double>& data) override {
     r_ = unpack(data);
     evaluate(r_, current_);

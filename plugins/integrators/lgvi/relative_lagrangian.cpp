@@ -54,8 +54,9 @@ class RelativeLagrangian final : public DiscreteFlow {
     for (const Vec3* v : {&D_, &A_, &L2_, &Delta_}) out.insert(out.end(), v->data(), v->data() + 3);
     return out;
   }
+  std::size_t checkpoint_size() const override { return kReducedSize + 13; }
   void restore(const State& s, const std::vector<double>& data) override {
-    if (data.size() != kReducedSize + 13) throw noether::Error("lgvi: a relative Lagrangian checkpoint of the wrong size");
+    if (data.size() != checkpoint_size()) throw noether::Error("lgvi: a relative Lagrangian checkpoint of the wrong size");
     r_ = unpack(data);
     frame_.evaluate(r_, forces_);
     ++work.potential_evaluations;
@@ -68,7 +69,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     tangent_.start(s, r_, frame_, evaluate_, work);
   }
 
-  void advance(double h) override {
+  void advance(double h, double t_next) override {
     const ReducedForces& fk = forces_;
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
       h_ = h;
@@ -90,7 +91,7 @@ class RelativeLagrangian final : public DiscreteFlow {
     const Vec3 D = F2t * (D_ - (h * h / frame_.m) * fk.dU_dX);                            // (112)
     const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX);                  // (117)
     Reduced next = r_;
-    next.t = r_.t + h;
+    next.t = t_next;
     next.X = F2t * r_.X + D;
     next.R = F2t * F.F * r_.R;   // (115)
     next.R2 = r_.R2 * F2.F;      // (116)

@@ -12,6 +12,7 @@
 #include <noether/continuous_equations.hpp>
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
+#include <noether/step_clock.hpp>
 #include <noether/variational_equations.hpp>
 
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
@@ -123,8 +124,7 @@ class Rk final : public noether::Integrator {
                             y_.data() + balance_offset_);
     y_prev_ = y_;
     t_ = t_prev_ = state.t;
-    k_ = 0;
-    t0_ = state.t;
+    clock_.start(state.t, step_);
     dt_ = step_ > 0 ? step_ : 0.0;  // 0: first_trial() at the first step
     dense_.reset();
     dopri5_.reset();  // no derivative cached from another state
@@ -155,6 +155,21 @@ class Rk final : public noether::Integrator {
 
   double time() const override { return t_; }
   double fixed_step() const override { return method_ == "rk4" ? step_ : 0.0; }
+  // rk4's clock (step_clock.hpp): a run continued from a step's end steps through the
+  // uninterrupted run's times to the bit. The adaptive methods keep nothing beyond the State.
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out;
+    if (method_ == "rk4") clock_.checkpoint(out);
+    return out;
+  }
+  void restore(const noether::State& state, const std::vector<double>& data) override {
+    start(state);
+    if (data.empty()) return;  // a file written before the clock was kept: it restarts here
+    if (method_ != "rk4" || data.size() != noether::StepClock::kCheckpointSize)
+      throw noether::Error("rk: a checkpoint of " + std::to_string(data.size()) + " numbers, not " +
+                           (method_ == "rk4" ? "rk4's clock (2)" : "none (" + method_ + " keeps none)"));
+    clock_.restore(state.t, step_, data.data(), "rk");
+  }
 
   void current(noether::State& state, noether::Forces& forces) override {
     unpack(y_, t_, state);
@@ -192,20 +207,12 @@ class Rk final : public noether::Integrator {
  private:
   // rk4: a step of h, or a shorter one that ends at t_max.
   void fixed_step_to(double t_max) {
-    const double remaining = t_max - t_;
-    // A whole step unless t_max is clearly closer: t_ = t0 + k h and t_max carry rounding of
-    // order ε|t|, which over 10^7 steps exceeds 1e-9 h (a shortened last step would make a
-    // continued run differ from an uninterrupted one in the last bits).
-    const bool whole = remaining >= step_ * (1.0 - 1e-9) - 16 * std::numeric_limits<double>::epsilon() * std::abs(t_max);
-    rk4_.do_step(rhs_, y_, t_, whole ? step_ : remaining);
-    if (whole) {
-      t_ = t0_ + static_cast<double>(++k_) * step_;
-    } else {
-      t_ = t0_ = t_max;
-      k_ = 0;
-    }
+    const noether::ClockStep next = clock_.next(t_max);
+    rk4_.do_step(rhs_, y_, t_, next.dt);
     ++work_.steps;
-    accepted(y_, t_);
+    accepted(y_, next.t_next);  // before the clock moves: a failure leaves it at the last valid state
+    clock_.advance(next);
+    t_ = clock_.time();
   }
 
   // Dormand–Prince with dense output: steps chosen by the error control alone, possibly past
@@ -347,8 +354,8 @@ class Rk final : public noether::Integrator {
   Rkf78 rkf78_;
   std::optional<Dense> dense_;
   Vector y_, y_prev_, y_out_;
-  double t_ = 0, t_prev_ = 0, t0_ = 0, dt_ = 0;
-  std::int64_t k_ = 0;
+  double t_ = 0, t_prev_ = 0, dt_ = 0;
+  noether::StepClock clock_;  // rk4: t = t0 + k h between restarts
   std::string method_;
   double step_ = 0, rtol_ = 0, atol_ = 0;
   bool renormalize_ = false;

@@ -5,7 +5,8 @@
 //
 // The order is given (`order`), or chosen per pair from a `tolerance` on the relative error
 // of force and torques (docs/equations.md §15): the lowest order whose next-terms estimate
-// meets it at the closest separation the pair is expected to reach, fixed for the whole run
+// meets it at the closest separation the pair is expected to reach from the scene's initial
+// state (so a continued run models each pair as the run from t0 did), fixed for the whole run
 // and watched: when the pair comes closer, the estimate is taken again there and a tolerance
 // exceeded is reported (or stops the run, `on_exceed: stop`).
 //
@@ -41,8 +42,9 @@ struct Pair : noether::MutualPair {  // a is the frame of the expansion (extende
   double reach = 0.0;  // radius_a + radius_b: beyond it the series converges for sure
 };
 
-// What one run of a pair writes: its order (chosen from a tolerance at the first evaluation,
-// or the fixed one), the watch on that choice and what is reported.
+// What one run of a pair writes: its order (chosen from a tolerance at the scene's initial state,
+// or at the first evaluation of a model never told it, or the fixed one), the watch on that
+// choice and what is reported.
 struct PairRun {
   int order = 0;
   double check_below = 0.0;  // estimate again when the separation drops below this
@@ -97,6 +99,7 @@ class MutualSeriesPotential final : public noether::Potential {
     auto w = std::make_unique<SeriesWorkspace>();
     w->pairs.resize(pairs_.size());
     for (PairRun& run : w->pairs) run.order = fixed_order_;
+    if (!chosen_.empty()) w->pairs = chosen_, w->chosen = true;
     return w;
   }
 
@@ -105,7 +108,7 @@ class MutualSeriesPotential final : public noether::Potential {
   // is the same bit for bit for any number of threads.
   void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
-    if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
+    if (tolerance_ > 0.0 && !w.chosen) choose(s, w.bank, w.pairs), w.chosen = true;
     out.set_zero();
     const int threads = noether::evaluation_threads();
     if (threads <= 1 || pairs_.size() < 2) {
@@ -155,7 +158,7 @@ class MutualSeriesPotential final : public noether::Potential {
   // is the same bit for bit for any number of threads.
   bool force_jacobian(const State& s, Eigen::MatrixXd& K, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<SeriesWorkspace>(workspace, "mutual-series");
-    if (tolerance_ > 0.0 && !w.chosen) choose(s, w);
+    if (tolerance_ > 0.0 && !w.chosen) choose(s, w.bank, w.pairs), w.chosen = true;
     const int threads = noether::evaluation_threads();
     if (threads <= 1 || pairs_.size() < 2) {
       SeriesWorkspace::PairJacobian one;
@@ -196,6 +199,14 @@ class MutualSeriesPotential final : public noether::Potential {
       return;
     }
     out.t = bank.at(order).jacobian(G_, integrals_[p.a], integrals_[p.b], out.frame.R, out.frame.C, out.J);
+  }
+
+  // A tolerance's orders at the scene's initial state, which every workspace then starts from.
+  void choose_models(const State& initial) override {
+    if (!(tolerance_ > 0.0)) return;
+    noether::SeriesBank bank;
+    chosen_.resize(pairs_.size());
+    choose(initial, bank, chosen_);
   }
 
   std::vector<noether::PairModel> pair_models(const noether::Workspace& workspace) const override {
@@ -266,17 +277,18 @@ class MutualSeriesPotential final : public noether::Potential {
     return 0.9 * periapsis;
   }
 
-  void choose(const State& s, SeriesWorkspace& w) const {
+  // Each pair's order from the tolerance at the closest separation expected from `s` (15.4).
+  void choose(const State& s, noether::SeriesBank& bank, std::vector<PairRun>& runs) const {
     noether::OrderSelection options;
     options.tolerance = tolerance_;
     options.max_order = max_order_;
     for (std::size_t k = 0; k < pairs_.size(); ++k) {
       const Pair& p = pairs_[k];
-      PairRun& run = w.pairs[k];
+      PairRun& run = runs[k];
       const noether::PairFrame frame = noether::pair_frame(s, p);
       const double separation = expected_separation(p, s);
       const noether::OrderChoice choice = noether::choose_series_order(
-          w.bank, G_, integrals_[p.a], integrals_[p.b], radius_[p.a], radius_[p.b], separation, frame.R, frame.C, options);
+          bank, G_, integrals_[p.a], integrals_[p.b], radius_[p.a], radius_[p.b], separation, frame.R, frame.C, options);
       if (!choice.met) {
         std::ostringstream msg;
         msg << "mutual-series: no order up to max_order " << max_order_ << " meets the tolerance " << tolerance_
@@ -296,7 +308,6 @@ class MutualSeriesPotential final : public noether::Potential {
       run.report.estimated_error = choice.estimated_error;
       run.report.separation = separation;
     }
-    w.chosen = true;
   }
 
   // The pair is closer than its order was chosen for: estimate the error here (15.2).
@@ -327,6 +338,7 @@ class MutualSeriesPotential final : public noether::Potential {
   std::vector<double> radius_, mass_;
   std::vector<std::string> names_;
   std::vector<Pair> pairs_;
+  std::vector<PairRun> chosen_;  // at the scene's initial state (choose_models), or empty
 };
 
 std::unique_ptr<noether::Potential> make(const System& system, const Params& params) {
