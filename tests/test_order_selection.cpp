@@ -8,6 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
+
 using namespace noether;
 using namespace noether::test;
 
@@ -173,4 +177,45 @@ TEST(OrderSelection, ChosenWhereTheSceneStartsWhateverAWorkspaceSeesFirst) {
   const Forces fixed_forces = order_of(make_scene_potential(fixed, registry), near.initial).second;
   EXPECT_EQ((far_forces.f - fixed_forces.f).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_EQ((far_forces.M - fixed_forces.M).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// A tolerance exceeded before a break stays reported by the run that continues it — resumed from
+// its output, or saved and loaded — with the time it was first exceeded, as the uninterrupted run
+// reports it (the continued run's own watch would fire again later, at another time). The close
+// pass (tests/cli/scenes/close-pass.yaml) exceeds at t = 58320; the break is at 58800.
+TEST(OrderSelection, AnExceededToleranceSurvivesABreak) {
+  const Scene scene = load_scene(source_path("tests/cli/scenes/close-pass.yaml"));
+  auto registry = bundled_plugins();
+  Simulation whole(scene, registry);
+  whole.integrate(60000);
+  const RunSummary uninterrupted = whole.finish();
+  ASSERT_EQ(uninterrupted.pair_models.size(), 1u);
+  ASSERT_TRUE(uninterrupted.pair_models[0].exceeded);
+  const double first = uninterrupted.pair_models[0].exceeded_time;
+  ASSERT_LT(first, 58800);
+  const std::string tag = std::to_string(::getpid());
+  const auto saved = std::filesystem::temp_directory_path() / ("noether-exceeded-saved-" + tag + ".h5");
+  const auto output = std::filesystem::temp_directory_path() / ("noether-exceeded-output-" + tag + ".h5");
+  {
+    RunOptions options;
+    options.output = output;
+    options.overwrite = true;
+    Simulation first_part(scene, registry, options);
+    first_part.integrate(58800);
+    first_part.save(saved);
+    first_part.finish();
+  }
+  const auto expect_reported = [&](Simulation& continued, const char* how) {
+    continued.integrate(60000);
+    const RunSummary s = continued.finish();
+    ASSERT_EQ(s.pair_models.size(), 1u) << how;
+    EXPECT_TRUE(s.pair_models[0].exceeded) << how;
+    EXPECT_EQ(s.pair_models[0].exceeded_time, first) << how;
+    EXPECT_EQ(s.pair_models[0].exceeded_separation, uninterrupted.pair_models[0].exceeded_separation) << how;
+    EXPECT_FALSE(s.verdict.trustworthy) << how;
+  };
+  expect_reported(*Simulation::load(saved, registry), "saved and loaded");
+  expect_reported(*Simulation::resume(output, registry, RunOptions{}, 60000), "resumed");
+  std::filesystem::remove(saved);
+  std::filesystem::remove(output);
 }

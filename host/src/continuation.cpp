@@ -165,6 +165,8 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     throw Error(file.string() + " was being read back when the continuation was interrupted; it is unchanged");
   }
   run.read_step_records([&m](const StepSeries& records) { m.writer->append_step_series({records}); });
+  m.pair_models_before = run.pair_models;  // a tolerance exceeded before the break stays reported
+  m.summary.pair_models = m.pair_models();
   m.writer->write_pair_models(m.summary.pair_models);
   m.writer->publish();
 
@@ -279,6 +281,7 @@ void Simulation::save(const std::filesystem::path& path) const {
     numbers.push_back({"exchanged_momenta", {p, L}});
   }
   if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint(), 0);
+  writer.write_pair_models(m.pair_models());  // with a tolerance exceeded so far, which load keeps
   writer.write_summary_values(
       numbers,
       {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
@@ -338,6 +341,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     s.min_distance_pair = run.summary_text("min_distance_pair");
     s.orbits = orbits_of(run);
     s.stop_reason = run.summary_text("stop_reason");
+    m.pair_models_before = run.pair_models;
+    s.pair_models = m.pair_models();
     bool exchanged = false;
     for (const auto& [key, values] : run.summary_numbers) {  // absent from an older noether's file
       if (key == "spin_state") m.observer->set_spin_state_numbers(values);

@@ -26,6 +26,7 @@ struct Simulation::Impl {
   int threads = 1;  // RunOptions::threads resolved (the environment's when 0)
   std::shared_ptr<const Potential> potential;
   std::shared_ptr<const Forcing> forcing;  // the scene's forces (none: null)
+  std::vector<PairModel> pair_models_before;  // a continued run's file's (RunRecord::pair_models)
   std::shared_ptr<Integrator> integrator;
   std::unique_ptr<H5Writer> writer;
   RunSummary summary;
@@ -139,7 +140,8 @@ struct Simulation::Impl {
     return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
   }
   // What the tolerance-driven models chose: the potential's pairs (with what the steps saw), then
-  // each force's bodies, named by the force.
+  // each force's bodies, named by the force; a tolerance exceeded before a continued run's file
+  // ended stays reported (the first time it was).
   std::vector<PairModel> pair_models() const {
     const PotentialEvaluator* evaluator = integrator->potential_evaluator();
     std::vector<PairModel> out = evaluator ? evaluator->pair_models() : std::vector<PairModel>{};
@@ -148,6 +150,14 @@ struct Simulation::Impl {
         for (PairModel model : term.model->pair_models()) {
           model.body_b = term.name;
           out.push_back(std::move(model));
+        }
+    for (PairModel& model : out)
+      for (const PairModel& before : pair_models_before)
+        if (before.exceeded && before.body_a == model.body_a && before.body_b == model.body_b) {
+          model.exceeded = true;
+          model.exceeded_time = before.exceeded_time;
+          model.exceeded_separation = before.exceeded_separation;
+          model.exceeded_error = before.exceeded_error;
         }
     return out;
   }

@@ -101,6 +101,7 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
       custom_potential = custom != 0;
     }
     overrides = lines_of(joined);
+    read_pair_models(parameters);
     if (checksummed && read_u64_attribute(parameters, "checksum") != scene_checksum(scene_text, scene_path, joined, custom_potential))
       damaged("/parameters (the scene's text, its path or the overrides) does not match its checksum");
   }
@@ -241,6 +242,44 @@ std::vector<double> RunRecord::body_masses() const {
       (bodies > 0 && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, masses.data()) < 0))
     damaged("/particles/bodies/mass is not [" + std::to_string(bodies) + "] numbers");
   return masses;
+}
+
+void RunRecord::read_pair_models(hid_t parameters) {
+  using namespace noether::h5;
+  const htri_t exists = H5Lexists(parameters, "pair_models", H5P_DEFAULT);
+  if (exists < 0) damaged("/parameters does not read");
+  if (exists == 0) return;
+  const H5Handle group(H5Gopen2(parameters, "pair_models", H5P_DEFAULT));
+  H5G_info_t info;
+  if (!group.valid() || H5Gget_info(group, &info) < 0) damaged("/parameters/pair_models does not open");
+  for (hsize_t k = 0; k < info.nlinks; ++k) {
+    char name[1024];
+    if (H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT) < 0)
+      damaged("/parameters/pair_models does not list its pairs");
+    const H5Handle g(H5Gopen2(group, name, H5P_DEFAULT));
+    if (!g.valid()) damaged(std::string("/parameters/pair_models/") + name + " does not open");
+    const auto number = [&](const char* attribute, hid_t type, void* out) {
+      if (H5Aexists(g, attribute) <= 0) return;
+      const H5Handle a(H5Aopen(g, attribute, H5P_DEFAULT));
+      if (!a.valid() || H5Aread(a, type, out) < 0)
+        damaged(std::string("/parameters/pair_models/") + name + "'s " + attribute + " does not read");
+    };
+    PairModel m;
+    m.body_a = read_string(g, "body_a", false);
+    m.body_b = read_string(g, "body_b", false);
+    m.model = read_string(g, "model", false);
+    int exceeded = 0;
+    number("order", H5T_NATIVE_INT, &m.order);
+    number("tolerance", H5T_NATIVE_DOUBLE, &m.tolerance);
+    number("estimated_error", H5T_NATIVE_DOUBLE, &m.estimated_error);
+    number("separation", H5T_NATIVE_DOUBLE, &m.separation);
+    number("exceeded", H5T_NATIVE_INT, &exceeded);
+    m.exceeded = exceeded != 0;
+    number("exceeded_time", H5T_NATIVE_DOUBLE, &m.exceeded_time);
+    number("exceeded_separation", H5T_NATIVE_DOUBLE, &m.exceeded_separation);
+    number("exceeded_error", H5T_NATIVE_DOUBLE, &m.exceeded_error);
+    pair_models.push_back(std::move(m));
+  }
 }
 
 void RunRecord::read_summary() {

@@ -8,6 +8,7 @@
 
 #include <noether/integrator.hpp>
 #include <noether/particles.hpp>
+#include <noether/potential.hpp>
 #include <noether/state.hpp>
 
 #include <csignal>
@@ -42,6 +43,9 @@ class RunRecord {
   bool saved() const { return !summary_numbers.empty(); }
   // A saved simulation's massless particles (/checkpoint/particles), verified; none when absent.
   std::optional<ParticleCheckpoint> particles;
+  // /parameters/pair_models as the file's run last wrote them (when it finished, was interrupted
+  // or was saved): what a tolerance chose, and whether it was exceeded before the file ended.
+  std::vector<PairModel> pair_models;
   const std::vector<double>& summary_number(const std::string& name, std::size_t size) const;
   std::string summary_text(const std::string& name) const;
 
@@ -60,6 +64,7 @@ class RunRecord {
  private:
   void read_summary();
   void read_particles();
+  void read_pair_models(hid_t parameters);
   [[noreturn]] void damaged(const std::string& what) const;
   std::filesystem::path file_;
   H5Handle h5_;
