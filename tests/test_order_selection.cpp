@@ -2,15 +2,12 @@
 // chosen order meets the tolerance against the exact reference along simulated orbits and is
 // (mostly) the lowest that does; far pairs are point masses; a pair that comes closer than its
 // order was chosen for is reported when the estimate there exceeds the tolerance.
+#include "broken_run.hpp"
 #include "order_selection_check.hpp"
 
 #include <noether/diagnostics.hpp>
 
 #include <gtest/gtest.h>
-
-#include <unistd.h>
-
-#include <filesystem>
 
 using namespace noether;
 using namespace noether::test;
@@ -193,18 +190,7 @@ TEST(OrderSelection, AnExceededToleranceSurvivesABreak) {
   ASSERT_TRUE(uninterrupted.pair_models[0].exceeded);
   const double first = uninterrupted.pair_models[0].exceeded_time;
   ASSERT_LT(first, 58800);
-  const std::string tag = std::to_string(::getpid());
-  const auto saved = std::filesystem::temp_directory_path() / ("noether-exceeded-saved-" + tag + ".h5");
-  const auto output = std::filesystem::temp_directory_path() / ("noether-exceeded-output-" + tag + ".h5");
-  {
-    RunOptions options;
-    options.output = output;
-    options.overwrite = true;
-    Simulation first_part(scene, registry, options);
-    first_part.integrate(58800);
-    first_part.save(saved);
-    first_part.finish();
-  }
+  const BrokenRun broken(scene, registry, 58800, "exceeded");
   const auto expect_reported = [&](Simulation& continued, const char* how) {
     continued.integrate(60000);
     const RunSummary s = continued.finish();
@@ -214,8 +200,6 @@ TEST(OrderSelection, AnExceededToleranceSurvivesABreak) {
     EXPECT_EQ(s.pair_models[0].exceeded_separation, uninterrupted.pair_models[0].exceeded_separation) << how;
     EXPECT_FALSE(s.verdict.trustworthy) << how;
   };
-  expect_reported(*Simulation::load(saved, registry), "saved and loaded");
-  expect_reported(*Simulation::resume(output, registry, RunOptions{}, 60000), "resumed");
-  std::filesystem::remove(saved);
-  std::filesystem::remove(output);
+  expect_reported(*Simulation::load(broken.saved, registry), "saved and loaded");
+  expect_reported(*Simulation::resume(broken.output, registry, RunOptions{}, 60000), "resumed");
 }

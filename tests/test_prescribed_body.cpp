@@ -2,6 +2,7 @@
 // universal-anomaly conic against an integrated two-body orbit, the prescribed body's force and
 // torque against mutual-series with the same body integrated, and a flyby of a binary — the
 // prescribed planet against the integrated one, E − W conserved while the flyby does work.
+#include "broken_run.hpp"
 #include "test_support.hpp"
 
 #include <noether/diagnostics.hpp>
@@ -12,10 +13,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
-#include <unistd.h>
-
 #include <cmath>
-#include <filesystem>
 #include <optional>
 #include <sstream>
 
@@ -237,20 +235,9 @@ TEST(PrescribedBody, ToleranceChoosesOnceAtTheStartAndReportsIt) {
     EXPECT_LE(m.estimated_error, tolerance);
     EXPECT_NE(format_summary(summary).find("pair rock–prescribed-body planet"), std::string::npos) << format_summary(summary);
 
-    const std::string tag = std::to_string(::getpid());
-    const auto saved = std::filesystem::temp_directory_path() / ("noether-prescribed-saved-" + tag + ".h5");
-    const auto output = std::filesystem::temp_directory_path() / ("noether-prescribed-output-" + tag + ".h5");
-    {
-      RunOptions options;
-      options.output = output;
-      options.overwrite = true;
-      Simulation first(scene, r, options);
-      first.integrate(1.0);
-      first.save(saved);
-      first.finish();
-    }
+    const test::BrokenRun broken(scene, r, 1.0, "prescribed");
     {  // the output's record of the choice
-      const hid_t f = H5Fopen(output.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      const hid_t f = H5Fopen(broken.output.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       const hid_t g = H5Gopen2(f, "/parameters/pair_models/rock–prescribed-body planet", H5P_DEFAULT);
       ASSERT_GE(g, 0);
       int order = -1;
@@ -268,10 +255,8 @@ TEST(PrescribedBody, ToleranceChoosesOnceAtTheStartAndReportsIt) {
       ASSERT_EQ(s.pair_models.size(), 1u) << how;
       EXPECT_EQ(s.pair_models[0].order, at_start) << how;
     };
-    expect_same_end(*Simulation::load(saved, r), "saved and loaded");
-    expect_same_end(*Simulation::resume(output, r, RunOptions{}, 2.0), "resumed");
-    std::filesystem::remove(saved);
-    std::filesystem::remove(output);
+    expect_same_end(*Simulation::load(broken.saved, r), "saved and loaded");
+    expect_same_end(*Simulation::resume(broken.output, r, RunOptions{}, 2.0), "resumed");
   }
 }
 

@@ -104,14 +104,15 @@ TEST(Simulation, TheExactModelContinuesBitwise) {
   std::filesystem::remove(file);
 }
 
-// Forces beyond the potential (docs/forces.md): the tidal spin-down saved mid-run and loaded
+// Forces beyond the potential (docs/forces.md): the tidal spin-down saved mid-run and loaded —
+// the LGVI of orders 2 and 4, its Lagrangian form (from x_k − x_{k−1} in its checkpoint) and rk4 —
 // continues bit for bit — the state, the forces' balance (each force's work and momenta) and the
 // verdict's errors, whose momentum scales include the largest momenta the forces exchanged (kept
 // in the checkpoint). Loaded with a new output file, the balance starts again there.
 TEST(Simulation, AForcedRunSavedAndLoadedContinuesBitwise) {
   PluginRegistry registry;
   const auto file = std::filesystem::temp_directory_path() / ("noether-forced-" + std::to_string(::getpid()) + ".h5");
-  for (const char* integrator : {"integrator.order=2", "integrator.order=4",
+  for (const char* integrator : {"integrator.order=2", "integrator.order=4", "integrator.form=lagrangian",
                                  "integrator={plugin: rk, method: rk4, step: 0.01}"}) {
     const Scene scene = load_scene(test::source_path("examples/tidal-spin-down.yaml"),
                                    {integrator, "run.t_end=6", "run.output_every=1"});

@@ -3,6 +3,7 @@
 // West 2001, §3.2; docs/equations.md §33): a kick of the forces at each end of the step around
 // the conservative map, the closing one implicit in the momenta (33.1)–(33.2).
 #include "discrete_flow.hpp"
+#include "forcing_kicks.hpp"
 #include "tangent_map.hpp"
 
 #include <noether/error.hpp>
@@ -55,8 +56,8 @@ class InertialHamiltonian final : public DiscreteFlow {
     evaluate(s_, current_);
     tangent_.start(s_, evaluate_, work);
     if (forcing_) {
-      forcing_->check_balance(s_, "lgvi");
-      (*forcing_)(s_);  // the forces of the first opening kick (33.1)
+      forcing_->evaluator().check_balance(s_, "lgvi");
+      forcing_->at(s_);  // the forces of the first opening kick (33.1)
     }
     forcing_jacobian_valid_ = false;
   }
@@ -78,22 +79,18 @@ class InertialHamiltonian final : public DiscreteFlow {
     try {
       if (carries_tangent()) {  // V⁺ = (I + (h/2) B K^F_k) V_k  [+ (h/2) B G^F_k]        (33.6), (33.9)
         if (!forcing_jacobian_valid_) {
-          forcing_->jacobian(s_, forcing_jacobian_);
+          forcing_->evaluator().jacobian(s_, forcing_jacobian_);
           tangent_.forcing_parameters_at(s_);
         }
         forcing_jacobian_valid_ = false;
         noether::add_forcing_tangent(system_, forcing_jacobian_, 0.5 * h, s_.tangent, s_.tangent);
         tangent_.add_forcing_parameters(0.5 * h, s_.tangent);
       }
-      // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k,  the forces at z_k          (33.1)
-      kick_from_ = s_;
-      s_.p += (0.5 * h) * forcing_->total().f;
-      s_.Pi += (0.5 * h) * forcing_->total().M;
-      forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
+      forcing_->open(s_, h);  // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k        (33.1)
       conservative_step(h, t_next);
-      closing_kick(h);
+      forcing_->close(s_, h);  // γ_{k+1} = γ⁻ + (h/2) f^F(z_{k+1}), Π likewise          (33.2)
       if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻  [+ (h/2) B G^F_{k+1}]  (33.7), (33.9)
-        forcing_->jacobian(s_, forcing_jacobian_);
+        forcing_->evaluator().jacobian(s_, forcing_jacobian_);
         tangent_.forcing_parameters_at(s_);
         const Eigen::Index N = s_.tangent.rows();
         closing_ = Eigen::MatrixXd::Identity(N, N);
@@ -107,7 +104,7 @@ class InertialHamiltonian final : public DiscreteFlow {
       s_ = before_;
       current_ = before_forces_;
       try {
-        (*forcing_)(s_);
+        forcing_->at(s_);
       } catch (...) {  // it was evaluated there before
       }
       throw;
@@ -115,45 +112,6 @@ class InertialHamiltonian final : public DiscreteFlow {
   }
 
  private:
-  // The closing kick of the forces at z_{k+1} (33.2): γ_{k+1} = γ⁻ + (h/2) f^F(z_{k+1}), Π likewise,
-  // with z_{k+1}'s momenta — a fixed point, iterated from γ⁻ when the forces depend on momenta
-  // until it stands still (bit for bit, or within a few ulps followed by one more evaluation, so
-  // that the next opening kick's forces are those at z_{k+1} exactly).
-  void closing_kick(double h) {
-    kick_from_ = s_;
-    const double eps = std::numeric_limits<double>::epsilon();
-    for (int iteration = 0;; ++iteration) {
-      (*forcing_)(s_);
-      trial_p_ = kick_from_.p + (0.5 * h) * forcing_->total().f;
-      trial_Pi_ = kick_from_.Pi + (0.5 * h) * forcing_->total().M;
-      if (!forcing_->depends_on_momenta() || (trial_p_ == s_.p && trial_Pi_ == s_.Pi)) {
-        s_.p = trial_p_;
-        s_.Pi = trial_Pi_;
-        forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
-        return;
-      }
-      double change = 0.0;  // the largest change of a body's momentum, relative to it
-      for (Eigen::Index i = 0; i < s_.p.cols(); ++i)
-        change = std::max(change, (trial_p_.col(i) - s_.p.col(i)).norm() / std::max(trial_p_.col(i).norm(), 1e-300));
-      for (Eigen::Index k = 0; k < s_.Pi.cols(); ++k)
-        change = std::max(change, (trial_Pi_.col(k) - s_.Pi.col(k)).norm() / std::max(trial_Pi_.col(k).norm(), 1e-300));
-      s_.p = trial_p_;
-      s_.Pi = trial_Pi_;
-      if (change <= 8 * eps) {
-        forcing_->add_kick(kick_from_, s_, 0.5 * h, s_.force_balance);
-        (*forcing_)(s_);  // the next opening kick's forces, at z_{k+1} itself
-        return;
-      }
-      if (iteration == 50) {
-        std::ostringstream msg;
-        msg << "lgvi: the closing kick of the forces (docs/equations.md eq. 33.2) did not converge at t = " << s_.t
-            << " with step h = " << h << " (relative change " << change
-            << " after 50 iterations): the forces change the momenta too much within a step; reduce integrator.step";
-        throw noether::IntegrationError(msg.str(), s_.t);
-      }
-    }
-  }
-
   void conservative_step(double h, double t_next) {
     const Forces& fk = current_;
     // h S(Π_k + (h/2) M_k) = F_k Jd − Jd F_kᵀ                                        (93)
@@ -225,12 +183,11 @@ class InertialHamiltonian final : public DiscreteFlow {
   // The tangent map's: the step's w_k (F_k is F_), and the Jacobians at both ends.
   Eigen::Matrix3Xd w_;
   TangentCarrier tangent_;
-  // Forces beyond the potential (none: the conservative map alone), the state and forces at the
-  // step's start (restored on failure), and the closing kick's iterates.
-  std::optional<noether::ForcingEvaluator> forcing_;
-  State before_, kick_from_;
+  // Forces beyond the potential (none: the conservative map alone) and the state and forces at
+  // the step's start (restored on failure).
+  std::optional<ForcingKicks> forcing_;
+  State before_;
   Forces before_forces_;
-  Eigen::Matrix3Xd trial_p_, trial_Pi_;
   // The tangent map of the kicks (33.6)–(33.7): the forces' Jacobian (valid: at the current
   // state, from the last closing kick), and the closing kick's matrix.
   Eigen::MatrixXd forcing_jacobian_, closing_;

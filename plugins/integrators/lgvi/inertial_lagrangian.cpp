@@ -13,10 +13,22 @@
 // Through that transform the map z_k → z_{k+1} on (x, R, γ, Π) is the Hamiltonian form's (94)–(97),
 // with w_k = Π_k + (h/2) M_k = L_k/h + h M_k, so it carries the same tangent map (docs/equations.md
 // §21).
+//
+// Forces beyond the potential (docs/equations.md §33): the closing kick (33.2) of step k − 1 and
+// the opening kick (33.1) of step k both push at x_k with (h/2) F(z_k), so the forced discrete
+// Euler–Lagrange equations add h² F_k to (78)–(79) beside the potential's (33.10):
+//   D_{k+1} = D_k + (h²/m)(f_k + f^F_k),   S(L_k + h² (M_k + M^F_k)) = F_k Jd − Jd F_kᵀ,
+// and the Legendre transform's momenta take the closing kick, γ_k = m D_k/h + (h/2)(f_k + f^F_k)
+// (Π likewise) — implicit when F depends on the momenta, solved as the Hamiltonian form solves
+// (33.2). The map is the forced Hamiltonian form's through that transform; each kick's share of
+// the balance (33.4) is added as there.
 #include "discrete_flow.hpp"
+#include "forcing_kicks.hpp"
 #include "tangent_map.hpp"
 
 #include <noether/error.hpp>
+
+#include <optional>
 
 namespace lgvi {
 
@@ -36,6 +48,20 @@ class InertialLagrangian final : public DiscreteFlow {
     ++work.potential_evaluations;
     h_ = 0;
     tangent_.start(s_, evaluate_, work);
+    if (forcing_) {
+      forcing_->evaluator().check_balance(s_, "lgvi");
+      forcing_->at(s_);  // F(z_0), for the first step
+    }
+  }
+
+  bool add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    forcing_.emplace(system_, std::move(forcing));
+    return true;
+  }
+  std::string tangent_unavailable() const override {
+    return forcing_ ? "the Lagrangian form of the lgvi carries no tangent map with forces beyond the potential yet: "
+                      "use form: hamiltonian"
+                    : "";
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
@@ -67,6 +93,40 @@ class InertialLagrangian final : public DiscreteFlow {
   }
 
   void advance(double h, double t_next) override {
+    if (!forcing_) return step(h, t_next);
+    const State before = s_;  // restored on failure, with the two-step variables and forces
+    const Forces before_forces = forces_;
+    const Eigen::Matrix3Xd before_D = D_;
+    const std::vector<Vec3> before_L = L_;
+    const double before_h = h_;
+    try {
+      step(h, t_next);
+    } catch (...) {
+      s_ = before, forces_ = before_forces, D_ = before_D, L_ = before_L, h_ = before_h;
+      try {
+        forcing_->at(s_);
+      } catch (...) {  // it was evaluated there before
+      }
+      throw;
+    }
+  }
+
+  void current(State& s, Forces& f) const override {
+    s = s_;
+    f = forces_;
+  }
+  double time() const override { return s_.t; }
+
+ private:
+  // The potential's force plus the forces' (f_k + f^F_k; M likewise) on body column c.
+  Vec3 total_force(Eigen::Index c) const {
+    return forcing_ ? Vec3(forces_.f.col(c) + forcing_->total().f.col(c)) : Vec3(forces_.f.col(c));
+  }
+  Vec3 total_moment(Eigen::Index k) const {
+    return forcing_ ? Vec3(forces_.M.col(k) + forcing_->total().M.col(k)) : Vec3(forces_.M.col(k));
+  }
+
+  void step(double h, double t_next) {
     const std::size_t n = system_.size(), nr = system_.rigid_count();
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
       h_ = h;
@@ -74,28 +134,28 @@ class InertialLagrangian final : public DiscreteFlow {
       for (std::size_t i = 0; i < n; ++i) {
         const auto c = static_cast<Eigen::Index>(i);
         const double m = system_.body(i).mass;
-        D_.col(c) = (h / m) * s_.p.col(c) - (0.5 * h * h / m) * forces_.f.col(c);
+        D_.col(c) = (h / m) * s_.p.col(c) - (0.5 * h * h / m) * total_force(c);
       }
       L_.resize(nr);
       for (std::size_t r = 0; r < nr; ++r)
-        L_[r] = h * Vec3(s_.Pi.col(static_cast<Eigen::Index>(r))) -
-                0.5 * h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+        L_[r] = h * Vec3(s_.Pi.col(static_cast<Eigen::Index>(r))) - 0.5 * h * h * total_moment(static_cast<Eigen::Index>(r));
     }
     if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
+    if (forcing_) forcing_->open(s_, h);  // the opening kick's balance at x_k (33.1), (33.4)
     // (79): F_k from S(L_k + h² M_k) = F_k Jd − Jd F_kᵀ
     std::vector<noether::DiscreteAttitude> F;
     const bool tangent = s_.tangent.size() > 0;
     if (tangent) F_.resize(nr), w_.resize(3, static_cast<Eigen::Index>(nr));
     for (std::size_t r = 0; r < nr; ++r) {
       const auto& b = system_.body(system_.body_of_rigid(r));
-      const Vec3 g = L_[r] + h * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+      const Vec3 g = L_[r] + h * h * total_moment(static_cast<Eigen::Index>(r));  // (79), (33.10)
       F.push_back(solve_attitude(g, b.inertia, b.inertia_inverse, settings_, b.name, s_.t, h, g / h, work));
       if (tangent) F_[r] = F.back().F, w_.col(static_cast<Eigen::Index>(r)) = g / h;  // w_k = L_k/h + h M_k
     }
-    // (78): D_{k+1} = D_k + (h²/m) f_k,  x_{k+1} = x_k + D_{k+1}
+    // (78): D_{k+1} = D_k + (h²/m)(f_k + f^F_k),  x_{k+1} = x_k + D_{k+1}            (33.10)
     for (std::size_t i = 0; i < n; ++i) {
       const auto c = static_cast<Eigen::Index>(i);
-      D_.col(c) += (h * h / system_.body(i).mass) * forces_.f.col(c);
+      D_.col(c) += (h * h / system_.body(i).mass) * total_force(c);
     }
     s_.x += D_;
     for (std::size_t r = 0; r < nr; ++r) {
@@ -110,22 +170,16 @@ class InertialLagrangian final : public DiscreteFlow {
       tangent_.at_next(s_, evaluate_, work);
       tangent_.advance(system_, h, F_, w_, D_, s_.tangent);  // D_ = x_{k+1} − x_k
     }
-    // The discrete Legendre transform at k+1.
+    // The discrete Legendre transform at k+1, then the closing kick of the forces there (33.2).
     for (std::size_t i = 0; i < n; ++i) {
       const auto c = static_cast<Eigen::Index>(i);
       s_.p.col(c) = (system_.body(i).mass / h) * D_.col(c) + 0.5 * h * forces_.f.col(c);
     }
     for (std::size_t r = 0; r < nr; ++r)
       s_.Pi.col(static_cast<Eigen::Index>(r)) = L_[r] / h + 0.5 * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
+    if (forcing_) forcing_->close(s_, h);
   }
 
-  void current(State& s, Forces& f) const override {
-    s = s_;
-    f = forces_;
-  }
-  double time() const override { return s_.t; }
-
- private:
   const System system_;
   noether::PotentialEvaluator& evaluate_;
   Settings settings_;
@@ -138,6 +192,7 @@ class InertialLagrangian final : public DiscreteFlow {
   std::vector<Mat3> F_;
   Eigen::Matrix3Xd w_;
   TangentCarrier tangent_;
+  std::optional<ForcingKicks> forcing_;  // forces beyond the potential (none: the conservative map)
 };
 
 }  // namespace

@@ -60,12 +60,11 @@ class Lgvi final : public noether::Integrator {
     form_ = frame + " " + form;
   }
 
-  // Forces beyond the potential (docs/equations.md §33): the inertial Hamiltonian form and its
-  // compositions take them (symmetric, so the compositions keep their order).
+  // Forces beyond the potential (docs/equations.md §33): the inertial forms and the Hamiltonian
+  // form's compositions take them (symmetric, so the compositions keep their order).
   std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
     if (!flow_->add_forcing(std::move(forcing)))
-      return "the " + form_ + " form of the lgvi takes no forces beyond the potential yet: use frame: inertial, "
-             "form: hamiltonian";
+      return "the " + form_ + " form of the lgvi takes no forces beyond the potential yet: use frame: inertial";
     return "";
   }
 
@@ -106,9 +105,9 @@ class Lgvi final : public noether::Integrator {
   }
   double fixed_step() const override { return h_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
-  // With forces, the kicks' derivatives (33.6)–(33.7) join it, and for parameters the forces' own
-  // dependence on them (33.9).
-  std::string tangent_map_unavailable() const override { return ""; }
+  // With forces, the kicks' derivatives (33.6)–(33.7) join it in the Hamiltonian form, and for
+  // parameters the forces' own dependence on them (33.9); the Lagrangian form with forces says not yet.
+  std::string tangent_map_unavailable() const override { return flow_->tangent_unavailable(); }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";
