@@ -133,11 +133,8 @@ ToleranceSetUp& tolerance_set_up(const char* scene_file, const std::string& tol)
   entry = std::make_unique<ToleranceSetUp>();
   entry->scene = load_scene(test::source_path(scene_file),
                             {"potential={plugin: mutual-series, tolerance: " + tol + ", max_order: 16}"});
-  entry->evaluate.emplace(make_scene_potential(entry->scene, entry->registry));  // one workspace for the loop
-  Forces f;
-  f.resize(entry->scene.system);
-  try {
-    (*entry->evaluate)(entry->scene.initial, f);  // the choice
+  try {  // the choice, made where the scene starts
+    entry->evaluate.emplace(make_scene_potential(entry->scene, entry->registry));  // one workspace for the loop
   } catch (const Error&) {
     entry->met = false;
   }
