@@ -94,15 +94,12 @@ class InertialLagrangian final : public DiscreteFlow {
 
   void advance(double h, double t_next) override {
     if (!forcing_) return step(h, t_next);
-    const State before = s_;  // restored on failure, with the two-step variables and forces
-    const Forces before_forces = forces_;
-    const Eigen::Matrix3Xd before_D = D_;
-    const std::vector<Vec3> before_L = L_;
+    before_ = s_, before_forces_ = forces_, before_D_ = D_, before_L_ = L_;  // restored on failure
     const double before_h = h_;
     try {
       step(h, t_next);
     } catch (...) {
-      s_ = before, forces_ = before_forces, D_ = before_D, L_ = before_L, h_ = before_h;
+      s_ = before_, forces_ = before_forces_, D_ = before_D_, L_ = before_L_, h_ = before_h;
       try {
         forcing_->at(s_);
       } catch (...) {  // it was evaluated there before
@@ -193,6 +190,11 @@ class InertialLagrangian final : public DiscreteFlow {
   Eigen::Matrix3Xd w_;
   TangentCarrier tangent_;
   std::optional<ForcingKicks> forcing_;  // forces beyond the potential (none: the conservative map)
+  // With forces, the step's start (restored on failure; kept to reuse their buffers).
+  State before_;
+  Forces before_forces_;
+  Eigen::Matrix3Xd before_D_;
+  std::vector<Vec3> before_L_;
 };
 
 }  // namespace
