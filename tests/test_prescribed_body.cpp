@@ -345,6 +345,75 @@ TEST(PrescribedBody, FlybyIsTheIntegratedPlanetsToItsBackReaction) {
   EXPECT_LT(prescribed.summary.max_abs_energy_error, 1e-6 * std::abs(W));
 }
 
+// The LGVI's relative frame takes the prescribed planet as the inertial frame does: its kicks in the
+// reduced momenta (docs/equations.md (33.11)) are the inertial kicks in other variables — an
+// external force, which moves the binary as a whole (body 2's x2, γ2) as well as its relative
+// motion. The flyby above in both frames, each form: the same run to round-off (measured: 7e-12 of
+// the separation and velocity, 4e-13 of beta's spin, 4e-15 of the planet's work).
+TEST(PrescribedBody, FlybyInTheRelativeFrameIsTheInertialFramesMap) {
+  for (const std::string form : {"hamiltonian", "lagrangian"}) {
+    const Outcome inertial = run(flyby(true, true, "{plugin: lgvi, step: 0.01, form: " + form + "}"));
+    const Outcome relative = run(flyby(true, true, "{plugin: lgvi, step: 0.01, frame: relative, form: " + form + "}"));
+    const double dx = (relative.separation - inertial.separation).norm() / inertial.separation.norm();
+    const double dv = (relative.velocity - inertial.velocity).norm() / inertial.velocity.norm();
+    const double dw = (relative.spin_beta - inertial.spin_beta).norm() / inertial.spin_beta.norm();
+    const double dW = std::abs(relative.summary.forces[0].work - inertial.summary.forces[0].work) /
+                      std::abs(inertial.summary.forces[0].work);
+    std::printf("%s form, relative vs inertial frame through the flyby: separation %.2e, velocity %.2e, beta's spin "
+                "%.2e, the planet's work %.2e\n",
+                form.c_str(), dx, dv, dw, dW);
+    EXPECT_LT(std::max({dx, dv, dw}), 1e-10) << form;  // measured ≤ 7.2e-12 over the 4000 steps
+    EXPECT_LT(dW, 1e-11) << form;
+  }
+}
+
+// Why the relative frame is there: a binary far from the origin keeps its mutual orbit to its own
+// size's precision. KW4's ellipsoids about the Sun (prescribed, 1 au; a day of 60 s steps), run
+// where they are and moved by 2^37 m ≈ 0.92 au along x (positions on a 2^-15 m grid, so that the
+// move is exact and both start from the same mutual state). In the inertial frame every step of
+// the moved run rounds its positions to ulp(2^37 m) = 2^-15 m, and the separation accumulates
+// those roundings; in the relative frame, whose X is the separation itself, the moved run's
+// separation is the unmoved one's to the rounding of its output alone (x1 = x2 + R2 X, one ulp).
+TEST(PrescribedBody, RelativeFrameKeepsAFarBinarysMutualOrbit) {
+  const double grid = std::ldexp(1.0, -15), shift = std::ldexp(1.0, 37);
+  auto on_grid = [&](double v) { return std::round(v / grid) * grid; };
+  auto scene = [&](double dx, const std::string& frame) {
+    std::ostringstream yaml;
+    yaml.precision(17);
+    yaml << "units: SI\nG: 6.674e-11\nbodies:\n"
+         << "  - {name: alpha, mass: 2.353e12, shape: {ellipsoid: {semi_axes: [766, 747.5, 673.5]}}, position: ["
+         << on_grid(106.7776748392283) + dx << ", " << on_grid(-79.91484525723472) << ", " << on_grid(36.21423834405145)
+         << "], velocity: [-0.006935245176848875, -0.01120679059485531, -0.004281746382636655], "
+         << "angular_velocity: [0, 0, 6.313333333333333e-4]}\n"
+         << "  - {name: beta, mass: 1.35e11, shape: {ellipsoid: {semi_axes: [285, 231.5, 174.5]}}, position: ["
+         << on_grid(-1861.095325160772) + dx << ", " << on_grid(1392.886154742765) << ", " << on_grid(-631.2007616559484)
+         << "], velocity: [0.1208787548231511, 0.1953302094051447, 0.07462925361736333], "
+         << "angular_velocity: [0, 0, 1.003055555555556e-4]}\n"
+         << "potential: {plugin: mutual-series, order: 4}\n"
+         << "forces: [{plugin: prescribed-body, name: sun, mass: 1.989e30, position: [-1.495978707e11, 0, 0], "
+         << "velocity: [0, -29784.69, 0]}]\n"
+         << "integrator: {plugin: lgvi, step: 60, frame: " << frame << "}\nrun: {t_end: 86400, output_every: 86400}\n";
+    return parse_scene(yaml.str(), "far-binary");
+  };
+  auto separation = [&](double dx, const std::string& frame) {
+    Simulation sim(scene(dx, frame), registry());
+    sim.integrate(86400);
+    return Vec3(sim.state().x.col(1) - sim.state().x.col(0));
+  };
+  const Vec3 inertial_here = separation(0, "inertial"), relative_here = separation(0, "relative");
+  const double ulps = 1.0 / (grid * 1.0);  // a separation difference in ulps of the moved positions
+  const double relative_far = (separation(shift, "relative") - relative_here).norm() * ulps;
+  const double inertial_far = (separation(shift, "inertial") - inertial_here).norm() * ulps;
+  std::printf("a day at 0.92 au from the origin: the separation off the unmoved run's by %.2f ulps of the positions "
+              "(relative frame), %.1f ulps (inertial frame), ulp = %.2e m of %.0f m; the two frames unmoved: %.2e\n",
+              relative_far, inertial_far, grid, inertial_here.norm(),
+              (relative_here - inertial_here).norm() / inertial_here.norm());
+  EXPECT_LE(relative_far, 1.0);
+  EXPECT_GT(inertial_far, 20.0);
+  EXPECT_LT((relative_here - inertial_here).norm() / inertial_here.norm(), 1e-9);  // the same map, and the
+  // unmoved inertial run's own roundings: the Sun moves the binary 2e7 m in the day
+}
+
 // Massless particles feel the prescribed planet as the bodies do (ForceModel::pull_particles):
 // four particles on orbits about the binary (a = 5 and 6, well beyond beta) through the flyby
 // above. The planet moves them relative to alpha by up to 22 (its tide strips the binary of them;
@@ -480,5 +549,27 @@ TEST(PrescribedBody, ImpossibleContactsAreErrorsNamingWhatMet) {
     const auto e = integration_error(parse_scene(yaml, "centre"));
     ASSERT_TRUE(e) << "a particle through a point mass's centre went on";
     EXPECT_NE(std::string(e->what()).find("particle 0 (from 0) is no longer finite"), std::string::npos) << e->what();
+  }
+}
+
+// jm-hybrid refuses forces by design (its Jacobi–Maupertuis phase is at a fixed energy, which a
+// time-dependent pull changes), saying so and what to use instead.
+TEST(PrescribedBody, JmHybridRefusesItAndSaysWhy) {
+  const Scene scene = parse_scene(R"(G: 1
+bodies:
+  - {name: star, mass: 1, position: [0, 0, 0], velocity: [0, 0, 0]}
+  - {name: planet, mass: 1.0e-3, position: [1, 0, 0], velocity: [0, 1, 0]}
+potential: {plugin: point-mass}
+forces: [{plugin: prescribed-body, name: passer, mass: 0.1, position: [-50, 5, 0], velocity: [1, 0, 0]}]
+integrator: {plugin: jm-hybrid, step: 0.01, Kc: 0.5}
+run: {t_end: 1, output_every: 1}
+)",
+                                  "jm");
+  try {
+    Simulation sim(scene, registry());
+    ADD_FAILURE() << "jm-hybrid took a force";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("integrates at a fixed energy"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("with lgvi or rk"), std::string::npos) << e.what();
   }
 }

@@ -392,3 +392,43 @@ TEST(TangentMap, ForcedRunIsTheSameWithItsTangent) {
   EXPECT_EQ(with.state().Pi, without.state().Pi);
   EXPECT_EQ(with.state().force_balance, without.state().force_balance);
 }
+
+// Every form of the forced LGVI carries one tangent: the kicks' maps (33.6)–(33.7) around the
+// inertial Lagrangian form's map and around the relative forms' (whose kicks are in the reduced
+// momenta, (33.11)) are the inertial Hamiltonian form's, whose map the test above checks against
+// whole runs — the STM and the sensitivities to the tide's Love number (G^F, 33.9) and the moon's
+// mass, to round-off; and the relative Lagrangian form's STM against differences of whole runs.
+// The moon made rigid (a small sphere's inertia) so that the relative frame takes the pair.
+TEST(TangentMap, EveryForcedLgviFormCarriesTheSameTangent) {
+  const std::vector<std::string> base = {"run.t_end=8", "run.output_every=8", "bodies.moon.inertia=[1e-3, 1e-3, 1e-3]"};
+  auto scene = [&](const std::string& integrator, bool parameters) {
+    std::vector<std::string> o = base;
+    o.push_back("integrator={plugin: lgvi, step: 0.01" + integrator + "}");
+    if (parameters) o.push_back("run.sensitivities=[forces.0.k2, bodies.moon.mass]");
+    return load_scene(test::source_path("examples/tidal-spin-down.yaml"), o);
+  };
+  auto tangent = [&](const std::string& integrator) {
+    Scene s = scene(integrator, true);
+    s.run.stm = true;
+    Simulation sim(s, registry());
+    sim.integrate(s.run.t_end);
+    return Eigen::MatrixXd(sim.state().tangent);
+  };
+  const std::pair<const char*, const char*> pairs[] = {{"", ", form: lagrangian"},
+                                                       {"", ", frame: relative"},
+                                                       {"", ", frame: relative, form: lagrangian"},
+                                                       {", order: 4", ", order: 4, frame: relative"}};
+  for (const auto& [reference, form] : pairs) {
+    if (!kEveryMethod && std::string(form).find("order: 4") != std::string::npos) continue;  // the same kicks, composed
+    const Eigen::MatrixXd a = tangent(reference), b = tangent(form);
+    ASSERT_EQ(a.cols(), 26);  // 24 of the STM, then k2 and the moon's mass
+    double worst = 0.0;
+    for (Eigen::Index c = 0; c < a.cols(); ++c) worst = std::max(worst, (a.col(c) - b.col(c)).norm() / a.col(c).norm());
+    std::printf("lgvi {step: 0.01%s} against {step: 0.01%s}: worst column %.2e\n", form, reference, worst);
+    EXPECT_LT(worst, 1e-10) << form;
+  }
+  if (!kEveryMethod) return;
+  const Comparison c = compare_with_differences(scene(", frame: relative, form: lagrangian", false));
+  std::printf("relative lagrangian against whole runs: worst column %.3e\n", c.worst);
+  EXPECT_LT(c.worst, 1e-6);
+}

@@ -138,6 +138,14 @@ class JmHybrid final : public noether::Integrator {
   }
 
   noether::PotentialEvaluator* potential_evaluator() override { return &evaluate_; }
+  // Forces beyond the potential are refused by design, not for want of time: the Jacobi–Maupertuis
+  // phase integrates the geodesics of W = √(2(E − V)) at a fixed energy E of an autonomous V, and a
+  // force that does work (or depends on time, as a prescribed body does) has no fixed E — its
+  // kicks would make the two phases two different dynamics.
+  std::string add_forcing(std::shared_ptr<const noether::Forcing>) override {
+    return "jm-hybrid's Jacobi–Maupertuis phase integrates at a fixed energy, which a force that does work (or "
+           "depends on time) changes; integrate forced point masses with lgvi or rk (rkf78 for close encounters)";
+  }
 
   void current_state(noether::State& state) override {
     state = noether::State::zeros(system_);

@@ -53,8 +53,6 @@ class DiscreteFlow {
   // Forces beyond the potential (noether::Integrator::add_forcing), by the discrete
   // Lagrange–d'Alembert principle (docs/equations.md §33): false for a form that takes none.
   virtual bool add_forcing(std::shared_ptr<const noether::Forcing>) { return false; }
-  // Why the flow cannot carry the tangent map as set up ("" when it can).
-  virtual std::string tangent_unavailable() const { return ""; }
 
   noether::WorkCounters work;
 };

@@ -7,9 +7,7 @@
 #include "tangent_map.hpp"
 
 #include <noether/error.hpp>
-#include <noether/variational_equations.hpp>
 
-#include <Eigen/LU>
 
 #include <limits>
 #include <optional>
@@ -58,8 +56,8 @@ class InertialHamiltonian final : public DiscreteFlow {
     if (forcing_) {
       forcing_->evaluator().check_balance(s_, "lgvi");
       forcing_->at(s_);  // the forces of the first opening kick (33.1)
+      forcing_->forget_tangent();
     }
-    forcing_jacobian_valid_ = false;
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
@@ -77,30 +75,13 @@ class InertialHamiltonian final : public DiscreteFlow {
     before_ = s_;
     before_forces_ = current_;
     try {
-      if (carries_tangent()) {  // V⁺ = (I + (h/2) B K^F_k) V_k  [+ (h/2) B G^F_k]        (33.6), (33.9)
-        if (!forcing_jacobian_valid_) {
-          forcing_->evaluator().jacobian(s_, forcing_jacobian_);
-          tangent_.forcing_parameters_at(s_);
-        }
-        forcing_jacobian_valid_ = false;
-        noether::add_forcing_tangent(system_, forcing_jacobian_, 0.5 * h, s_.tangent, s_.tangent);
-        tangent_.add_forcing_parameters(0.5 * h, s_.tangent);
-      }
+      if (carries_tangent()) forcing_->open_tangent(s_, h, tangent_, s_.tangent);  // (33.6), (33.9)
       forcing_->open(s_, h);  // γ⁺ = γ_k + (h/2) f^F_k,  Π⁺ = Π_k + (h/2) M^F_k        (33.1)
       conservative_step(h, t_next);
       forcing_->close(s_, h);  // γ_{k+1} = γ⁻ + (h/2) f^F(z_{k+1}), Π likewise          (33.2)
-      if (carries_tangent()) {  // (I − (h/2) B K^F_{k+1}) V_{k+1} = V⁻  [+ (h/2) B G^F_{k+1}]  (33.7), (33.9)
-        forcing_->evaluator().jacobian(s_, forcing_jacobian_);
-        tangent_.forcing_parameters_at(s_);
-        const Eigen::Index N = s_.tangent.rows();
-        closing_ = Eigen::MatrixXd::Identity(N, N);
-        noether::add_forcing_tangent(system_, forcing_jacobian_, -0.5 * h, closing_, closing_);
-        tangent_.add_forcing_parameters(0.5 * h, s_.tangent);
-        s_.tangent = closing_.partialPivLu().solve(s_.tangent);
-        forcing_jacobian_valid_ = true;  // the next opening kick's (K^F, G^F), at z_{k+1}
-      }
+      if (carries_tangent()) forcing_->close_tangent(s_, h, tangent_, s_.tangent);  // (33.7), (33.9)
     } catch (...) {
-      forcing_jacobian_valid_ = false;
+      forcing_->forget_tangent();
       s_ = before_;
       current_ = before_forces_;
       try {
@@ -188,10 +169,6 @@ class InertialHamiltonian final : public DiscreteFlow {
   std::optional<ForcingKicks> forcing_;
   State before_;
   Forces before_forces_;
-  // The tangent map of the kicks (33.6)–(33.7): the forces' Jacobian (valid: at the current
-  // state, from the last closing kick), and the closing kick's matrix.
-  Eigen::MatrixXd forcing_jacobian_, closing_;
-  bool forcing_jacobian_valid_ = false;
 };
 
 }  // namespace

@@ -21,7 +21,8 @@
 // and the Legendre transform's momenta take the closing kick, γ_k = m D_k/h + (h/2)(f_k + f^F_k)
 // (Π likewise) — implicit when F depends on the momenta, solved as the Hamiltonian form solves
 // (33.2). The map is the forced Hamiltonian form's through that transform; each kick's share of
-// the balance (33.4) is added as there.
+// the balance (33.4) is added as there, and the kicks' tangent maps (33.6)–(33.7) join the
+// conservative map's as there.
 #include "discrete_flow.hpp"
 #include "forcing_kicks.hpp"
 #include "tangent_map.hpp"
@@ -51,17 +52,13 @@ class InertialLagrangian final : public DiscreteFlow {
     if (forcing_) {
       forcing_->evaluator().check_balance(s_, "lgvi");
       forcing_->at(s_);  // F(z_0), for the first step
+      forcing_->forget_tangent();
     }
   }
 
   bool add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
     forcing_.emplace(system_, std::move(forcing));
     return true;
-  }
-  std::string tangent_unavailable() const override {
-    return forcing_ ? "the Lagrangian form of the lgvi carries no tangent map with forces beyond the potential yet: "
-                      "use form: hamiltonian"
-                    : "";
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
@@ -99,6 +96,7 @@ class InertialLagrangian final : public DiscreteFlow {
     try {
       step(h, t_next);
     } catch (...) {
+      forcing_->forget_tangent();
       s_ = before_, forces_ = before_forces_, D_ = before_D_, L_ = before_L_, h_ = before_h;
       try {
         forcing_->at(s_);
@@ -138,10 +136,13 @@ class InertialLagrangian final : public DiscreteFlow {
         L_[r] = h * Vec3(s_.Pi.col(static_cast<Eigen::Index>(r))) - 0.5 * h * h * total_moment(static_cast<Eigen::Index>(r));
     }
     if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
-    if (forcing_) forcing_->open(s_, h);  // the opening kick's balance at x_k (33.1), (33.4)
+    const bool tangent = s_.tangent.size() > 0;
+    if (forcing_) {
+      if (tangent) forcing_->open_tangent(s_, h, tangent_, s_.tangent);  // (33.6), (33.9)
+      forcing_->open(s_, h);  // the opening kick's balance at x_k (33.1), (33.4)
+    }
     // (79): F_k from S(L_k + h² M_k) = F_k Jd − Jd F_kᵀ
     std::vector<noether::DiscreteAttitude> F;
-    const bool tangent = s_.tangent.size() > 0;
     if (tangent) F_.resize(nr), w_.resize(3, static_cast<Eigen::Index>(nr));
     for (std::size_t r = 0; r < nr; ++r) {
       const auto& b = system_.body(system_.body_of_rigid(r));
@@ -174,7 +175,10 @@ class InertialLagrangian final : public DiscreteFlow {
     }
     for (std::size_t r = 0; r < nr; ++r)
       s_.Pi.col(static_cast<Eigen::Index>(r)) = L_[r] / h + 0.5 * h * Vec3(forces_.M.col(static_cast<Eigen::Index>(r)));
-    if (forcing_) forcing_->close(s_, h);
+    if (forcing_) {
+      forcing_->close(s_, h);
+      if (tangent) forcing_->close_tangent(s_, h, tangent_, s_.tangent);  // (33.7), (33.9)
+    }
   }
 
   const System system_;

@@ -60,11 +60,11 @@ class Lgvi final : public noether::Integrator {
     form_ = frame + " " + form;
   }
 
-  // Forces beyond the potential (docs/equations.md §33): the inertial forms and the Hamiltonian
-  // form's compositions take them (symmetric, so the compositions keep their order).
+  // Forces beyond the potential (docs/equations.md §33): every form takes them — the inertial
+  // forms' kicks (33.1)–(33.2), (33.10), the relative forms' in the reduced momenta (33.11) — and
+  // so do the Hamiltonian form's compositions (the forced map is symmetric: they keep their order).
   std::string add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
-    if (!flow_->add_forcing(std::move(forcing)))
-      return "the " + form_ + " form of the lgvi takes no forces beyond the potential yet: use frame: inertial";
+    if (!flow_->add_forcing(std::move(forcing))) return "the " + form_ + " form of the lgvi takes no forces beyond the potential";
     return "";
   }
 
@@ -104,10 +104,10 @@ class Lgvi final : public noether::Integrator {
     if (data.size() == flow + clock) clock_.restore(state.t, h_, data.data() + flow, "lgvi");
   }
   double fixed_step() const override { return h_; }
-  // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21).
-  // With forces, the kicks' derivatives (33.6)–(33.7) join it in the Hamiltonian form, and for
-  // parameters the forces' own dependence on them (33.9); the Lagrangian form with forces says not yet.
-  std::string tangent_map_unavailable() const override { return flow_->tangent_unavailable(); }
+  // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21);
+  // with forces, the kicks' derivatives (33.6)–(33.7) join it, and for parameters the forces' own
+  // dependence on them (33.9).
+  std::string tangent_map_unavailable() const override { return ""; }
   std::string carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     if (!flow_->carry_parameters(std::move(parameters))) return "this form of the lgvi has no tangent map";
     return "";

@@ -1,5 +1,7 @@
 #include "relative_frame.hpp"
 
+#include "forcing_kicks.hpp"
+
 #include <noether/error.hpp>
 
 namespace lgvi {
@@ -140,6 +142,18 @@ void RelativeTangent::at_next(const Reduced& next, const RelativeFrame& frame, n
 void RelativeTangent::advance(const Reduced& r_k, const Reduced& next, const System& system, double h) {
   if (!carried()) return;
   carrier_.advance(system, h, F_, w_, RelativeFrame::positions(next) - RelativeFrame::positions(r_k), V_);
+}
+
+void RelativeTangent::open_kick(ForcingKicks& kicks, const Reduced& r, const RelativeFrame& frame, double h) {
+  if (!carried()) return;
+  frame.reconstruct(r, inertial_);
+  kicks.open_tangent(inertial_, h, carrier_, V_);
+}
+
+void RelativeTangent::close_kick(ForcingKicks& kicks, const Reduced& r, const RelativeFrame& frame, double h) {
+  if (!carried()) return;
+  frame.reconstruct(r, inertial_);
+  kicks.close_tangent(inertial_, h, carrier_, V_);
 }
 
 }  // namespace lgvi

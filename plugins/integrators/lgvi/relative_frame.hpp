@@ -14,6 +14,8 @@
 
 namespace lgvi {
 
+class ForcingKicks;
+
 struct Reduced {
   double t = 0;
   Vec3 X, Gamma, Pi, Pi2;
@@ -65,7 +67,8 @@ class RelativeFrame {
 // the reconstructed inertial states is the inertial Hamiltonian form's, and so is its derivative:
 // the tangent, in the inertial coordinates (21.1), is carried by (21.2)–(21.8) with that step's
 // inertial F_k (body 1: R_kᵀ F R_k; body 2: F2_k), w_k and force Jacobians at the reconstructed
-// states.
+// states; with forces beyond the potential, the kicks' maps (33.6)–(33.7) around it, as in the
+// inertial forms (the reduced kicks (33.11) are the inertial kicks in other variables).
 class RelativeTangent {
  public:
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) {
@@ -84,6 +87,12 @@ class RelativeTangent {
                noether::WorkCounters& work);
   // V ← (∂z_{k+1}/∂z_k) V, once the step from r_k to r_{k+1} is taken.
   void advance(const Reduced& r_k, const Reduced& next, const System& system, double h);
+  // With forces beyond the potential (relative_kicks.hpp): the kicks' tangent maps (33.6)–(33.7)
+  // at r's reconstructed state — before the opening kick at r_k, after the closing kick at r_{k+1}.
+  void open_kick(ForcingKicks& kicks, const Reduced& r, const RelativeFrame& frame, double h);
+  void close_kick(ForcingKicks& kicks, const Reduced& r, const RelativeFrame& frame, double h);
+  // Sets V back (a failed step).
+  void set_tangent(const Eigen::MatrixXd& V) { V_ = V; }
 
  private:
   TangentCarrier carrier_;

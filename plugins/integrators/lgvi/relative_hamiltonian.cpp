@@ -15,7 +15,12 @@
 //   R2_{k+1} = R2_k F2_k                                                             (127)
 // F_k = R_k F1_k R_kᵀ is body 1's F seen from body 2; (123) is (128) with J → R J1 Rᵀ. The same
 // map as the inertial form's, so it carries the same tangent map (RelativeTangent, §21).
-#include "relative_frame.hpp"
+//
+// Forces beyond the potential: the kicks (33.1)–(33.2) in the reduced momenta (33.11) around
+// that map (relative_kicks.hpp) — the forced inertial Hamiltonian form's map in these variables.
+#include "relative_kicks.hpp"
+
+#include <optional>
 
 namespace lgvi {
 
@@ -31,13 +36,55 @@ class RelativeHamiltonian final : public DiscreteFlow {
     r_ = frame_.reduce(s);
     evaluate(r_, current_);
     tangent_.start(s, r_, frame_, evaluate_, work);
+    if (forcing_) forcing_->start(s, r_);  // the forces of the first opening kick (33.1)
+  }
+
+  bool add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    forcing_.emplace(frame_, std::move(forcing));
+    return true;
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
     return tangent_.carry_parameters(std::move(parameters));
   }
 
+  // r_k → r_{k+1}; on failure the state stays at k.
   void advance(double h, double t_next) override {
+    if (!forcing_) return conservative_step(h, t_next);
+    start_of_step_.keep(r_, current_, *forcing_, tangent_);
+    try {
+      tangent_.open_kick(forcing_->inertial(), r_, frame_, h);  // (33.6), (33.9)
+      forcing_->open(r_, h);                                     // (33.1), (33.11)
+      conservative_step(h, t_next);
+      forcing_->close(r_, h);                                    // (33.2), (33.11)
+      tangent_.close_kick(forcing_->inertial(), r_, frame_, h);  // (33.7), (33.9)
+    } catch (...) {
+      start_of_step_.restore(r_, current_, *forcing_, tangent_);
+      throw;
+    }
+  }
+
+  void current(State& s, Forces& f) const override {
+    relative_current(frame_, r_, current_, tangent_, forcing_ ? &*forcing_ : nullptr, s, f);
+  }
+  double time() const override { return r_.t; }
+  // The reduced variables themselves: reduce(reconstruct(r)) is r only up to rounding.
+  std::vector<double> checkpoint() const override {
+    std::vector<double> out;
+    pack(r_, out);
+    return out;
+  }
+  std::size_t checkpoint_size() const override { return kReducedSize; }
+  void restore(const State& s, const std::vector<double>& data) override {
+    r_ = unpack(data);
+    evaluate(r_, current_);
+    tangent_.start(s, r_, frame_, evaluate_, work);
+    if (forcing_) forcing_->start(s, r_);
+  }
+
+ private:
+  // The conservative map (118)–(127) from r_ (its momenta kicked, with forces).
+  void conservative_step(double h, double t_next) {
     const ReducedForces& fk = current_;
     const Mat3 J2_inverse = frame_.J2.inverse();
     const Mat3 F2 = solve_attitude(h * (r_.Pi2 + 0.5 * h * fk.M2), frame_.J2, J2_inverse, settings_, frame_.name2,
@@ -66,26 +113,6 @@ class RelativeHamiltonian final : public DiscreteFlow {
     ++work.steps;
   }
 
-  void current(State& s, Forces& f) const override {
-    frame_.reconstruct(r_, s);
-    s.tangent = tangent_.tangent();
-    frame_.inertial_forces(r_, current_, f);
-  }
-  double time() const override { return r_.t; }
-  // The reduced variables themselves: reduce(reconstruct(r)) is r only up to rounding.
-  std::vector<double> checkpoint() const override {
-    std::vector<double> out;
-    pack(r_, out);
-    return out;
-  }
-  std::size_t checkpoint_size() const override { return kReducedSize; }
-  void restore(const State& s, const std::vector<double>& data) override {
-    r_ = unpack(data);
-    evaluate(r_, current_);
-    tangent_.start(s, r_, frame_, evaluate_, work);
-  }
-
- private:
   void evaluate(const Reduced& r, ReducedForces& f) {
     frame_.evaluate(r, f);
     ++work.potential_evaluations;
@@ -97,6 +124,10 @@ class RelativeHamiltonian final : public DiscreteFlow {
   Reduced r_;
   ReducedForces current_, next_;
   RelativeTangent tangent_;
+  // Forces beyond the potential (none: the conservative map alone), and the step's start
+  // (restored on failure).
+  std::optional<RelativeKicks> forcing_;
+  RelativeStepStart start_of_step_;
 };
 
 }  // namespace

@@ -20,9 +20,20 @@
 //   γ2_k = m2 Δ_k/h + (h/2) R2_k ∂U_k/∂X.
 // The same map as the Hamiltonian forms' through that transform: it carries the same tangent map
 // (RelativeTangent, §21).
-#include "relative_frame.hpp"
+//
+// Forces beyond the potential, with rates (Γ̇, γ̇2, Π̇, Π̇2)^F of (33.11) at r_k (relative_kicks.hpp):
+// the closing kick of step k − 1 and the opening kick of step k push at r_k, so the forced
+// equations add h² times them beside the potential's, as the inertial form's (33.10) do:
+//   D_{k+1} = F2_kᵀ (D_k + (h²/m)(Γ̇^F_k − ∂U_k/∂X)),   Δ_{k+1} = Δ_k + (h²/m2)(R2_k ∂U_k/∂X + γ̇2^F_k),
+//   S(A_k + h² (M_k + Π̇^F_k)) = F_k JdR_k − …,          S(L2_k + h² (M2_k + Π̇2^F_k)) = F2_k Jd2 − …,
+// and the Legendre transform's momenta take the closing kick (Γ_k = m D_k/h − (h/2) ∂U_k/∂X +
+// (h/2) Γ̇^F_k, the others likewise), implicit when the forces depend on the momenta and solved as
+// (33.2). The map is the forced relative Hamiltonian form's through that transform.
+#include "relative_kicks.hpp"
 
 #include <noether/error.hpp>
+
+#include <optional>
 
 namespace lgvi {
 
@@ -40,6 +51,12 @@ class RelativeLagrangian final : public DiscreteFlow {
     ++work.potential_evaluations;
     h_ = 0;
     tangent_.start(s, r_, frame_, evaluate_, work);
+    if (forcing_) forcing_->start(s, r_);  // the forces at r_0, for the first step
+  }
+
+  bool add_forcing(std::shared_ptr<const noether::Forcing> forcing) override {
+    forcing_.emplace(frame_, std::move(forcing));
+    return true;
   }
 
   bool carry_parameters(std::shared_ptr<const noether::ParameterDerivatives> parameters) override {
@@ -67,29 +84,58 @@ class RelativeLagrangian final : public DiscreteFlow {
       p += 3;
     }
     tangent_.start(s, r_, frame_, evaluate_, work);
+    if (forcing_) forcing_->start(s, r_);
   }
 
+  // r_k → r_{k+1}; with forces, on failure the state stays at k.
   void advance(double h, double t_next) override {
+    if (!forcing_) return step(h, t_next);
+    start_of_step_.keep(r_, forces_, *forcing_, tangent_);
+    const double h_before = h_;
+    const Vec3 D = D_, A = A_, L2 = L2_, Delta = Delta_;
+    try {
+      step(h, t_next);
+    } catch (...) {
+      start_of_step_.restore(r_, forces_, *forcing_, tangent_);
+      h_ = h_before, D_ = D, A_ = A, L2_ = L2, Delta_ = Delta;
+      throw;
+    }
+  }
+
+  void current(State& s, Forces& f) const override {
+    relative_current(frame_, r_, forces_, tangent_, forcing_ ? &*forcing_ : nullptr, s, f);
+  }
+  double time() const override { return r_.t; }
+
+ private:
+  void step(double h, double t_next) {
     const ReducedForces& fk = forces_;
+    // The forces' rates (33.11) at r_k (zero without forces).
+    ReducedForcing kf{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+    if (forcing_) kf = forcing_->rates(r_);
     if (h_ == 0) {  // the discrete Legendre transform of the initial momenta
       h_ = h;
-      D_ = (h / frame_.m) * r_.Gamma + (0.5 * h * h / frame_.m) * fk.dU_dX;
-      A_ = h * r_.Pi - 0.5 * h * h * fk.M;
-      L2_ = h * r_.Pi2 - 0.5 * h * h * fk.M2;
-      Delta_ = (h / frame_.m2) * r_.gamma2 - (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX);
+      D_ = (h / frame_.m) * r_.Gamma + (0.5 * h * h / frame_.m) * (fk.dU_dX - kf.Gamma);
+      A_ = h * r_.Pi - 0.5 * h * h * (fk.M + kf.Pi);
+      L2_ = h * r_.Pi2 - 0.5 * h * h * (fk.M2 + kf.Pi2);
+      Delta_ = (h / frame_.m2) * r_.gamma2 - (0.5 * h * h / frame_.m2) * (r_.R2 * fk.dU_dX + kf.gamma2);
     }
     if (h != h_) throw noether::Error("lgvi: the Lagrangian form needs one fixed step");
-    const Vec3 g2 = L2_ + h * h * fk.M2;                                                  // (114)
+    if (forcing_) {
+      tangent_.open_kick(forcing_->inertial(), r_, frame_, h);  // (33.6), (33.9)
+      forcing_->open(r_, h);  // the opening kick's balance at r_k (33.1), (33.4); r_'s momenta: Π_k + (h/2) Π̇^F_k, …
+    }
+    const Vec3 g2 = L2_ + h * h * (fk.M2 + kf.Pi2);                                       // (114)
     const Mat3 J2_inverse = frame_.J2.inverse();
     const auto F2 = solve_attitude(g2, frame_.J2, J2_inverse, settings_, frame_.name2, r_.t, h, g2 / h, work);
     const Mat3 JR = r_.R * frame_.J1 * r_.R.transpose();
     const Mat3 JR_inverse = JR.inverse();
-    const Vec3 g = A_ + h * h * fk.M;                                                     // (113)
+    const Vec3 g = A_ + h * h * (fk.M + kf.Pi);                                           // (113)
     const auto F = solve_attitude(g, JR, JR_inverse, settings_, frame_.name1, r_.t, h, g / h, work);
-    tangent_.before(r_, fk, F.F, F2.F, h);  // Π_k = A_k/h + (h/2) M_k, so g = h (Π_k + (h/2) M_k)
+    tangent_.before(r_, fk, F.F, F2.F, h);  // Π_k (kicked) + (h/2) M_k = g/h
     const Mat3 F2t = F2.F.transpose();
-    const Vec3 D = F2t * (D_ - (h * h / frame_.m) * fk.dU_dX);                            // (112)
-    const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX);                  // (117)
+    const Vec3 D = F2t * (D_ + (h * h / frame_.m) * (kf.Gamma - fk.dU_dX));              // (112)
+    const Vec3 Delta = Delta_ + (h * h / frame_.m2) * (r_.R2 * fk.dU_dX + kf.gamma2);     // (117)
     Reduced next = r_;
     next.t = t_next;
     next.X = F2t * r_.X + D;
@@ -114,17 +160,13 @@ class RelativeLagrangian final : public DiscreteFlow {
     A_ = A;
     L2_ = L2;
     Delta_ = Delta;
+    if (forcing_) {
+      forcing_->close(r_, h);  // the closing kick at r_{k+1} (33.2), (33.11)
+      tangent_.close_kick(forcing_->inertial(), r_, frame_, h);  // (33.7), (33.9)
+    }
     ++work.steps;
   }
 
-  void current(State& s, Forces& f) const override {
-    frame_.reconstruct(r_, s);
-    s.tangent = tangent_.tangent();
-    frame_.inertial_forces(r_, forces_, f);
-  }
-  double time() const override { return r_.t; }
-
- private:
   RelativeFrame frame_;
   noether::PotentialEvaluator& evaluate_;
   Settings settings_;
@@ -133,6 +175,10 @@ class RelativeLagrangian final : public DiscreteFlow {
   ReducedForces forces_;
   Vec3 D_, A_, L2_, Delta_;
   RelativeTangent tangent_;
+  // Forces beyond the potential (none: the conservative map), and the step's start (restored on
+  // failure).
+  std::optional<RelativeKicks> forcing_;
+  RelativeStepStart start_of_step_;
 };
 
 }  // namespace

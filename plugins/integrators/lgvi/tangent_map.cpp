@@ -116,7 +116,7 @@ void TangentCarrier::advance(const noether::System& system, double h, const std:
 }
 
 void TangentCarrier::forcing_parameters_at(const noether::State& s) {
-  if (carries_parameters(s) && parameter_forces_->has_forcing()) G_forcing_ = parameter_forces_->forcing(s);
+  if (parameter_forces_ && parameter_forces_->has_forcing()) G_forcing_ = parameter_forces_->forcing(s);
 }
 
 void TangentCarrier::add_forcing_parameters(double tau, Eigen::MatrixXd& V) const {

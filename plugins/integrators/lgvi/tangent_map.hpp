@@ -51,7 +51,8 @@ class TangentCarrier {
   void advance(const noether::System& system, double h, const std::vector<noether::Mat3>& F, const Eigen::Matrix3Xd& w,
                const Eigen::Matrix3Xd& displacement, Eigen::MatrixXd& V);
   // The forced kicks' own dependence on the parameters (docs/equations.md 33.9): G^F =
-  // ∂(f^F, M^F)/∂p at `s`, kept (nothing when the parameters carry no forces); then, at a kick
+  // ∂(f^F, M^F)/∂p at `s` (whose tangent is not read), kept (nothing when the parameters carry
+  // no forces); then, at a kick
   // of duration τ, V's parameter columns' momentum rows += τ G^F.
   void forcing_parameters_at(const noether::State& s);
   void add_forcing_parameters(double tau, Eigen::MatrixXd& V) const;
