@@ -262,7 +262,8 @@ TEST(Radiation, YorpIsTheRotationAveragedTorque) {
 // The plugin's own torque, averaged over N Sun azimuths 2πk/N in the equatorial plane: for Alpha it
 // tends to the closed form (36.3) (N = 64: 5e-4, 256: 8e-5, 1024: 2e-6, 4096: 5e-7, 16384: 9e-8);
 // for bodies with a mirror plane through the spin axis — the tessellated ellipsoid, a regular octahedron and one stretched along
-// its axes — the azimuths pair up by the mirror and the average is zero to round-off, at any N.
+// its axes, and a concave L of cubes with its shadows on itself — the azimuths pair up by the mirror
+// and the average is zero to round-off, at any N. Alpha's own shadows move its averaged torque.
 TEST(Radiation, SymmetricBodiesHaveNoAveragedSpinTorque) {
   const Optics o{0.2, 0.3, true};
   auto averaged = [&](const std::string& shape, int N, double* size, const std::string& extra = "") {
@@ -294,6 +295,11 @@ TEST(Radiation, SymmetricBodiesHaveNoAveragedSpinTorque) {
   const double error = averaged(alpha, azimuths, nullptr) / closed - 1;
   std::printf("Alpha: the plugin's torque averaged over %d azimuths off the closed form by %.1e\n", azimuths, error);
   EXPECT_LT(std::abs(error), within);
+  // Alpha's shadows on itself: its YORP torque at 256 azimuths (measured, for docs/forces.md).
+  const double shadowed = averaged(alpha, 256, nullptr, ", self_shadowing: true") / averaged(alpha, 256, nullptr);
+  std::printf("Alpha with its own shadows: the averaged spin torque is %.4f of the shadowless one (256 azimuths)\n",
+              shadowed);
+  EXPECT_GT(std::abs(shadowed - 1), 1e-4);  // they move it (Alpha is not convex)
 
   auto octahedron = [](const Vec3& axes) {
     Mesh m;
@@ -306,11 +312,18 @@ TEST(Radiation, SymmetricBodiesHaveNoAveragedSpinTorque) {
       {"ellipsoid", "{ellipsoid: {semi_axes: [3, 2, 1.5]}}"},
       {"regular octahedron", "{polyhedron: {file: " + obj_file(octahedron(Vec3(1, 1, 1)), "radiation-octahedron") + ", units: m}}"},
       {"stretched octahedron",
-       "{polyhedron: {file: " + obj_file(octahedron(Vec3(3, 2, 1)), "radiation-octahedron-3-2-1") + ", units: m}}"}};
+       "{polyhedron: {file: " + obj_file(octahedron(Vec3(3, 2, 1)), "radiation-octahedron-3-2-1") + ", units: m}}"},
+      // Concave, with a mirror plane (y = ½) through its spin axis: its shadows on itself pair up too.
+      {"L of cubes, shadowed",
+       "{polyhedron: {file: " + obj_file(test::voxel_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}}, 4), "radiation-L") +
+           ", units: m}}"}};
   for (const auto& [name, shape] : shapes)
     for (const int N : {7, 64}) {
       double size = 0.0;
-      const double Mz = averaged(shape, N, &size, name == "ellipsoid" ? ", tessellation: 3" : "");
+      const double Mz = averaged(shape, N, &size,
+                                 name == "ellipsoid" ? ", tessellation: 3"
+                                 : name == "L of cubes, shadowed" ? ", self_shadowing: true"
+                                                                  : "");
       std::printf("%s, %d azimuths: ⟨M_z⟩ = %.1e ⟨|F|⟩ R\n", name.c_str(), N, std::abs(Mz) / size);
       EXPECT_LT(std::abs(Mz), 1e-14 * size) << name;
     }
@@ -413,4 +426,116 @@ TEST(Radiation, ByorpMovesTheOrbitAsItsAngularMomentumSays) {
   std::printf("an ellipsoid's: dr/dt = %.4e m/s (run) = %.2e of Beta's; (36.4) %.1e\n", ellipsoid.measured,
               ellipsoid.measured / beta.measured, ellipsoid.predicted);
   EXPECT_LT(std::abs(ellipsoid.measured), 0.01 * std::abs(beta.measured));
+}
+
+namespace {
+
+// The overlap of two disks of radii R and r whose centres are d apart (R − r < d < R + r).
+double lens_area(double R, double r, double d) {
+  return r * r * std::acos((d * d + r * r - R * R) / (2 * d * r)) + R * R * std::acos((d * d + R * R - r * r) / (2 * d * R)) -
+         0.5 * std::sqrt((-d + r + R) * (d + r - R) * (d - r + R) * (d + r + R));
+}
+
+// A unit sphere (tessellated at `level`) at the origin lit from +x (pressure 1; the light absorbed
+// and not re-emitted, so the force is −P u Σ A μ over the lit facets: −u times the lit part of
+// its silhouette), and another body `occluder` (a YAML mapping's body entries after the name).
+Scene eclipse_scene(int level, const std::string& occluder, const std::string& extra = "") {
+  std::ostringstream yaml;
+  yaml << "G: 1\nbodies:\n  - {name: rock, mass: 1, shape: {ellipsoid: {semi_axes: [1, 1, 1]}}, position: [0, 0, 0], "
+          "velocity: [0, 0, 0]}\n";
+  if (!occluder.empty()) yaml << "  - {name: moon, " << occluder << "}\n";
+  yaml << "potential: {plugin: point-mass}\n"
+       << "forces: [{plugin: radiation, body: rock, pressure: 1, distance: 1000, thermal: false, tessellation: " << level
+       << ", position: [1000, 0, 0], velocity: [0, 0, 0], mu: 1, center: origin" << extra << "}]\n"
+       << "integrator: {plugin: lgvi, step: 0.01}\nrun: {t_end: 1, output_every: 1}\n";
+  return parse_scene(yaml.str(), "eclipse");
+}
+
+}  // namespace
+
+// Another body's shadow (eclipses, docs/equations.md (36.5)): a unit sphere behind a sphere of
+// radius 0.6 whose disk covers part of its own, 0.9 off the line of the light. The sphere takes
+// the light its silhouette's uncovered part intercepts, π − lens(1, 0.6, 0.9): converging with its
+// facets (lit or shaded whole, by their centroids). The occluder as a point mass with that radius,
+// as an ellipsoid of equal axes and as a tessellated polyhedron (its facets seen along the light
+// through the occlusion map of noether/occlusion_map.hpp) casts that shadow; in front of a larger sphere the body
+// takes no light at all, and behind the lit body, or with `eclipses: false`, it changes nothing.
+TEST(Radiation, EclipsesTakeTheLightTheOccludersDiskCovers) {
+  const std::string where = "position: [3, 0.9, 0], velocity: [0, 0, 0]";
+  const double exact = (M_PI - lens_area(1.0, 0.6, 0.9)) / M_PI;  // the lit fraction of the silhouette
+  double previous = 1.0;
+  for (const int level : {3, 4, 5, 6}) {
+    const double free = -FirstForce(eclipse_scene(level, ""))(eclipse_scene(level, "").initial).first.x();
+    const Scene scene = eclipse_scene(level, "mass: 1, radius: 0.6, " + where);
+    const double lit = -FirstForce(scene)(scene.initial).first.x();
+    const double error = std::abs(lit / free - exact);
+    std::printf("level %d (%d facets): lit fraction %.6f, exact %.6f, error %.2e\n", level, 20 << (2 * level), lit / free,
+                exact, error);
+    EXPECT_LT(error, previous) << level;
+    previous = error;
+  }
+  EXPECT_LT(previous, 2e-3);
+  // The same shadow from each kind of occluder, at level 5.
+  const Scene sphere = eclipse_scene(5, "mass: 1, radius: 0.6, " + where);
+  const Scene ellipsoid = eclipse_scene(5, "mass: 1, shape: {ellipsoid: {semi_axes: [0.6, 0.6, 0.6]}}, " + where);
+  const std::string mesh = obj_file(test::ellipsoid_mesh(Vec3(0.6, 0.6, 0.6), 4), "occluder-sphere");
+  const Scene polyhedron = eclipse_scene(5, "mass: 1, shape: {polyhedron: {file: " + mesh + ", units: m}}, " + where);
+  const auto [f_sphere, M_sphere] = FirstForce(sphere)(sphere.initial);
+  const auto [f_ellipsoid, M_ellipsoid] = FirstForce(ellipsoid)(ellipsoid.initial);
+  const auto [f_polyhedron, M_polyhedron] = FirstForce(polyhedron)(polyhedron.initial);
+  std::printf("occluders: sphere %.9f, ellipsoid %.9f, polyhedron %.9f\n", f_sphere.x(), f_ellipsoid.x(), f_polyhedron.x());
+  EXPECT_LT((f_ellipsoid - f_sphere).norm(), 1e-12 * f_sphere.norm());
+  EXPECT_LT((f_polyhedron - f_sphere).norm(), 5e-3 * f_sphere.norm());  // the inscribed mesh is a little smaller
+  EXPECT_GT(M_sphere.norm(), 1e-3);  // a shadow off the axis twists the sphere
+  // Full shade, a body behind, eclipses off.
+  const Scene umbra = eclipse_scene(5, "mass: 1, radius: 2, position: [3, 0, 0], velocity: [0, 0, 0]");
+  const auto [f_umbra, M_umbra] = FirstForce(umbra)(umbra.initial);
+  EXPECT_EQ(f_umbra, Vec3::Zero());
+  EXPECT_EQ(M_umbra, Vec3::Zero());
+  const auto alone = FirstForce(eclipse_scene(5, ""))(eclipse_scene(5, "").initial);
+  const Scene behind = eclipse_scene(5, "mass: 1, radius: 2, position: [-3, 0, 0], velocity: [0, 0, 0]");
+  const Scene off = eclipse_scene(5, "mass: 1, radius: 2, position: [3, 0, 0], velocity: [0, 0, 0]", ", eclipses: false");
+  EXPECT_EQ(FirstForce(behind)(behind.initial), alone);
+  EXPECT_EQ(FirstForce(off)(off.initial), alone);
+}
+
+// The body's shadow on itself (`self_shadowing`, (36.5)): an L of four unit cubes — a step of
+// three and a tower on its left — lit from the upper left, u = (−1, 0, 2)/√5, so that the tower
+// shades the step's top from x = 1 to 1.5, a line its facets' edges fall on. Absorbed light (no
+// re-emission) pushes with −P u Σ A μ and twists with −P (Σ A μ c) × u over the lit facets: with
+// the shadow, Σ A μ is the silhouette's area, (2·1 + 1·2 + 1.5·2)/√5 = 7/√5 — the light the body
+// intercepts — and without it the shaded part of the step counts too, 8/√5. Both to round-off,
+// with the torque from the lit faces' centroids. A convex body has no shadows of its own: the same
+// bits either way.
+TEST(Radiation, SelfShadowingTakesTheLightTheSilhouetteIntercepts) {
+  const Mesh L = test::voxel_mesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}}, 8);
+  const std::string shape = "{polyhedron: {file: " + obj_file(L, "step") + ", units: m}}";
+  const Optics absorbed{0.0, 0.0, false};
+  // The body frame is the mesh's about its centre of mass, turned to its principal axes:
+  // x_file = offset + rotation x_body.
+  const Scene placed = lit_body(shape, absorbed, Vec3(1000, 0, 0));
+  const Solid& solid = *placed.system.body(0).solid;
+  const Vec3 u_file = Vec3(-1, 0, 2) / std::sqrt(5.0), u = solid.rotation.transpose() * u_file;
+  const double s5 = std::sqrt(5.0);
+  // Σ A μ c over the lit faces in the file's frame: the left face (area 2 at (0, ½, 1), μ = 1/√5),
+  // the tower's top (1 at (½, ½, 2), μ = 2/√5) and the step's top, its lit part x ∈ [1.5, 3] or all of it.
+  const Vec3 left = 2 / s5 * Vec3(0, 0.5, 1), tower = 2 / s5 * Vec3(0.5, 0.5, 2);
+  for (const bool shadows : {true, false}) {
+    const Scene scene = lit_body(shape, absorbed, 1000 * u, shadows ? ", self_shadowing: true" : "");
+    const auto [f, M] = FirstForce(scene)(scene.initial);
+    const Vec3 step = shadows ? Vec3(2 / s5 * 1.5 * Vec3(2.25, 0.5, 1)) : Vec3(2 / s5 * 2 * Vec3(2, 0.5, 1));
+    const double area = shadows ? 7 / s5 : 8 / s5;
+    const Vec3 moment = solid.rotation.transpose() * (left + tower + step - area * solid.offset);
+    const Vec3 f_exact = -area * u, M_exact = -moment.cross(u);
+    std::printf("self_shadowing %s: |f| %.15f (exact %.15f), torque off by %.1e\n", shadows ? "on " : "off", f.norm(),
+                f_exact.norm(), (M - M_exact).norm() / M_exact.norm());
+    EXPECT_LT((f - f_exact).norm(), 1e-13 * area) << shadows;
+    EXPECT_LT((M - M_exact).norm(), 1e-13 * M_exact.norm()) << shadows;
+  }
+  // Convex: the sphere of the closed-form test, lit obliquely.
+  const Vec3 sun = 1000 * Vec3(0.3, -0.5, 0.8).normalized();
+  const std::string sphere = "{ellipsoid: {semi_axes: [1, 0.8, 0.6]}}";
+  const Scene plain = lit_body(sphere, Optics{0.1, 0.2, true}, sun);
+  const Scene shaded = lit_body(sphere, Optics{0.1, 0.2, true}, sun, ", self_shadowing: true");
+  EXPECT_EQ(FirstForce(plain)(plain.initial), FirstForce(shaded)(shaded.initial));
 }

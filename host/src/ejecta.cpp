@@ -3,7 +3,7 @@
 #include <noether/error.hpp>
 #include <noether/solid.hpp>
 
-#include "orthonormal_basis.hpp"
+#include <noether/orthonormal_basis.hpp>
 #include "portable_random.hpp"
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // The disk-integrated brightness of docs/equations.md §29.
-#include "occlusion_map.hpp"
+#include <noether/occlusion_map.hpp>
 
 #include <noether/error.hpp>
 #include <noether/lightcurve.hpp>

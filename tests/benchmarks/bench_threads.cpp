@@ -117,10 +117,12 @@ void BM_SphereClusterPairs(benchmark::State& st) {
 BENCHMARK(BM_SphereClusterPairs)->ArgsProduct({{8, 32, 128}, {1, 2}})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 // Radiation on KW4 Alpha's radar shape (9168 facets; examples/kw4-yorp.yaml): one evaluation of
-// the force and torque, on 1 and 2 threads (blocks of 64 facets). Args: threads.
+// the force and torque, on 1 and 2 threads (blocks of 64 facets), without and with its shadows on
+// itself (a ray from each lit facet through the hierarchy of its facets). Args: threads, shadows.
 void BM_RadiationKw4Alpha(benchmark::State& st) {
   const int threads = static_cast<int>(st.range(0));
-  const Scene scene = load_scene(test::source_path("examples/kw4-yorp.yaml"));
+  const Scene scene = load_scene(test::source_path("examples/kw4-yorp.yaml"),
+                                 {st.range(1) ? "forces.0.self_shadowing=true" : "forces.0.self_shadowing=false"});
   auto registry = test::bundled_plugins();
   const auto force = registry.make_force("radiation", scene.system, scene.forces[0].params);
   auto workspace = force->make_workspace();
@@ -137,6 +139,6 @@ void BM_RadiationKw4Alpha(benchmark::State& st) {
   st.counters["ns_per_facet"] = benchmark::Counter(static_cast<double>(st.iterations()) * 9168.0,
                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
-BENCHMARK(BM_RadiationKw4Alpha)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(BM_RadiationKw4Alpha)->ArgsProduct({{1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 }  // namespace

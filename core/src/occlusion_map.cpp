@@ -1,6 +1,6 @@
 // The occlusion map of docs/equations.md eq. 29.3.
-#include "occlusion_map.hpp"
-#include "orthonormal_basis.hpp"
+#include <noether/occlusion_map.hpp>
+#include <noether/orthonormal_basis.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -4,14 +4,19 @@
 // plane ⟂ ŵ is a single point: the ray from p meets a facet exactly when p's projection lies in
 // the facet's projected triangle and the facet lies further along ŵ than p there. The projected
 // facets are binned in a uniform grid over the plane, so a query tests only the facets of one
-// cell.
+// cell. Built per direction: a lightcurve's Sun and observer (eq. 29.3), radiation's Sun at each
+// evaluation (its shadows, eq. 36.5).
 #include <noether/lie.hpp>
 #include <noether/mesh.hpp>
 
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <limits>
 #include <vector>
+
+// Everything declared below is part of noether-core's exported interface (plugin.hpp).
+#pragma GCC visibility push(default)
 
 namespace noether {
 
@@ -21,8 +26,9 @@ class OcclusionMap {
   OcclusionMap(const std::vector<Mesh>& surfaces, const Vec3& towards);
 
   // Whether the ray p + t ŵ, t > 0, meets a facet other than facet `own` (its global index:
-  // the surfaces' faces counted in order).
-  bool blocked(const Vec3& p, std::size_t own) const;
+  // the surfaces' faces counted in order; kNone for a point on no facet).
+  bool blocked(const Vec3& p, std::size_t own = kNone) const;
+  static constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
 
  private:
   Vec3 w_, e1_, e2_;
@@ -38,3 +44,5 @@ class OcclusionMap {
 };
 
 }  // namespace noether
+
+#pragma GCC visibility pop
