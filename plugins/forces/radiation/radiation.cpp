@@ -31,6 +31,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -212,15 +213,19 @@ class Radiation final : public noether::ForceModel {
     // c × f = −P [(1 − ρs) (Σ A μ c) × u + Σ A μ (2 ρs μ + β) (c × n)], β = (2/3)(ρd + α): each
     // block of kBlock facets summed on some thread (`noether run --threads`), the blocks added in
     // order, so the result is the same bit for bit for any number of threads.
-    noether::parallel_for_each(w.blocks.size(), noether::evaluation_threads(), [&](std::size_t b, int) {
+    // The block's loop is made twice, with and without the shadows' tests, so that a body in full
+    // light (no occluder near, no self-shadowing) pays nothing for them.
+    auto sum_block = [&](auto shadows, std::size_t b) {
       Sums sums;  // in registers: the facets cannot alias it
       const std::size_t end = std::min(facets_.size(), (b + 1) * kBlock);
       for (std::size_t i = b * kBlock; i < end; ++i) {
         const Facet& k = facets_[i];
         const double mu = k.normal.dot(u);
         if (mu <= 0.0) continue;  // in its own shade
-        if (self && self->blocked(k.centroid, static_cast<std::size_t>(k.face))) continue;  // its own shadow (36.5)
-        if (in_eclipse(k.centroid, w.placed)) continue;  // another body's (36.5)
+        if constexpr (decltype(shadows)::value) {
+          if (self && self->blocked(k.centroid, static_cast<std::size_t>(k.face))) continue;  // its own shadow (36.5)
+          if (in_eclipse(k.centroid, w.placed)) continue;  // another body's (36.5)
+        }
         const double a_mu = k.area * mu, wt = a_mu * (2.0 * specular_ * mu + lambertian_);
         sums.lit_area += a_mu;
         sums.lit_centroid += a_mu * k.centroid;
@@ -228,6 +233,13 @@ class Radiation final : public noether::ForceModel {
         sums.moment_push += wt * k.moment;
       }
       w.blocks[b] = sums;
+    };
+    const bool shadows = self || !w.placed.empty();
+    noether::parallel_for_each(w.blocks.size(), noether::evaluation_threads(), [&](std::size_t b, int) {
+      if (shadows)
+        sum_block(std::true_type{}, b);
+      else
+        sum_block(std::false_type{}, b);
     });
     Sums total;
     for (const Sums& b : w.blocks) total += b;
