@@ -126,11 +126,12 @@ int orbit_verify(const OrbitOptions& options);
 int orbit_stability(const OrbitOptions& options);
 int orbit_refine(const OrbitOptions& options);
 int orbit_equilibrium(const OrbitOptions& options);
-// orbit stability on a scene with rigid bodies: a relative periodic orbit of its integrator's map.
-int orbit_rigid_stability(const OrbitOptions& options);
+// orbit stability on a scene with rigid bodies (the scene orbit_stability read): a relative
+// periodic orbit of its integrator's map.
+int orbit_rigid_stability(const OrbitOptions& options, noether::Scene scene);
 // orbit verify / refine on a scene with rigid bodies: closure up to a turn about k̂; shooting.
-int orbit_rigid_verify(const OrbitOptions& options);
-int orbit_rigid_refine(const OrbitOptions& options);
+int orbit_rigid_verify(const OrbitOptions& options, noether::Scene scene);
+int orbit_rigid_refine(const OrbitOptions& options, noether::Scene scene);
 
 int check_potential(const std::string& scene_file, const std::vector<std::string>& overrides,
                     const noether::PotentialCheckOptions& options);

@@ -18,6 +18,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace noether::app {
 
@@ -355,16 +356,16 @@ struct RigidOrbitProblem {
   noether::PluginRegistry registry;
   noether::FullBodyModel model;
   double period;
-  explicit RigidOrbitProblem(const OrbitOptions& o)
-      : scene(noether::load_scene(o.scene, o.overrides)),
+  RigidOrbitProblem(const OrbitOptions& o, noether::Scene loaded)
+      : scene(std::move(loaded)),
         model(noether::FullBodyModel::from_scene(scene, registry)),
         period(o.period > 0 ? o.period : scene.run.t_end) {}
 };
 
 }  // namespace
 
-int orbit_rigid_verify(const OrbitOptions& o) {
-  const RigidOrbitProblem problem(o);
+int orbit_rigid_verify(const OrbitOptions& o, noether::Scene scene_loaded) {
+  const RigidOrbitProblem problem(o, std::move(scene_loaded));
   const auto& [scene, registry, model, T] = problem;
   const auto c = noether::relative_closure(model, scene.integrator, scene.initial, T);
   const double E0 = model.energy(scene.initial), E1 = model.energy(c.end);
@@ -380,8 +381,8 @@ int orbit_rigid_verify(const OrbitOptions& o) {
   return 1;
 }
 
-int orbit_rigid_refine(const OrbitOptions& o) {
-  const RigidOrbitProblem problem(o);
+int orbit_rigid_refine(const OrbitOptions& o, noether::Scene scene_loaded) {
+  const RigidOrbitProblem problem(o, std::move(scene_loaded));
   const auto& [scene, registry, model, T] = problem;
   const double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;
   const auto orbit = noether::shoot_relative_periodic_orbit(model, scene.integrator, scene.initial, T, alpha);
@@ -404,8 +405,8 @@ int orbit_rigid_refine(const OrbitOptions& o) {
   return 0;
 }
 
-int orbit_rigid_stability(const OrbitOptions& o) {
-  const RigidOrbitProblem problem(o);
+int orbit_rigid_stability(const OrbitOptions& o, noether::Scene scene_loaded) {
+  const RigidOrbitProblem problem(o, std::move(scene_loaded));
   const auto& [scene, registry, model, T] = problem;
   // α0: the turn of the first two bodies' line of centres about k̂ over one period.
   double alpha = noether::relative_closure(model, scene.integrator, scene.initial, T).angle;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <numbers>
 #include <sstream>
+#include <utility>
 
 namespace noether::app {
 
@@ -24,8 +25,7 @@ namespace noether::app {
 namespace {
 
 // The scene's bodies and potential; ξ from its initial state; T from --period or run.t_end.
-noether::OrbitModel orbit_model(const OrbitOptions& o, Eigen::VectorXd& xi, double& T) {
-  const noether::Scene scene = noether::load_scene(o.scene, o.overrides);
+noether::OrbitModel orbit_model(const OrbitOptions& o, const noether::Scene& scene, Eigen::VectorXd& xi, double& T) {
   noether::PluginRegistry registry;
   auto model = noether::OrbitModel::from_scene(scene, registry);
   xi = model.phase_point(scene.initial);
@@ -48,10 +48,11 @@ void print_multipliers(const std::vector<std::complex<double>>& list) {
 }  // namespace
 
 int orbit_verify(const OrbitOptions& o) {
-  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_verify(o);
+  noether::Scene scene = noether::load_scene(o.scene, o.overrides);  // read once: a polyhedron's set-up is costly
+  if (scene.system.rigid_count() > 0) return orbit_rigid_verify(o, std::move(scene));
   Eigen::VectorXd xi;
   double T;
-  const auto model = orbit_model(o, xi, T);
+  const auto model = orbit_model(o, scene, xi, T);
   const auto f = noether::integrate_flow(model, xi, T, false, flow_options(o));
   const double closure = (f.end - xi).norm();
   std::printf("period %.15g, integrator rk rkf78 rtol %.1e on the scene's potential, %zu steps\n"
@@ -65,10 +66,11 @@ int orbit_verify(const OrbitOptions& o) {
 }
 
 int orbit_stability(const OrbitOptions& o) {
-  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_stability(o);
+  noether::Scene scene = noether::load_scene(o.scene, o.overrides);  // read once: a polyhedron's set-up is costly
+  if (scene.system.rigid_count() > 0) return orbit_rigid_stability(o, std::move(scene));
   Eigen::VectorXd xi;
   double T;
-  const auto model = orbit_model(o, xi, T);
+  const auto model = orbit_model(o, scene, xi, T);
   const auto f = noether::integrate_flow(model, xi, T, true, flow_options(o));
   const auto s = noether::stability(model, xi, f.monodromy, o.tolerance);
   std::printf("period %.15g, closure %.3e, variational equations by rkf78 rtol %.1e (%zu steps)\n", T,
@@ -96,10 +98,11 @@ int orbit_stability(const OrbitOptions& o) {
 }
 
 int orbit_refine(const OrbitOptions& o) {
-  if (noether::load_scene(o.scene, o.overrides).system.rigid_count() > 0) return orbit_rigid_refine(o);
+  noether::Scene scene = noether::load_scene(o.scene, o.overrides);  // read once: a polyhedron's set-up is costly
+  if (scene.system.rigid_count() > 0) return orbit_rigid_refine(o, std::move(scene));
   Eigen::VectorXd xi;
   double T;
-  const auto model = orbit_model(o, xi, T);
+  const auto model = orbit_model(o, scene, xi, T);
   const double before = (noether::integrate_flow(model, xi, T, false, flow_options(o)).end - xi).norm();
   const auto r = noether::refine_periodic_orbit(model, xi, T, 1e-12, 12, flow_options(o));
   // Measured as `orbit verify` measures it: the flow alone (the refinement's own closure comes

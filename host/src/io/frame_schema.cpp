@@ -196,7 +196,7 @@ using E = Extent;
 using D = Dimension;
 constexpr Element kH5md = Element::kH5md, kPlain = Element::kPlain;
 
-// The table. The checksum columns 0–8 are the file format of /checkpoint/checksum: a new
+// The table. The checksum columns 0–10 are the file format of /checkpoint/checksum: a new
 // checkpointed series takes the next free column.
 const FrameQuantity kFrameSchema[] = {
     {"step", "/particles/bodies/position/step", E::kStepCount, D::kOne, kH5md,

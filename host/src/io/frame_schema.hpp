@@ -3,8 +3,9 @@
 // path, its shape, its unit, what it is and how it is computed — as one table (kFrameSchema,
 // frame_schema.cpp). It drives everything that touches frames: the writer creates the series
 // and fills each frame from it (output_layout.cpp, output.cpp), a continued run reads its
-// checkpointed rows back (run_record.cpp), `noether schema` prints it, and the Python reader's
-// series list is tested against it (tests/python). Adding an output quantity is one row here
+// checkpointed rows back (run_record.cpp), the Python module hands it out
+// (`noether.output_series()`), and the files' series, the Python reader's list and
+// docs/user-guide.md's layout are tested against it (tests/python/test_output.py). Adding an output quantity is one row here
 // plus the function that computes it (docs/architecture.md, "Where to add").
 #include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
