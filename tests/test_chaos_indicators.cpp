@@ -4,7 +4,7 @@
 // stable libration), ⟨Y⟩ ≈ λ t / 2 on a chaotic one (a tumbling moon).
 #include "test_support.hpp"
 
-#include "../host/src/chaos_indicators.hpp"
+#include "run/chaos_indicators.hpp"
 
 #include <noether/output.hpp>
 #include <noether/simulation.hpp>

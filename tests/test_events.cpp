@@ -6,7 +6,7 @@
 #include <noether/lie.hpp>
 #include <noether/simulation.hpp>
 
-#include "../host/src/event_watch.hpp"
+#include "run/event_watch.hpp"
 
 #include <gtest/gtest.h>
 

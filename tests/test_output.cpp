@@ -8,9 +8,9 @@
 #include <noether/euler_angles.hpp>
 #include <noether/lie.hpp>
 
-#include "../host/src/io/checksum.hpp"
-#include "../host/src/io/safe_publish.hpp"
-#include "../host/src/io/superblock.hpp"
+#include "io/checksum.hpp"
+#include "io/safe_publish.hpp"
+#include "io/superblock.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>

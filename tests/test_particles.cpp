@@ -6,7 +6,7 @@
 #include <noether/simulation.hpp>
 #include <noether/surface_distance.hpp>
 
-#include "../host/src/io/checksum.hpp"
+#include "io/checksum.hpp"
 #include "test_support.hpp"
 
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>

@@ -235,7 +235,7 @@ class Simulation {
   // the summary. Calling integrate() afterwards is an error.
   RunSummary finish();
 
-  struct Impl;  // what a run held open consists of (internal: host/src/simulation_impl.hpp)
+  struct Impl;  // what a run held open consists of (internal: host/src/run/simulation_impl.hpp)
 
  private:
   std::unique_ptr<Impl> impl_;

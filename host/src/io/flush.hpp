@@ -2,9 +2,9 @@
 // Flushing and closing a file that a kill may interrupt: the file is first made longer than
 // HDF5's end of allocation, so that a kill anywhere in a flush leaves a file HDF5 opens; after
 // the close the extension is cut off again (docs/reliability.md, "Kills").
-#include "../h5_helpers.hpp"
-#include "file_access.hpp"
-#include "superblock.hpp"
+#include "io/h5_helpers.hpp"
+#include "io/file_access.hpp"
+#include "io/superblock.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -1,7 +1,7 @@
 // The frame schema (frame_schema.hpp): one row per series of an output file, with the function
 // that computes one frame of it and, for the series a continued run reads back, the function
 // that puts it back. docs/user-guide.md, "Output", lists the same series for users.
-#include "frame_schema.hpp"
+#include "io/frame_schema.hpp"
 
 #include <noether/output_schema.hpp>
 
@@ -9,8 +9,8 @@
 #include <noether/lie.hpp>
 #include <noether/orbital_elements.hpp>
 
-#include "../binary_pair.hpp"
-#include "../spin_state_tracker.hpp"
+#include "run/binary_pair.hpp"
+#include "run/spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <limits>

@@ -1,4 +1,4 @@
-#include "read_probe.hpp"
+#include "io/read_probe.hpp"
 
 #include <noether/error.hpp>
 

@@ -1,8 +1,8 @@
-#include "run_record.hpp"
+#include "io/run_record.hpp"
 
-#include "../h5_helpers.hpp"
-#include "checksum.hpp"
-#include "file_access.hpp"
+#include "io/h5_helpers.hpp"
+#include "io/checksum.hpp"
+#include "io/file_access.hpp"
 
 #include <noether/error.hpp>
 

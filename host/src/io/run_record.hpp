@@ -3,8 +3,8 @@
 // gives the scene the run was made from and reads its complete frames back in blocks of
 // bounded size, each frame checked against /checkpoint/checksum before it is handed on
 // (docs/reliability.md, "Checksums"); memory does not grow with the number of frames.
-#include "frame_schema.hpp"
-#include "h5_handle.hpp"
+#include "io/frame_schema.hpp"
+#include "io/h5_handle.hpp"
 
 #include <noether/integrator.hpp>
 #include <noether/particles.hpp>

@@ -1,4 +1,4 @@
-#include "safe_publish.hpp"
+#include "io/safe_publish.hpp"
 
 #include <noether/error.hpp>
 

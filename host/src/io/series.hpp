@@ -1,7 +1,7 @@
 #pragma once
 // Series: one [frame][shape...] series of an output file, written in blocks (internal to
 // libnoether).
-#include "../h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 
 #include <hdf5.h>
 

@@ -1,7 +1,7 @@
 // The spin state of each rigid body over a run: docs/equations.md eqs. 17.10–17.12.
-#include "spin_state_tracker.hpp"
+#include "run/spin_state_tracker.hpp"
 
-#include "binary_pair.hpp"
+#include "run/binary_pair.hpp"
 
 #include <noether/euler_angles.hpp>
 

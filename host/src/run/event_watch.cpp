@@ -1,5 +1,5 @@
 // The event functions of the stepping loop (event_watch.hpp; docs/equations.md §16).
-#include "event_watch.hpp"
+#include "run/event_watch.hpp"
 
 #include <noether/surface_distance.hpp>
 

@@ -1,6 +1,6 @@
 // MEGNO (Cincotta & Simó 2000) and the fast Lyapunov indicator (Froeschlé, Lega & Gonczi 1997)
 // from one deviation vector of the tangent map: docs/equations.md §23.
-#include "chaos_indicators.hpp"
+#include "run/chaos_indicators.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <noether/solid.hpp>
 
 #include <noether/orthonormal_basis.hpp>
-#include "portable_random.hpp"
+#include "scene/portable_random.hpp"
 
 #include <cmath>
 #include <limits>

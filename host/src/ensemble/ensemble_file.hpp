@@ -5,7 +5,7 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/flush.hpp"

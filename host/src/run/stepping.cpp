@@ -3,8 +3,8 @@
 #include <noether/error.hpp>
 #include <noether/stepping.hpp>
 
-#include "event_watch.hpp"
-#include "regula_falsi.hpp"
+#include "run/event_watch.hpp"
+#include "run/regula_falsi.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,12 +5,12 @@
 #include <noether/output.hpp>
 #include <noether/particles.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/h5_handle.hpp"
 #include "io/safe_publish.hpp"
-#include "output_impl.hpp"
+#include "io/output_impl.hpp"
 
 #include <algorithm>
 #include <cmath>

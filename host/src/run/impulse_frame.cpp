@@ -1,4 +1,4 @@
-#include "impulse_frame.hpp"
+#include "run/impulse_frame.hpp"
 
 #include <noether/error.hpp>
 

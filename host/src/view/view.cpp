@@ -7,9 +7,9 @@
 #include <noether/view.hpp>
 
 #include "io/safe_publish.hpp"
-#include "json_text.hpp"
-#include "picture_frames.hpp"
-#include "view_assets.hpp"
+#include "io/json_text.hpp"
+#include "view/picture_frames.hpp"
+#include "view/view_assets.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -5,14 +5,14 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/read_probe.hpp"
 #include "io/run_record.hpp"
 #include "io/safe_publish.hpp"
-#include "event_watch.hpp"
-#include "simulation_impl.hpp"
+#include "run/event_watch.hpp"
+#include "run/simulation_impl.hpp"
 
 #include <spdlog/spdlog.h>
 

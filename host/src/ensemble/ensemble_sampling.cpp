@@ -5,7 +5,7 @@
 #include <noether/params.hpp>
 #include <noether/scene.hpp>
 
-#include "portable_random.hpp"
+#include "scene/portable_random.hpp"
 
 #include <Eigen/Cholesky>
 

@@ -1,7 +1,7 @@
 // Scene text → Params: YAML read with every node's "file:line", expansion limits against alias
 // bombs, --set overrides, and back to YAML (scene_as_run). parse_scene (scene.cpp) builds the
 // scene from the tree.
-#include "scene_yaml.hpp"
+#include "scene/scene_yaml.hpp"
 
 #include <noether/error.hpp>
 #include <noether/scene.hpp>

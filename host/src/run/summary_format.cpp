@@ -1,5 +1,5 @@
 // A run's summary as `noether run` prints it: text, or one JSON object (--summary json).
-#include "json_text.hpp"
+#include "io/json_text.hpp"
 
 #include <noether/simulation.hpp>
 

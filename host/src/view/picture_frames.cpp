@@ -1,13 +1,13 @@
 // A run's frames and shapes for a picture (picture_frames.hpp): the frames through RunRecord
 // (checksums verified), a solid's shape from /parameters/shapes, a field's reference sphere from
 // /parameters/fields, a cluster's points and a point mass's radius from the recorded scene.
-#include "picture_frames.hpp"
+#include "view/picture_frames.hpp"
 
 #include <noether/error.hpp>
 #include <noether/scene.hpp>
 #include <noether/tessellated_ellipsoid.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 #include "io/h5_handle.hpp"
 #include "io/run_record.hpp"
 

@@ -7,9 +7,9 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "binary_pair.hpp"
-#include "event_watch.hpp"
-#include "spin_state_tracker.hpp"
+#include "run/binary_pair.hpp"
+#include "run/event_watch.hpp"
+#include "run/spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,8 +7,8 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
-#include "event_watch.hpp"
-#include "simulation_impl.hpp"
+#include "run/event_watch.hpp"
+#include "run/simulation_impl.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -4,7 +4,7 @@
 #include <noether/particles.hpp>
 #include <noether/stepping.hpp>
 
-#include "regula_falsi.hpp"
+#include "run/regula_falsi.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -1,7 +1,7 @@
 // noether fit: weighted least squares by Levenberg–Marquardt on the run's sensitivities, and the
 // covariance of the estimate (docs/equations.md §28; docs/fitting.md).
-#include "json_text.hpp"
-#include "scene_sensitivity.hpp"
+#include "io/json_text.hpp"
+#include "scene/scene_sensitivity.hpp"
 
 #include <noether/error.hpp>
 #include <noether/fit.hpp>

@@ -4,13 +4,13 @@
 #include <noether/particles.hpp>
 #include <noether/version.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 #include "io/frame_schema.hpp"
 #include "io/h5_handle.hpp"
 #include "io/checksum.hpp"
-#include "binary_pair.hpp"
-#include "output_impl.hpp"
-#include "spin_state_tracker.hpp"
+#include "run/binary_pair.hpp"
+#include "io/output_impl.hpp"
+#include "run/spin_state_tracker.hpp"
 
 #include <cmath>
 #include <limits>

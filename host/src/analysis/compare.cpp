@@ -2,7 +2,7 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
-#include "h5_helpers.hpp"
+#include "io/h5_helpers.hpp"
 
 #include <algorithm>
 #include <charconv>

@@ -1,7 +1,7 @@
 // The model a fit compares with observations: one run of the scene with its sensitivities to the
 // free keys, sampled where the observations need it (docs/equations.md §28).
-#include "json_text.hpp"
-#include "scene_sensitivity.hpp"
+#include "io/json_text.hpp"
+#include "scene/scene_sensitivity.hpp"
 
 #include <noether/conjunction.hpp>
 #include <noether/error.hpp>

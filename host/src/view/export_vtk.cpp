@@ -6,8 +6,8 @@
 #include <noether/export.hpp>
 
 #include "io/safe_publish.hpp"
-#include "json_text.hpp"
-#include "picture_frames.hpp"
+#include "io/json_text.hpp"
+#include "view/picture_frames.hpp"
 
 #include <unistd.h>
 

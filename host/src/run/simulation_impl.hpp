@@ -5,10 +5,10 @@
 #include <noether/particles.hpp>
 #include <noether/simulation.hpp>
 
-#include "chaos_indicators.hpp"
-#include "scene_sensitivity.hpp"
+#include "run/chaos_indicators.hpp"
+#include "scene/scene_sensitivity.hpp"
 #include "io/frame_schema.hpp"
-#include "run_statistics.hpp"
+#include "run/run_statistics.hpp"
 
 #include <chrono>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The view's page, script and three.js, built in with the assembler's .incbin (the files are
 // read when this file is compiled: host/CMakeLists.txt names them as its dependencies), so that
 // `noether view` needs no file at run time and its pages no network.
-#include "view_assets.hpp"
+#include "view/view_assets.hpp"
 
 #include <noether/error.hpp>
 

@@ -1,6 +1,6 @@
 // ∂z(t0)/∂p, and the parameters of the dynamics, for the keys of run.sensitivities
 // (scene_sensitivity.hpp).
-#include "scene_sensitivity.hpp"
+#include "scene/scene_sensitivity.hpp"
 
 #include <noether/error.hpp>
 #include <noether/lie.hpp>

@@ -9,8 +9,8 @@
 #include <noether/stokes_file.hpp>
 #include <noether/units.hpp>
 
-#include "event_watch.hpp"
-#include "scene_yaml.hpp"
+#include "run/event_watch.hpp"
+#include "scene/scene_yaml.hpp"
 
 #include <algorithm>
 #include <array>

@@ -5,8 +5,8 @@
 #include <noether/orbital_elements.hpp>
 #include <noether/simulation.hpp>
 
-#include "ensemble_file.hpp"
-#include "spin_state_tracker.hpp"
+#include "ensemble/ensemble_file.hpp"
+#include "run/spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -6,8 +6,8 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "impulse_frame.hpp"
-#include "simulation_impl.hpp"
+#include "run/impulse_frame.hpp"
+#include "run/simulation_impl.hpp"
 
 #include <algorithm>
 #include <chrono>
