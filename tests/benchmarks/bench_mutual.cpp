@@ -41,6 +41,33 @@ void evaluate_repeatedly(benchmark::State& st, const Scene& scene) {
   evaluate_repeatedly(st, scene, evaluate);
 }
 
+// A scene with a potential override, its potential and its evaluator, kept for the process:
+// Google Benchmark calls a benchmark several times (to size its iterations, once per
+// repetition), and a set-up — the radar meshes' integrals to the order a tolerance may pick and
+// the choice, or Alpha's 9168 facets integrated to degree 24 — takes seconds, the evaluation
+// microseconds. `met` is false where making the potential was refused (a tolerance no order
+// meets).
+struct EvaluatorSetUp {
+  PluginRegistry registry = test::bundled_plugins();
+  Scene scene;
+  std::optional<noether::PotentialEvaluator> evaluate;
+  bool met = true;
+};
+
+EvaluatorSetUp& evaluator_set_up(const std::string& scene_file, const std::string& potential) {
+  static std::map<std::string, std::unique_ptr<EvaluatorSetUp>> cache;
+  auto& entry = cache[scene_file + " " + potential];
+  if (entry) return *entry;
+  entry = std::make_unique<EvaluatorSetUp>();
+  entry->scene = load_scene(test::source_path(scene_file), {potential});
+  try {  // a tolerance's choice, made where the scene starts
+    entry->evaluate.emplace(make_scene_potential(entry->scene, entry->registry));  // one workspace for the loop
+  } catch (const Error&) {
+    entry->met = false;
+  }
+  return *entry;
+}
+
 void BM_MutualSeriesKw4(benchmark::State& st) {
   const int N = static_cast<int>(st.range(0));
   const Scene scene = load_scene(test::source_path("examples/kw4-polyhedra.yaml"),
@@ -119,50 +146,17 @@ BENCHMARK_CAPTURE(BM_MutualExact, Kw4PolyhedraQuadrature, "examples/kw4-polyhedr
 
 namespace {
 
-// The scene, its potential and the evaluator that made the choice, kept for the process:
-// Google Benchmark calls a benchmark several times (to size its iterations, once per
-// repetition), and the set-up — the radar meshes' integrals to the order a tolerance may pick, the
-// choice — takes seconds, the evaluation microseconds.
-struct ToleranceSetUp {
-  PluginRegistry registry = test::bundled_plugins();
-  Scene scene;
-  std::optional<noether::PotentialEvaluator> evaluate;
-  bool met = true;
-};
-
-ToleranceSetUp& tolerance_set_up(const char* scene_file, const std::string& tol) {
-  static std::map<std::string, std::unique_ptr<ToleranceSetUp>> cache;
-  auto& entry = cache[std::string(scene_file) + " " + tol];
-  if (entry) return *entry;
-  entry = std::make_unique<ToleranceSetUp>();
-  entry->scene = load_scene(test::source_path(scene_file),
-                            {"potential={plugin: mutual-series, tolerance: " + tol + ", max_order: 16}"});
-  try {  // the choice, made where the scene starts
-    entry->evaluate.emplace(make_scene_potential(entry->scene, entry->registry));  // one workspace for the loop
-  } catch (const Error&) {
-    entry->met = false;
-  }
-  return *entry;
-}
-
 // One evaluation of mutual-series with `tolerance: 1e-k` (k = the argument) after its choice,
 // and the order it chose (docs/choosing-a-model.md).
 void BM_MutualTolerance(benchmark::State& st, const char* scene_file) {
-  ToleranceSetUp& set_up = tolerance_set_up(scene_file, "1e-" + std::to_string(st.range(0)));
+  EvaluatorSetUp& set_up = evaluator_set_up(
+      scene_file, "potential={plugin: mutual-series, tolerance: 1e-" + std::to_string(st.range(0)) + ", max_order: 16}");
   if (!set_up.met) {
     st.SkipWithError("no order up to 16 meets the tolerance");
     return;
   }
-  noether::PotentialEvaluator& evaluate = *set_up.evaluate;
-  Forces f;
-  f.resize(set_up.scene.system);
-  State s = set_up.scene.initial;
-  for (auto _ : st) {
-    evaluate(s, f);
-    benchmark::DoNotOptimize(f.U);
-    s.x(0, 1) += 1e-9;
-  }
-  st.counters["order"] = evaluate.pair_models().at(0).order;
+  evaluate_repeatedly(st, set_up.scene, *set_up.evaluate);
+  st.counters["order"] = set_up.evaluate->pair_models().at(0).order;
 }
 BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Polyhedra, "examples/kw4-polyhedra.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_MutualTolerance, Kw4Ellipsoids, "examples/kw4-ellipsoids.yaml")->DenseRange(3, 10, 1)->Unit(benchmark::kMicrosecond);
@@ -183,22 +177,12 @@ void BM_FieldOnSpacecraft(benchmark::State& st, const char* model) {
   const std::string potential = std::string(model) == "spherical-harmonics"
                                     ? "potential={plugin: spherical-harmonics, body: alpha, degree: " + std::to_string(N) + "}"
                                     : "potential={plugin: mutual-series, order: " + std::to_string(N) + "}";
-  // The scene and its evaluator kept for the process, as BM_MutualTolerance's: Google Benchmark
-  // calls a benchmark several times, and the set-up (Alpha's 9168 facets integrated to degree N)
-  // took 250 s of docs.benchmark-mutual's brief run when it was made at every call.
-  struct SetUp {
-    PluginRegistry registry = test::bundled_plugins();
-    Scene scene;
-    std::optional<noether::PotentialEvaluator> evaluate;
-  };
-  static std::map<std::string, std::unique_ptr<SetUp>> cache;
-  auto& set_up = cache[potential];
-  if (!set_up) {
-    set_up = std::make_unique<SetUp>();
-    set_up->scene = load_scene(test::source_path("examples/kw4-alpha-orbiter.yaml"), {potential});
-    set_up->evaluate.emplace(make_scene_potential(set_up->scene, set_up->registry));
+  EvaluatorSetUp& set_up = evaluator_set_up("examples/kw4-alpha-orbiter.yaml", potential);
+  if (!set_up.met) {
+    st.SkipWithError("the potential was refused");
+    return;
   }
-  evaluate_repeatedly(st, set_up->scene, *set_up->evaluate);
+  evaluate_repeatedly(st, set_up.scene, *set_up.evaluate);
 }
 BENCHMARK_CAPTURE(BM_FieldOnSpacecraft, SphericalHarmonics, "spherical-harmonics")
     ->Arg(4)->Arg(8)->Arg(16)->Arg(24)->Unit(benchmark::kMicrosecond);

@@ -4,9 +4,10 @@
 
 docs/architecture.md, "host's folders", has one table row per folder of host/src: the folder and,
 in its last column, what its files may include of the other folders — a folder (`io/`) or one
-header (`run/event_watch.hpp`), or "nothing". This reads that table and every `#include "..."`
-under host/src, and fails, naming the file and the line, on an include the row does not allow,
-an include that is not a path from host/src, a folder the table lacks, or a row without a folder."""
+header (`run/event_watch.hpp`); none named: no other folder. This reads that table and every
+`#include "..."` under host/src, and fails, naming the file and the line, on an include the row
+does not allow, an include that is not a path from host/src, a folder the table lacks, or a row
+naming a folder that does not exist."""
 import os
 import re
 import sys

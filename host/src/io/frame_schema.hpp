@@ -5,8 +5,9 @@
 // and fills each frame from it (output_layout.cpp, output.cpp), a continued run reads its
 // checkpointed rows back (run_record.cpp), the Python module hands it out
 // (`noether.output_series()`), and the files' series, the Python reader's list and
-// docs/user-guide.md's layout are tested against it (tests/python/test_output.py). Adding an output quantity is one row here
-// plus the function that computes it (docs/architecture.md, "Where to add").
+// docs/user-guide.md's layout are tested against it (tests/python/test_output.py). Adding an
+// output quantity is one row here plus the function that computes it (docs/architecture.md,
+// "Where to add").
 #include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
