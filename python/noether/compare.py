@@ -7,9 +7,8 @@ import numpy as np
 
 from . import _noether
 
-COLUMNS = ["family", "label", "ok", "error", "wall_seconds", "potential_evaluations", "steps", "rejected_steps",
-           "final_position_error", "final_attitude_error", "max_abs_energy_error",
-           "max_rel_angular_momentum_error", "max_orthogonality_error"]
+# The numeric columns come from the run summary's schema (docs/user-guide.md, "Summary reference").
+COLUMNS = ["family", "label", "ok", "error"] + list(_noether.compare_columns())
 
 
 class Table:

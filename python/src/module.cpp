@@ -460,15 +460,7 @@ py::dict compare(const std::string& text, const std::string& name, const std::ve
     d["label"] = r.label;
     d["ok"] = r.ok;
     d["error"] = r.error;
-    d["wall_seconds"] = r.wall_seconds;
-    d["potential_evaluations"] = r.potential_evaluations;
-    d["steps"] = r.steps;
-    d["rejected_steps"] = r.rejected_steps;
-    d["final_position_error"] = r.final_position_error;
-    d["final_attitude_error"] = r.final_attitude_error;
-    d["max_abs_energy_error"] = r.max_abs_energy_error;
-    d["max_rel_angular_momentum_error"] = r.max_rel_angular_momentum_error;
-    d["max_orthogonality_error"] = r.max_orthogonality_error;
+    for (const std::string& column : noether::compare_columns()) d[column.c_str()] = r.value(column);
     rows.append(d);
   }
   out["rows"] = rows;
@@ -506,6 +498,11 @@ PYBIND11_MODULE(_noether, m) {
   m.def("plugins", &plugins, "every plugin found: name, kind, description, parameters");
   m.def("output_series", &output_series, "every series of an output file: name, path, shape, unit, description");
   m.def("compare", &compare);
+  m.def("compare_columns", [] {
+    py::list out;
+    for (const std::string& c : noether::compare_columns()) out.append(c);
+    return out;
+  }, "the numeric columns of a comparison, in order");
   // noether.fit (docs/fitting.md): the fit as its JSON text (the package parses it).
   m.def("fit", [](const std::string& scene, const std::string& observations, const std::vector<std::string>& free,
                   const std::vector<std::string>& overrides, int max_iterations, double tolerance) {

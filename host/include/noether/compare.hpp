@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace noether {
@@ -56,13 +58,18 @@ struct CompareRow {
   bool ok = false;
   std::string error;               // why the run failed, when !ok
   double wall_seconds = 0.0;       // median over repeats
-  long long potential_evaluations = 0, steps = 0, rejected_steps = 0;
   double final_position_error = 0.0;  // max_i ‖x_i(T) − x_i^ref(T)‖
   double final_attitude_error = 0.0;  // max_k ‖R_k(T) − R_k^ref(T)‖_F
-  double max_abs_energy_error = 0.0;
-  double max_rel_angular_momentum_error = 0.0;
-  double max_orthogonality_error = 0.0;
+  // The run summary's compare columns (docs/user-guide.md, "Summary reference": the work
+  // counters, the energy, momentum and orthogonality errors), by key, in the schema's order.
+  std::vector<std::pair<std::string, double>> summary;
+  // Any column of compare_columns() by its name; throws Error for a name that is none.
+  double value(std::string_view column) const;
 };
+
+// The numeric columns of a comparison, as the CSV, the HDF5 file and Python's table have them:
+// wall_seconds, final_position_error, final_attitude_error, then the summary's compare columns.
+std::vector<std::string> compare_columns();
 
 struct CompareResult {
   std::string reference;         // description of the reference run

@@ -3,6 +3,7 @@
 #include <noether/simulation.hpp>
 
 #include "io/h5_helpers.hpp"
+#include "run/summary_schema.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -213,12 +214,8 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
         seconds.push_back(run_scene(s, registry, budget).wall_seconds);
       std::sort(seconds.begin(), seconds.end());
       row.wall_seconds = seconds[seconds.size() / 2];
-      row.potential_evaluations = summary.work.potential_evaluations;
-      row.steps = summary.work.steps;
-      row.rejected_steps = summary.work.rejected_steps;
-      row.max_abs_energy_error = summary.max_abs_energy_error;
-      row.max_rel_angular_momentum_error = summary.max_rel_angular_momentum_error;
-      row.max_orthogonality_error = summary.max_orthogonality_error;
+      for (const detail::SummaryRow* column : detail::summary_rows_for(detail::kCompare))
+        row.summary.emplace_back(column->key, column->number(summary));
       if (const std::string orders = chosen_orders(summary.pair_models); !orders.empty())
         row.label += " (" + orders + ")";
       if (!summary.stop_reason.empty()) throw Error("stopped early: " + summary.stop_reason);
@@ -235,26 +232,24 @@ CompareResult compare(const Scene& scene, PluginRegistry& registry, const Compar
   return result;
 }
 
-namespace {
+// Compare's own columns, then the summary's (run/summary_schema.cpp).
+const char* const kOwnColumns[] = {"wall_seconds", "final_position_error", "final_attitude_error"};
 
-// The numeric columns of a compare table, written once for the CSV and the HDF5 file.
-struct Column {
-  const char* name;
-  double (*value)(const CompareRow&);
-};
-const Column kColumns[] = {
-    {"wall_seconds", [](const CompareRow& r) { return r.wall_seconds; }},
-    {"potential_evaluations", [](const CompareRow& r) { return double(r.potential_evaluations); }},
-    {"steps", [](const CompareRow& r) { return double(r.steps); }},
-    {"rejected_steps", [](const CompareRow& r) { return double(r.rejected_steps); }},
-    {"final_position_error", [](const CompareRow& r) { return r.final_position_error; }},
-    {"final_attitude_error", [](const CompareRow& r) { return r.final_attitude_error; }},
-    {"max_abs_energy_error", [](const CompareRow& r) { return r.max_abs_energy_error; }},
-    {"max_rel_angular_momentum_error", [](const CompareRow& r) { return r.max_rel_angular_momentum_error; }},
-    {"max_orthogonality_error", [](const CompareRow& r) { return r.max_orthogonality_error; }},
-};
+std::vector<std::string> compare_columns() {
+  std::vector<std::string> out(std::begin(kOwnColumns), std::end(kOwnColumns));
+  for (const detail::SummaryRow* column : detail::summary_rows_for(detail::kCompare)) out.emplace_back(column->key);
+  return out;
+}
 
-}  // namespace
+double CompareRow::value(std::string_view column) const {
+  if (column == "wall_seconds") return wall_seconds;
+  if (column == "final_position_error") return final_position_error;
+  if (column == "final_attitude_error") return final_attitude_error;
+  for (const auto& [key, v] : summary)
+    if (key == column) return v;
+  if (!ok) return NAN;  // a failed run has no summary
+  throw Error("compare: no column " + std::string(column));
+}
 
 std::string format_compare(const CompareResult& r) {
   std::ostringstream out;
@@ -268,24 +263,36 @@ std::string format_compare(const CompareResult& r) {
   // family never runs into its setting.
   int width = 14;
   for (const auto& row : r.rows) width = std::max(width, static_cast<int>(row.family.size()));
-  std::snprintf(line, sizeof line, "%-*s  %-28s %10s %10s %10s %10s %10s %10s %10s\n", width, "family",
-                "setting", "wall [s]", "U evals", "pos err", "att err", "max|dE|", "max dL/L",
-                "max orth");
+  // The printed table's columns: compare's own and the summary's, each headed as its row says.
+  struct Printed {
+    const char* key;
+    const char* heading;  // null: the summary row's heading
+    const char* format;
+  };
+  const Printed table[] = {{"wall_seconds", "wall [s]", " %10.4f"},         {"potential_evaluations", nullptr, " %10.0f"},
+                           {"final_position_error", "pos err", " %10.2e"}, {"final_attitude_error", "att err", " %10.2e"},
+                           {"max_abs_energy_error", nullptr, " %10.2e"},   {"max_rel_angular_momentum_error", nullptr, " %10.2e"},
+                           {"max_orthogonality_error", nullptr, " %10.2e"}};
+  std::snprintf(line, sizeof line, "%-*s  %-28s", width, "family", "setting");
   out << line;
+  for (const Printed& c : table) {
+    std::snprintf(line, sizeof line, " %10s",
+                  c.heading ? c.heading : std::string(detail::summary_row(c.key).heading).c_str());
+    out << line;
+  }
+  out << "\n";
   for (const auto& row : r.rows) {
+    std::snprintf(line, sizeof line, "%-*s  %-28s", width, row.family.c_str(), row.label.c_str());
+    out << line;
     if (!row.ok) {
-      std::snprintf(line, sizeof line, "%-*s  %-28s failed: %s\n", width, row.family.c_str(),
-                    row.label.c_str(), row.error.c_str());
-      out << line;
+      out << " failed: " << row.error << "\n";
       continue;
     }
-    std::snprintf(line, sizeof line,
-                  "%-*s  %-28s %10.4f %10lld %10.2e %10.2e %10.2e %10.2e %10.2e\n", width,
-                  row.family.c_str(), row.label.c_str(), row.wall_seconds,
-                  row.potential_evaluations, row.final_position_error, row.final_attitude_error,
-                  row.max_abs_energy_error, row.max_rel_angular_momentum_error,
-                  row.max_orthogonality_error);
-    out << line;
+    for (const Printed& c : table) {
+      std::snprintf(line, sizeof line, c.format, row.value(c.key));
+      out << line;
+    }
+    out << "\n";
   }
   return out.str();
 }
@@ -294,14 +301,15 @@ void write_compare_csv(const CompareResult& r, const std::filesystem::path& file
   std::ofstream out(file);
   if (!out) throw OutputError("cannot write " + file.string());
   out << "family,setting,ok";
-  for (const auto& c : kColumns) out << ',' << c.name;
+  const std::vector<std::string> columns = compare_columns();
+  for (const auto& c : columns) out << ',' << c;
   out << ",error\n";
   out.precision(6);
   for (const auto& row : r.rows) {
     std::string err = row.error;
     std::replace(err.begin(), err.end(), '"', '\'');
     out << row.family << ',' << row.label << ',' << (row.ok ? 1 : 0);
-    for (const auto& c : kColumns) out << ',' << c.value(row);
+    for (const auto& c : columns) out << ',' << row.value(c);
     out << ",\"" << err << "\"\n";
   }
 }
@@ -331,10 +339,10 @@ void write_compare_h5(const CompareResult& r, const Scene& scene, const std::fil
   string_list_dataset(g, "setting", label);
   string_list_dataset(g, "error", error);
   double_dataset(g, "ok", ok);
-  for (const auto& c : kColumns) {
+  for (const std::string& c : compare_columns()) {
     std::vector<double> values;
-    for (const auto& row : r.rows) values.push_back(c.value(row));
-    double_dataset(g, c.name, values);
+    for (const auto& row : r.rows) values.push_back(row.value(c));
+    double_dataset(g, c.c_str(), values);
   }
   H5Gclose(g);
   check(H5Fclose(f), "closing the compare file");

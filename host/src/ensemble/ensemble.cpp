@@ -27,7 +27,6 @@
 namespace noether {
 using Clock = std::chrono::steady_clock;
 using detail::EnsembleFile;
-using detail::kSummaryCount;
 using detail::override_of;
 
 EnsemblePlan::EnsemblePlan(const std::filesystem::path& scene_file, std::vector<std::string> overrides_given,
@@ -83,7 +82,7 @@ std::filesystem::path sample_run_path(const std::filesystem::path& ensemble, std
 
 SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const std::filesystem::path& output) const {
   SampleResult r;
-  r.summary.assign(kSummaryCount, NAN);
+  r.summary.assign(detail::summary_columns().size(), NAN);
   const auto t0 = Clock::now();
   try {
     RunOptions run;
@@ -112,8 +111,8 @@ SampleResult EnsemblePlan::run(std::size_t i, PluginRegistry& registry, const st
       for (const auto& why : s.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + why;
       r.message += (r.message.empty() ? "" : "; ") + ("untrustworthy: " + reasons);
     }
-    r.summary = {s.final_state.t, s.max_abs_energy_error, s.max_rel_energy_error, s.max_rel_angular_momentum_error,
-                 s.min_distance, static_cast<double>(s.work.steps), static_cast<double>(s.work.potential_evaluations)};
+    r.summary.clear();
+    for (const detail::SummaryRow* column : detail::summary_columns()) r.summary.push_back(column->number(s));
     r.final_state = s.final_state;
     r.indicators = detail::indicator_values(sim.scene(), s);
     if (pair_a != pair_b) {
@@ -201,7 +200,7 @@ SampleResult SampleResult::unpack(const std::vector<double>& in, std::string mes
   r.outcome = static_cast<std::int8_t>(next());
   r.trustworthy = static_cast<std::int8_t>(next());
   r.a = next(), r.e = next(), r.period = next(), r.wall = next(), r.setup = next();
-  for (std::size_t j = 0; j < kSummaryCount; ++j) r.summary.push_back(next());
+  for (std::size_t j = 0; j < detail::summary_columns().size(); ++j) r.summary.push_back(next());
   const auto indicators = static_cast<std::size_t>(next());
   for (std::size_t j = 0; j < indicators; ++j) r.indicators.push_back(next());
   const auto nb = static_cast<Eigen::Index>(next()), nr = static_cast<Eigen::Index>(next());

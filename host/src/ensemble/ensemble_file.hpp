@@ -12,6 +12,7 @@
 #include "io/h5_handle.hpp"
 #include "io/read_probe.hpp"
 #include "io/safe_publish.hpp"
+#include "run/summary_schema.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -36,10 +37,11 @@ inline std::string override_of(const Variation& v, double value) {
   return v.key + "=" + buf;
 }
 
-const char* const kSummary[] = {"final_time",   "max_abs_energy_error", "max_rel_energy_error",
-                                "max_rel_angular_momentum_error", "min_distance", "steps",
-                                "potential_evaluations"};
-constexpr std::size_t kSummaryCount = sizeof kSummary / sizeof kSummary[0];
+// The /summary columns: the summary schema's ensemble rows (run/summary_schema.cpp), in order.
+inline const std::vector<const SummaryRow*>& summary_columns() {
+  static const std::vector<const SummaryRow*> rows = summary_rows_for(kEnsemble);
+  return rows;
+}
 
 // The per-sample indicators of a scene's runs (/indicators/<name>), with their units, and their
 // values from a run's summary in the same order (ensemble.cpp).
@@ -84,6 +86,15 @@ class EnsembleFile {
       lock_ = ::open(path.c_str(), O_RDWR | O_CLOEXEC);  // for io::flush_extended
       outcome_ = io::H5Handle(H5Dopen2(file_, "outcome", H5P_DEFAULT));
       checksum_ = io::H5Handle(H5Dopen2(file_, "outcome_checksum", H5P_DEFAULT));  // absent in an older noether's file
+      for (const SummaryRow* column : summary_columns()) {  // a column renamed or added since the file was written
+        std::string name = "summary/" + std::string(column->key);
+        if (H5Lexists(file_, name.c_str(), H5P_DEFAULT) <= 0 && column->key == "closest_approach")
+          name = "summary/min_distance";  // its name before the summary's schema (2026-11-28)
+        if (H5Lexists(file_, name.c_str(), H5P_DEFAULT) <= 0)
+          throw OutputError(path.string() + " was written by an older noether: its /summary has no " +
+                            std::string(column->key) + " column; finish it with that version, or run it afresh with --force");
+        summary_paths_.push_back(name);
+      }
       return;
     }
     // Built under a hidden name and renamed into place once its layout is complete, so the path
@@ -143,9 +154,10 @@ class EnsembleFile {
         return d;
       };
       const io::H5Handle summary(make_group(file_, "summary"));
-      const std::string summary_units[kSummaryCount] = {u.of_time(), u.of_energy(), "1", "1", u.of_length(), "1", "1"};
-      for (std::size_t k = 0; k < kSummaryCount; ++k)
-        with_unit(create(summary, kSummary[k], H5T_NATIVE_DOUBLE, {}), summary_units[k]);
+      for (const SummaryRow* column : summary_columns()) {
+        with_unit(create(summary, std::string(column->key).c_str(), H5T_NATIVE_DOUBLE, {}), unit_of(column->dimension, u));
+        summary_paths_.push_back("summary/" + std::string(column->key));
+      }
       if (!indicators_.empty()) {
         const io::H5Handle group(make_group(file_, "indicators"));
         string_attribute(group, "description",
@@ -212,8 +224,7 @@ class EnsembleFile {
     const io::H5Handle type(H5Tcopy(H5T_C_S1));
     H5Tset_size(type, kMessageBytes);
     put("message", i, message, 1, type);
-    for (std::size_t k = 0; k < kSummaryCount; ++k)
-      put((std::string("summary/") + kSummary[k]).c_str(), i, &r.summary[k], 1);
+    for (std::size_t k = 0; k < summary_paths_.size(); ++k) put(summary_paths_[k].c_str(), i, &r.summary[k], 1);
     if (r.final_state.x.cols() > 0) {
       put("final/positions", i, r.final_state.x.data(), 3 * nb_);
       put("final/momenta", i, r.final_state.p.data(), 3 * nb_);
@@ -273,7 +284,7 @@ class EnsembleFile {
   // ensemble whose file would not fit on its disk, before writing anything.
   // Returns the bytes the datasets take.
   double check_disk_space(const std::filesystem::path& path, std::size_t varied) const {
-    const double row = 1.0 + 8.0 + kMessageBytes + 8.0 * (kSummaryCount + indicators_.size() + 6.0 * nb_ + 12.0 * nr_ + 3 + 2 + varied) + 1.0;
+    const double row = 1.0 + 8.0 + kMessageBytes + 8.0 * (static_cast<double>(summary_columns().size()) + indicators_.size() + 6.0 * nb_ + 12.0 * nr_ + 3 + 2 + varied) + 1.0;
     const double needed = row * static_cast<double>(samples_);
     std::filesystem::path folder = path.parent_path();
     if (folder.empty()) folder = ".";
@@ -368,6 +379,7 @@ class EnsembleFile {
   hsize_t samples_;
   hsize_t nb_, nr_;
   std::string identity_;
+  std::vector<std::string> summary_paths_;  // each summary column's dataset, in summary_columns()' order
   std::vector<std::int8_t> done_;
   std::vector<std::pair<std::size_t, std::int8_t>> pending_;
   std::vector<Indicator> indicators_;

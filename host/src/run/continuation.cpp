@@ -13,6 +13,7 @@
 #include "io/safe_publish.hpp"
 #include "run/event_watch.hpp"
 #include "run/simulation_impl.hpp"
+#include "run/summary_schema.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -188,45 +189,9 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
 // Simulation::load reads it (or any output file) through the same RunRecord as --resume.
 namespace {
 
-// The diagnostics as named numbers and back.
-std::vector<double> pack(const Diagnostics& d) {
-  return {d.kinetic_translational, d.kinetic_rotational, d.potential, d.energy, d.linear_momentum.x(),
-          d.linear_momentum.y(), d.linear_momentum.z(), d.angular_momentum.x(), d.angular_momentum.y(),
-          d.angular_momentum.z(), d.orthogonality_error};
-}
-Diagnostics unpack(const std::vector<double>& v) {
-  Diagnostics d;
-  d.kinetic_translational = v[0], d.kinetic_rotational = v[1], d.potential = v[2], d.energy = v[3];
-  d.linear_momentum = Vec3(v[4], v[5], v[6]);
-  d.angular_momentum = Vec3(v[7], v[8], v[9]);
-  d.orthogonality_error = v[10];
-  return d;
-}
-constexpr std::size_t kStatistics = 12;
-
-// The orbits the verdict judges (RunSummary::orbits): "body\tabout" lines, and their scales.
-std::string orbit_names(const std::vector<OrbitScale>& orbits) {
-  std::string out;
-  for (const auto& o : orbits) out += o.body + "\t" + o.about + "\n";
-  return out;
-}
-std::vector<double> orbit_scales(const std::vector<OrbitScale>& orbits) {
-  std::vector<double> out;  // (never empty: an attribute of no numbers is refused by HDF5)
-  if (orbits.empty()) return {0.0};
-  for (const auto& o : orbits) out.push_back(o.energy_scale);
-  return out;
-}
-std::vector<OrbitScale> orbits_of(const io::RunRecord& run) {
-  std::vector<OrbitScale> out;
-  std::istringstream lines(run.summary_text("orbits"));
-  for (std::string line; std::getline(lines, line);) {
-    const auto tab = line.find('\t');
-    out.push_back({line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1), 0.0, 0.0});
-  }
-  if (out.empty()) return out;
-  const std::vector<double>& scales = run.summary_number("orbit_scales", out.size());
-  for (std::size_t k = 0; k < out.size(); ++k) out[k].energy_scale = scales[k];
-  return out;
+// A saved simulation's summary rows and running values, as /checkpoint/summary holds them.
+detail::SavedSummary saved_of(const io::RunRecord& run) {
+  return detail::upgrade_saved_summary({run.summary_numbers, run.summary_texts});
 }
 
 }  // namespace
@@ -264,28 +229,12 @@ void Simulation::save(const std::filesystem::path& path) const {
   writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall, m.summary.interpolated_frames,
                      m.integrator->checkpoint(), ChaosValues{}, m.particles ? &recorded : nullptr);
   writer.flush();
-  const RunSummary& s = m.summary;
-  const auto [p_scale, L_scale] = m.observer->scales();
-  std::vector<std::pair<std::string, std::vector<double>>> numbers{
-      {"initial", pack(s.initial)},
-      {"final", pack(s.final)},
-      {"statistics",
-       {s.max_abs_energy_error, s.max_rel_linear_momentum_error, s.max_rel_angular_momentum_error,
-        s.max_orthogonality_error, s.conserves_linear_momentum ? 1.0 : 0.0, s.conserves_angular_momentum ? 1.0 : 0.0,
-        s.min_gap, s.min_gap_reach, s.min_distance, s.t_of_min_distance, p_scale, L_scale}},
-      {"frames", {static_cast<double>(s.frames)}},
-      {"orbit_scales", orbit_scales(s.orbits)}};
-  if (const auto spin = m.observer->spin_state_numbers(); !spin.empty()) numbers.emplace_back("spin_state", spin);
-  if (!m.scene.forces.empty()) {  // the forces' balance is the state's; their largest exchange is not (33.3)
-    const auto [p, L] = m.observer->exchanged();
-    numbers.push_back({"exchanged_momenta", {p, L}});
-  }
+  // The summary's checkpointed rows (run/summary_schema.cpp) and the statistics' running values.
+  detail::SavedSummary saved = detail::save_summary(m.summary);
+  m.observer->save(saved, !m.scene.forces.empty());  // the forces' balance is the state's; their largest exchange is not (33.3)
   if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint(), 0);
   writer.write_pair_models(m.pair_models());  // with a tolerance exceeded so far, which load keeps
-  writer.write_summary_values(
-      numbers,
-      {{"min_gap_pair", s.min_gap_pair}, {"stop_reason", s.stop_reason}, {"min_distance_pair", s.min_distance_pair},
-       {"orbits", orbit_names(s.orbits)}});
+  writer.write_summary_values(saved.numbers, saved.texts);
   writer.publish();
   char outcome[96];
   std::snprintf(outcome, sizeof outcome, "saved at t = %.17g", m.state.t);
@@ -327,33 +276,17 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   m.t_origin = origin_of(run);
   m.steps_before = steps_to(m, at_last.state.t);
   if (!with_output && run.saved()) {  // the saved summary, not the frame the constructor observed
-    const std::vector<double>& st = run.summary_number("statistics", kStatistics);
-    s.initial = unpack(run.summary_number("initial", 11));
-    s.final = unpack(run.summary_number("final", 11));
-    s.max_abs_energy_error = st[0], s.max_rel_linear_momentum_error = st[1];
-    s.max_rel_angular_momentum_error = st[2], s.max_orthogonality_error = st[3];
-    s.conserves_linear_momentum = st[4] != 0, s.conserves_angular_momentum = st[5] != 0;
-    s.min_gap = st[6], s.min_gap_reach = st[7], s.min_distance = st[8], s.t_of_min_distance = st[9];
-    m.observer->set_scales(st[10], st[11]);
-    s.frames = static_cast<std::size_t>(run.summary_number("frames", 1)[0]);
+    try {
+      const detail::SavedSummary saved = saved_of(run);
+      detail::restore_summary(s, saved);
+      m.observer->restore(saved, !m.scene.forces.empty());
+    } catch (const Error& e) {
+      throw Error(path.string() + ": " + e.what() +
+                  "; load it with an output file (its summary then starts there) or run the scene again");
+    }
     s.interpolated_frames = at_last.interpolated;
-    s.min_gap_pair = run.summary_text("min_gap_pair");
-    s.min_distance_pair = run.summary_text("min_distance_pair");
-    s.orbits = orbits_of(run);
-    s.stop_reason = run.summary_text("stop_reason");
     m.pair_models_before = run.pair_models;
     s.pair_models = m.pair_models();
-    bool exchanged = false;
-    for (const auto& [key, values] : run.summary_numbers) {  // absent from an older noether's file
-      if (key == "spin_state") m.observer->set_spin_state_numbers(values);
-      if (key == "exchanged_momenta" && values.size() == 2) {
-        m.observer->set_exchanged(values[0], values[1]);
-        exchanged = true;
-      }
-    }
-    if (!m.scene.forces.empty() && !exchanged)
-      throw Error(path.string() + ": saved without the momenta its forces exchanged, which the verdict's scales "
-                  "need; load it with an output file (its summary then starts there) or run the scene again");
   } else if (!with_output) {  // a run's file: its frames replayed into the summary, as --resume does
     m.new_segment();
     replay(run, m, last, options.interrupt);

@@ -10,6 +10,7 @@
 #include "run/binary_pair.hpp"
 #include "run/event_watch.hpp"
 #include "run/spin_state_tracker.hpp"
+#include "run/summary_schema.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -154,16 +155,33 @@ class RunStatistics final : public Observer {
     start_mutual_orbit(after);
   }
 
-  // The scales of the relative momentum errors (a saved simulation keeps them).
-  std::pair<double, double> scales() const { return {p_scale_, L_scale_}; }
-  void set_scales(double p_scale, double L_scale) { p_scale_ = p_scale, L_scale_ = L_scale; }
-  // The largest ‖ΔP‖, ‖ΔL‖ the forces beyond the potential put in so far, part of those scales
-  // in a forced run (a saved simulation keeps them too).
-  std::pair<double, double> exchanged() const { return {exchanged_p_, exchanged_L_}; }
-  void set_exchanged(double p, double L) { exchanged_p_ = p, exchanged_L_ = L; }
-  // The spin states' running values (a saved simulation keeps them).
-  std::vector<double> spin_state_numbers() const { return spin_.pack(); }
-  void set_spin_state_numbers(const std::vector<double>& numbers) { spin_.unpack(numbers); }
+  // Its running values beyond the summary's rows, named, for a saved simulation: the scales of
+  // the relative momentum errors, the largest ‖ΔP‖, ‖ΔL‖ the forces put in so far (part of
+  // those scales in a forced run: `forced`), the spin states' running values.
+  void save(SavedSummary& out, bool forced) const {
+    out.numbers.push_back({"linear_momentum_scale", {p_scale_}});
+    out.numbers.push_back({"angular_momentum_scale", {L_scale_}});
+    if (forced) {
+      out.numbers.push_back({"exchanged_linear_momentum", {exchanged_p_}});
+      out.numbers.push_back({"exchanged_angular_momentum", {exchanged_L_}});
+    }
+    if (const auto spin = spin_.pack(); !spin.empty()) out.numbers.push_back({"spin_state", spin});
+  }
+  // Throws Error naming what a checkpoint lacks.
+  void restore(const SavedSummary& in, bool forced) {
+    auto one = [&in](const char* key) {
+      const std::vector<double>* v = in.number(key);
+      if (!v || v->size() != 1) throw Error(std::string("the checkpoint's summary has no ") + key);
+      return (*v)[0];
+    };
+    p_scale_ = one("linear_momentum_scale"), L_scale_ = one("angular_momentum_scale");
+    if (forced) {
+      if (!in.number("exchanged_linear_momentum"))
+        throw Error("saved without the momenta its forces exchanged, which the verdict's scales need");
+      exchanged_p_ = one("exchanged_linear_momentum"), exchanged_L_ = one("exchanged_angular_momentum");
+    }
+    if (const std::vector<double>* spin = in.number("spin_state")) spin_.unpack(*spin);  // absent: an older file
+  }
   // RunSummary::spin_states where the run stands (made when a summary is asked for, not per frame).
   std::vector<SpinState> spin_states() const { return spin_.spin_states(); }
 

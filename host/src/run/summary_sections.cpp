@@ -1,0 +1,207 @@
+// The run summary's structured rows: JSON and text (run/summary_sections.hpp).
+#include "run/summary_sections.hpp"
+
+#include "io/json_text.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace noether::detail {
+
+namespace {
+// " kg m^2/s^2" after a number in declared units (nothing when the scene declares none).
+std::string with_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
+std::string vector(const Vec3& v) {
+  return "[" + json_number(v.x()) + ", " + json_number(v.y()) + ", " + json_number(v.z()) + "]";
+}
+std::string flag(bool value) { return value ? "true" : "false"; }
+}  // namespace
+
+std::string forces_json(const RunSummary& s) {
+  std::string out = "[";
+  for (const ForceSummary& f : s.forces)
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"name\": " + json_string(f.name) + ", \"work\": " +
+           json_number(f.work) + ", \"linear_momentum\": " + vector(f.linear_momentum) +
+           ", \"angular_momentum\": " + vector(f.angular_momentum) + "}";
+  return out + "]";
+}
+
+std::string forces_lines(const SummaryRow&, const RunSummary& s) {  // docs/forces.md: what each force put in
+  std::string out;
+  char line[512];
+  for (const ForceSummary& f : s.forces) {
+    std::snprintf(line, sizeof line, "force %-23s work %+.6g%s, angular momentum put in (%.4g, %.4g, %.4g)%s\n",
+                  f.name.c_str(), f.work, with_unit(s.energy_unit).c_str(), f.angular_momentum.x(),
+                  f.angular_momentum.y(), f.angular_momentum.z(),
+                  s.energy_unit.empty() ? "" : (" " + s.angular_momentum_unit).c_str());
+    out += line;
+  }
+  return out;
+}
+
+std::string particles_json(const RunSummary& s) {  // docs/user-guide.md, "Particles"
+  const ParticleSummary& p = s.particles;
+  std::string landed = "{";
+  for (std::size_t b = 0; b < p.bodies.size(); ++b)
+    landed += (b ? ", " : "") + json_string(p.bodies[b]) + ": " + std::to_string(p.impacts[b]);
+  std::string fields = "[";
+  for (const std::string& f : p.fields) fields += (fields.size() > 1 ? ", " : "") + json_string(f);
+  return "{\"count\": " + std::to_string(p.count) + ", \"in_flight\": " + std::to_string(p.in_flight) +
+         ", \"escaped\": " + std::to_string(p.escaped) + ", \"landed\": " + landed +
+         "}, \"verlet_steps\": " + std::to_string(p.steps) + ", \"seconds\": " + json_number(p.seconds) +
+         ", \"fields\": " + fields + "], \"check\": {\"checked\": " + std::to_string(p.check.checked) +
+         ", \"fates_differ\": " + std::to_string(p.check.fates_differ) + ", \"position\": " + json_number(p.check.position) +
+         ", \"landing_point\": " + json_number(p.check.landing_point) +
+         ", \"landing_time\": " + json_number(p.check.landing_time) + ", \"verlet_steps\": " + std::to_string(p.check.steps) +
+         "}}";
+}
+
+std::string particles_lines(const SummaryRow& row, const RunSummary& s) {
+  const ParticleSummary& p = s.particles;
+  if (p.count == 0) return "";
+  std::string landed;
+  for (std::size_t b = 0; b < p.impacts.size(); ++b)
+    if (p.impacts[b] > 0) landed += ", " + std::to_string(p.impacts[b]) + " landed on " + p.bodies[b];
+  char text[512];
+  std::snprintf(text, sizeof text, "%zu: %zu in flight, %zu escaped%s; %.3g us a particle-step", p.count, p.in_flight,
+                p.escaped, landed.c_str(),
+                p.steps > 0 ? 1e6 * p.seconds / static_cast<double>(p.steps + p.check.steps) : 0.0);
+  std::string out = summary_line(row.label, text);
+  if (const ParticleCheck& c = p.check; c.checked > 0) {
+    std::snprintf(text, sizeof text,
+                  "%zu checked: %zu fates differ; in flight moved <= %.2g of their distance, landing points <= %.2g of "
+                  "the radius, times <= %.2g%s",
+                  c.checked, c.fates_differ, c.position, c.landing_point, c.landing_time,
+                  with_unit(s.energy_unit.empty() ? "" : s.time_unit).c_str());
+    out += summary_line("particles at half the step", text);
+  }
+  return out;
+}
+
+std::string spin_states_json(const RunSummary& s) {
+  std::string out = "[";
+  for (const SpinState& spin : s.spin_states)
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +
+           ", \"other\": " + (spin.other.empty() ? "null" : json_string(spin.other)) +
+           ", \"libration_amplitude\": " + json_number(spin.libration_amplitude) + ", \"turns\": " +
+           json_number(spin.turns) + ", \"max_pitch\": " + json_number(spin.max_pitch) +
+           ", \"max_roll\": " + json_number(spin.max_roll) + ", \"undersampled\": " + flag(spin.undersampled) +
+           ", \"nutation\": " + json_number(spin.nutation) + ", \"max_nutation\": " + json_number(spin.max_nutation) + "}";
+  return out + "]";
+}
+
+std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // docs/user-guide.md, "Spin state"
+  std::string out;
+  char part[256];
+  for (const SpinState& spin : s.spin_states) {
+    std::string what;
+    if (!spin.other.empty()) {
+      if (spin.undersampled) {
+        what = "libration not measured: the frames are too far apart to follow the yaw (lower run.output_every)";
+      } else if (spin.libration_amplitude > 90.0) {
+        std::snprintf(part, sizeof part, "circulates, %+.4g turns relative to the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.turns, spin.max_pitch, spin.max_roll);
+        what = part;
+      } else if (std::isfinite(spin.libration_amplitude)) {
+        std::snprintf(part, sizeof part, "librates +-%.4g deg about the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.libration_amplitude, spin.max_pitch, spin.max_roll);
+        what = part;
+      }
+    }
+    if (std::isfinite(spin.max_nutation))
+      std::snprintf(part, sizeof part, "nutation %.3g deg (max %.3g)", spin.nutation, spin.max_nutation);
+    else
+      std::snprintf(part, sizeof part, "not rotating");
+    what += (what.empty() ? "" : "; ") + std::string(part);
+    std::snprintf(part, sizeof part, "%s %-18s", std::string(row.label).c_str(), spin.body.c_str());
+    out += summary_line(part, what);
+  }
+  return out;
+}
+
+std::string chaos_json(const RunSummary& s) {
+  const ChaosValues& c = s.chaos_values;
+  return "{\"megno\": " + json_number(c.megno) + ", \"megno_y\": " + json_number(c.megno_y) + ", \"fli\": " +
+         json_number(c.fli) + ", \"lyapunov\": " + json_number(c.lyapunov) + ", \"t\": " + json_number(c.t) +
+         ", \"overflowed\": " + flag(c.overflowed) + "}";
+}
+
+std::string chaos_lines(const SummaryRow& row, const RunSummary& s) {  // docs/derivatives.md, "Chaos indicators"
+  if (!s.chaos) return "";
+  const ChaosValues& c = s.chaos_values;
+  char text[512];
+  std::snprintf(text, sizeof text, "MEGNO <Y> = %.6g, FLI = %.4g, lambda ~ ln|delta|/t = %.4g%s%s", c.megno, c.fli,
+                c.lyapunov, with_unit(s.energy_unit.empty() ? "" : "1/" + s.time_unit).c_str(),
+                c.overflowed ? " (the deviation overflowed: they stop there)" : "");
+  std::string out = summary_line(row.label, text);
+  std::snprintf(text, sizeof text, "at t = %.6g (<Y> -> 2 on a regular orbit, ~ lambda t/2 on a chaotic one)", c.t);
+  return out + summary_line("", text);
+}
+
+std::string orbits_json(const RunSummary& s) {
+  std::string out = "[";
+  for (const auto& o : s.orbits)
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(o.body) + ", \"about\": " +
+           json_string(o.about) + ", \"energy_scale\": " + json_number(o.energy_scale) +
+           ", \"relative_energy_error\": " + json_number(o.relative_energy_error) + "}";
+  return out + "]";
+}
+
+// The smallest orbit's scale: what the energy error means for the most fragile motion.
+std::string orbits_lines(const SummaryRow& row, const RunSummary& s) {
+  if (s.orbits.empty()) return "";
+  const OrbitScale& o = s.orbits.front();
+  char text[512];
+  std::snprintf(text, sizeof text, "%s about %s: two-body energy %.4g, |E - E0| %.2e of it", o.body.c_str(),
+                o.about.c_str(), o.energy_scale, o.relative_energy_error);
+  return summary_line(row.label, text);
+}
+
+std::string resolution_json(const RunSummary& s) {
+  const ResolutionCheck& c = s.resolution;
+  return "{\"body\": " + json_string(c.body) + ", \"about\": " + json_string(c.about) + ", \"window\": " +
+         json_number(c.window) + ", \"per_window\": " + json_number(c.per_window) + ", \"over_run\": " +
+         json_number(c.over_run) + ", \"whole_run\": " + flag(c.whole_run) +
+         ", \"ends_differently\": " + (c.ends_differently.empty() ? std::string("null") : json_string(c.ends_differently)) +
+         "}";
+}
+
+std::string resolution_lines(const SummaryRow& row, const RunSummary& s) {
+  const ResolutionCheck& c = s.resolution;
+  if (s.orbits.empty() || !c.done) return "";
+  char text[512];
+  if (!c.ends_differently.empty())
+    std::snprintf(text, sizeof text, "%s about %s: the whole run at h/2 ends otherwise: %s", c.body.c_str(),
+                  c.about.c_str(), c.ends_differently.c_str());
+  else if (c.whole_run)
+    std::snprintf(text, sizeof text, "%s about %s moves by %.2e of its radius over the whole run (repeated at h/2)",
+                  c.body.c_str(), c.about.c_str(), c.over_run);
+  else
+    std::snprintf(text, sizeof text, "%s about %s moves by %.2e of its radius in %.6g, %.2e over the run",
+                  c.body.c_str(), c.about.c_str(), c.per_window, c.window, c.over_run);
+  return summary_line(row.label, text);
+}
+
+std::string pair_models_json(const RunSummary& s) {
+  std::string out = "[";
+  for (const auto& m : s.pair_models)
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"body_a\": " + json_string(m.body_a) + ", \"body_b\": " +
+           json_string(m.body_b) + ", \"model\": " + json_string(m.model) + ", \"order\": " + std::to_string(m.order) +
+           ", \"estimated_error\": " + json_number(m.estimated_error) + ", \"exceeded\": " + flag(m.exceeded) + "}";
+  return out + "]";
+}
+
+std::string verdict_json(const RunSummary& s) {
+  std::string reasons = "[";
+  for (const auto& r : s.verdict.reasons) reasons += std::string(reasons.size() > 1 ? ", " : "") + json_string(r);
+  return "{\"trustworthy\": " + flag(s.verdict.trustworthy) + ", \"reasons\": " + reasons + "]}";
+}
+
+std::string verdict_lines(const SummaryRow& row, const RunSummary& s) {
+  if (s.verdict.trustworthy) return summary_line(row.label, "trustworthy");
+  std::string out;
+  for (const auto& r : s.verdict.reasons) out += summary_line(row.label, "UNTRUSTWORTHY: " + r);
+  return out;
+}
+
+}  // namespace noether::detail
