@@ -11,17 +11,11 @@ import argparse
 import csv
 import math
 import os
-import sys
 from collections import defaultdict
 
-try:
-    import matplotlib
-except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
-    sys.stderr.write(f"{__file__}: matplotlib is not available to {sys.executable}\n")
-    sys.exit(3)
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = pyplot(__file__)
 
 
 def main():

@@ -12,16 +12,9 @@ Exits 2 when the run holds no /test_particles (a run without particles, or one t
 import argparse
 import sys
 
-try:
-    import h5py
-    import matplotlib
-    import numpy as np
-except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
-    sys.stderr.write(f"{__file__}: h5py, numpy and matplotlib are needed by {sys.executable}\n")
-    sys.exit(3)
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt, h5py, np = pyplot(__file__, "h5py", "numpy")
 from plot_libration import rotation  # noqa: E402  (a quaternion's matrix; this script's folder is on the path)
 
 

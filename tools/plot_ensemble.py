@@ -7,12 +7,9 @@ ensemble file of the unperturbed scene, one sample), its change from the nominal
 minutes. Prints the mean and standard deviation it plots."""
 import argparse
 
-import h5py
-import matplotlib
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-import numpy as np
+plt, h5py, np = pyplot(__file__, "h5py", "numpy")
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
 parser.add_argument("ensemble")

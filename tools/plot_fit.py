@@ -7,11 +7,9 @@ the degrees of freedom. Prints how many residuals lie beyond 3σ."""
 import argparse
 import json
 
-import matplotlib
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-import numpy as np
+plt, np = pyplot(__file__, "numpy")
 
 parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
 parser.add_argument("fit")

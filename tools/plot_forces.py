@@ -12,16 +12,9 @@ without forces: or without rigid bodies.
 import argparse
 import sys
 
-try:
-    import h5py
-    import matplotlib
-    import numpy as np
-except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
-    sys.stderr.write(f"{__file__}: h5py, numpy and matplotlib are needed by {sys.executable}\n")
-    sys.exit(3)
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt, h5py, np = pyplot(__file__, "h5py", "numpy")
 
 
 def text(v):

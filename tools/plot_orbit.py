@@ -4,17 +4,11 @@
     tools/plot_orbit.py ORBIT.csv ORBIT.png [--title TITLE]
 """
 import argparse
-import sys
 import csv
 
-try:
-    import matplotlib
-except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
-    sys.stderr.write(f"{__file__}: matplotlib is not available to {sys.executable}\n")
-    sys.exit(3)
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = pyplot(__file__)
 
 
 def main():

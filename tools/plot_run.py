@@ -9,11 +9,9 @@ Uses Debian's python3-matplotlib and python3-h5py (installed by tools/install-de
 import argparse
 import os
 
-import h5py
-import matplotlib
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt, h5py = pyplot(__file__, "h5py")
 
 
 def main():

@@ -13,10 +13,9 @@ import argparse
 import re
 import sys
 
-import matplotlib
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = pyplot(__file__)
 
 
 def parse(lines):

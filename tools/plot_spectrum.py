@@ -12,16 +12,10 @@ unit circle, or an eigenvalue off the imaginary axis, is drawn in red: an unstab
 import argparse
 import csv
 import math
-import sys
 
-try:
-    import matplotlib
-except ImportError:  # exit 3: the driver then tries Debian's /usr/bin/python3
-    sys.stderr.write(f"{__file__}: matplotlib is not available to {sys.executable}\n")
-    sys.exit(3)
+from plot_common import pyplot
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+plt = pyplot(__file__)
 
 
 def main():

@@ -7,7 +7,8 @@ in its last column, what its files may include of the other folders — a folder
 header (`run/event_watch.hpp`); none named: no other folder. This reads that table and every
 `#include "..."` under host/src, and fails, naming the file and the line, on an include the row
 does not allow, an include that is not a path from host/src, a folder the table lacks, or a row
-naming a folder that does not exist."""
+naming a folder that does not exist; and on an HDF5 identifier closed by hand (`H5Fclose(`, …)
+anywhere but io/h5.hpp, the one HDF5 layer, whose H5Handle closes them."""
 import os
 import re
 import sys
@@ -36,6 +37,7 @@ for d in contracts:
     if d not in folders:
         failures.append(f"docs/architecture.md names host/src/{d}/, which does not exist")
 include = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+closed_by_hand = re.compile(r"\bH5[A-Z]close\s*\(|\bH5Idec_ref\s*\(")
 checked = 0
 for d in folders:
     for root, _, files in os.walk(os.path.join(src, d)):
@@ -45,6 +47,9 @@ for d in folders:
             path = os.path.join(root, f)
             rel = os.path.relpath(path, source)
             for n, line in enumerate(open(path, encoding="utf-8"), 1):
+                if closed_by_hand.search(line) and rel != os.path.join("host", "src", "io", "h5.hpp"):
+                    failures.append(f"{rel}:{n}: an HDF5 identifier closed by hand: hold it in an io::H5Handle "
+                                    "(io/h5.hpp, the one HDF5 layer)")
                 m = include.match(line)
                 if not m:
                     continue

@@ -2,7 +2,7 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "run/summary_schema.hpp"
 
 #include <algorithm>
@@ -315,11 +315,11 @@ void write_compare_csv(const CompareResult& r, const std::filesystem::path& file
 }
 
 void write_compare_h5(const CompareResult& r, const Scene& scene, const std::filesystem::path& file) {
-  using namespace h5;
+  using namespace io;
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  hid_t f = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0) throw OutputError("cannot create " + file.string());
-  hid_t g = make_group(f, "compare");
+  H5Handle f(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  if (!f.valid()) throw OutputError("cannot create " + file.string() + system_reason());
+  H5Handle g = make_group(f, "compare");
   string_attribute(g, "scene_file", scene.file);
   string_attribute(g, "scene", scene.text);
   string_attribute(g, "reference", r.reference);
@@ -344,8 +344,8 @@ void write_compare_h5(const CompareResult& r, const Scene& scene, const std::fil
     for (const auto& row : r.rows) values.push_back(row.value(c));
     double_dataset(g, c.c_str(), values);
   }
-  H5Gclose(g);
-  check(H5Fclose(f), "closing the compare file");
+  g.reset();
+  if (!f.close()) check(-1, "closing the compare file");
 }
 
 CompareSpec make_compare_spec(const Scene& scene, const std::vector<std::string>& runs,

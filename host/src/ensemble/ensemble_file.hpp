@@ -5,11 +5,11 @@
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/flush.hpp"
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
 #include "io/read_probe.hpp"
 #include "io/safe_publish.hpp"
 #include "run/summary_schema.hpp"
@@ -29,7 +29,7 @@
 
 namespace noether::detail {
 
-using namespace noether::h5;
+using namespace noether::io;
 
 inline std::string override_of(const Variation& v, double value) {
   char buf[64];
@@ -155,7 +155,7 @@ class EnsembleFile {
       };
       const io::H5Handle summary(make_group(file_, "summary"));
       for (const SummaryRow* column : summary_columns()) {
-        with_unit(create(summary, std::string(column->key).c_str(), H5T_NATIVE_DOUBLE, {}), unit_of(column->dimension, u));
+        with_unit(create(summary, std::string(column->key).c_str(), H5T_NATIVE_DOUBLE, {}), io::unit_of(column->dimension, u));
         summary_paths_.push_back("summary/" + std::string(column->key));
       }
       if (!indicators_.empty()) {

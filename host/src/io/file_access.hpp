@@ -2,7 +2,7 @@
 // The file-access properties of every HDF5 file noether writes or reads back: the file format,
 // and caches whose size does not grow with the file (docs/reliability.md, "Checksums" and
 // "Memory").
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
 
 namespace noether::io {
 

@@ -2,7 +2,7 @@
 // Flushing and closing a file that a kill may interrupt: the file is first made longer than
 // HDF5's end of allocation, so that a kill anywhere in a flush leaves a file HDF5 opens; after
 // the close the extension is cut off again (docs/reliability.md, "Kills").
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/file_access.hpp"
 #include "io/superblock.hpp"
 
@@ -32,7 +32,7 @@ inline void flush_extended(hid_t file, int fd, const char* what) {
       ::ftruncate(fd, static_cast<off_t>(eoa + margin)) != 0)
     throw OutputError(std::string("cannot extend the file while ") + what + ": " + std::strerror(errno));
   const bool recorded = known && record_end_of_allocation(fd, eoa + margin);
-  h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), what);
   if (recorded && H5Fget_eoa(file, &eoa) >= 0) record_end_of_allocation(fd, eoa);
 }
 

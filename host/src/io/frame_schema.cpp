@@ -3,8 +3,6 @@
 // that puts it back. docs/user-guide.md, "Output", lists the same series for users.
 #include "io/frame_schema.hpp"
 
-#include <noether/output_schema.hpp>
-
 #include <noether/euler_angles.hpp>
 #include <noether/lie.hpp>
 #include <noether/orbital_elements.hpp>
@@ -484,26 +482,3 @@ std::string describe_extent(Extent e) {
 }
 
 }  // namespace noether::io
-
-namespace noether {
-
-std::vector<OutputSeries> output_series(const Units& units) {
-  std::vector<OutputSeries> out;
-  for (const auto& q : io::frame_schema()) {
-    OutputSeries s;
-    s.name = q.name;
-    s.path = q.path;
-    s.shape = io::describe_extent(q.extent);
-    s.unit = io::unit_of(q.unit, units);
-    s.description = q.description;
-    s.integer = io::is_integer(q);
-    s.rigid_only = io::rigid_only(q);
-    s.optional = io::optional(q);
-    s.needs = io::requirement(q);
-    s.checkpointed = q.checksum_column >= 0;
-    out.push_back(std::move(s));
-  }
-  return out;
-}
-
-}  // namespace noether

@@ -5,10 +5,10 @@
 #include <noether/output.hpp>
 #include <noether/particles.hpp>
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
 #include "io/safe_publish.hpp"
 #include "io/output_impl.hpp"
 
@@ -20,7 +20,7 @@
 namespace noether {
 
 namespace fs = std::filesystem;
-using namespace noether::h5;
+using namespace noether::io;
 using io::claim_output;
 using io::create_partial;
 using io::partial_name;
@@ -36,8 +36,8 @@ H5Writer::H5Writer(const std::filesystem::path& path, const Scene& scene, Output
   m.partial = partial_name(path);
   try {
     m.lock = create_partial(m.partial, path);
-    m.file = H5Fcreate(m.partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024));
-    if (m.file < 0)
+    m.file = io::H5Handle(H5Fcreate(m.partial.c_str(), H5F_ACC_TRUNC, io::file_creation(), io::file_access(64 * 1024)));
+    if (!m.file.valid())
       throw OutputError("cannot create the output file " + path.string() + system_reason() +
                         " (does its folder exist, and is it writable?)");
     create_layout(scene);
@@ -71,10 +71,9 @@ void H5Writer::abandon() {
     } catch (...) {
     }
   }
-  if (m.file >= 0) {
+  if (m.file.valid()) {
     m.close_datasets();
-    H5Fclose(m.file);
-    m.file = -1;
+    m.file.reset();
     if (m.published) io::trim_extension(m.path, m.lock);
   }
   if (m.lock >= 0) {
@@ -127,8 +126,8 @@ void H5Writer::Impl::write_particles(const ParticleCheckpoint& particles, std::i
   if (H5Lexists(g, rows_name.c_str(), H5P_DEFAULT) <= 0) {
     const hsize_t dims[2] = {particles.rows.size() / w, w};
     const io::H5Handle space(H5Screate_simple(2, dims, nullptr));
-    H5Dclose(check_id(H5Dcreate2(g, rows_name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                      "/checkpoint/particles' rows"));
+    check_id(H5Dcreate2(g, rows_name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             "/checkpoint/particles' rows");  // closed at once: written below
     numeric_attribute<double>(g, header_name.c_str(), H5T_NATIVE_DOUBLE, header);
     numeric_attribute<std::uint64_t>(g, checksum_name.c_str(), H5T_NATIVE_UINT64, {0});
   }
@@ -194,7 +193,7 @@ void H5Writer::settle() {
 
 void H5Writer::flush() {
   Impl& m = *impl_;
-  if (m.file < 0) return;
+  if (!m.file.valid()) return;
   settle();
   if (m.buffered == 0) return;
   const hsize_t first = m.handed, end = first + m.buffered;
@@ -213,18 +212,16 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
     const hsize_t width = std::max<std::size_t>(1, series.width), rows = series.values.size() / width;
     auto found = m.step_records.find(series.name);
     if (found == m.step_records.end()) {  // /integrator/<name> [row][width], extendible
-      if (m.integrator_group < 0) m.integrator_group = make_group(m.file, "integrator");
+      if (!m.integrator_group.valid()) m.integrator_group = make_group(m.file, "integrator");
       const hsize_t dims[2] = {0, width}, maxdims[2] = {H5S_UNLIMITED, width},
                     chunk[2] = {std::max<hsize_t>(1, 8192 / width), width};
-      hid_t space = H5Screate_simple(2, dims, maxdims);
-      hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+      const io::H5Handle space(H5Screate_simple(2, dims, maxdims)), plist(H5Pcreate(H5P_DATASET_CREATE));
       H5Pset_chunk(plist, 2, chunk);
-      hid_t d = check_id(H5Dcreate2(m.integrator_group, series.name.c_str(), H5T_NATIVE_DOUBLE, space,
-                                    H5P_DEFAULT, plist, H5P_DEFAULT), series.name.c_str());
-      H5Pclose(plist);
-      H5Sclose(space);
+      io::H5Handle d = check_id(H5Dcreate2(m.integrator_group, series.name.c_str(), H5T_NATIVE_DOUBLE, space,
+                                           H5P_DEFAULT, plist, H5P_DEFAULT),
+                                series.name.c_str());
       string_attribute(d, "description", series.description);
-      found = m.step_records.emplace(series.name, Impl::StepRecords{d, width, 0}).first;
+      found = m.step_records.emplace(series.name, Impl::StepRecords{std::move(d), width, 0}).first;
     }
     Impl::StepRecords& out = found->second;
     if (out.width != width)
@@ -232,13 +229,11 @@ void H5Writer::append_step_series(const std::vector<StepSeries>& records) {
     if (rows == 0) continue;
     const hsize_t dims[2] = {out.rows + rows, width}, start[2] = {out.rows, 0}, count[2] = {rows, width};
     check(H5Dset_extent(out.dataset, dims), "extending /integrator");
-    hid_t file_space = H5Dget_space(out.dataset);
+    const io::H5Handle file_space(H5Dget_space(out.dataset));
     H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr);
-    hid_t mem_space = H5Screate_simple(2, count, nullptr);
+    const io::H5Handle mem_space(H5Screate_simple(2, count, nullptr));
     check(H5Dwrite(out.dataset, H5T_NATIVE_DOUBLE, mem_space, file_space, H5P_DEFAULT, series.values.data()),
           "writing /integrator");
-    H5Sclose(mem_space);
-    H5Sclose(file_space);
     out.rows += rows;
   }
 }
@@ -284,7 +279,7 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   // /work is built unlinked and flushed, then linked and flushed: HDF5 writes a flush's
   // metadata in no fixed order, and a kill after the root group's new link but before /work's
   // own header left a link to unwritten metadata (docs/reliability.md, "Kills").
-  hid_t g = check_id(H5Gcreate_anon(m.file, io::late_group_creation(), H5P_DEFAULT), "work");
+  io::H5Handle g = check_id(H5Gcreate_anon(m.file, io::late_group_creation(), H5P_DEFAULT), "work");
   scalar_attribute<std::int64_t>(g, "steps", H5T_NATIVE_INT64, work.steps);
   scalar_attribute<std::int64_t>(g, "potential_evaluations", H5T_NATIVE_INT64, work.potential_evaluations);
   scalar_attribute<std::int64_t>(g, "newton_iterations", H5T_NATIVE_INT64, work.newton_iterations);
@@ -301,10 +296,9 @@ void H5Writer::finish(const WorkCounters& work, double wall_seconds, const std::
   m.close_datasets();
   m.flush_file("closing the output file");
   check(H5Olink(g, m.file, "work", H5P_DEFAULT, H5P_DEFAULT), "linking /work");
-  H5Gclose(g);
+  g.reset();
   m.flush_file("closing the output file");
-  check(H5Fclose(m.file), "closing the output file");
-  m.file = -1;
+  if (!m.file.close()) check(-1, "closing the output file");
   io::trim_extension(m.path, m.lock);
   ::close(m.lock);
   m.lock = -1;

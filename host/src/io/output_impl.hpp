@@ -26,9 +26,9 @@ namespace noether {
 
 using io::Series;
 using io::FrameQuantity;
-using h5::check;
-using h5::make_group;
-using h5::string_attribute;
+using io::check;
+using io::make_group;
+using io::string_attribute;
 using Clock = std::chrono::steady_clock;
 
 struct H5Writer::Impl {
@@ -36,7 +36,7 @@ struct H5Writer::Impl {
   int claimed = -1;  // the existing file's, held until the new one replaces it
   std::filesystem::path path, partial;  // where the file goes, and the hidden name it is built under
   bool published = false;
-  hid_t file = -1;
+  io::H5Handle file;
   OutputOptions options;
   Clock::time_point last_flush = Clock::now();
   std::size_t n_bodies = 0, n_rigid = 0;
@@ -63,13 +63,13 @@ struct H5Writer::Impl {
   bool background_blocks = false;
   std::future<void> block_in_flight;
   hsize_t allocated = 0;   // frames allocated in every series
-  hid_t complete = -1;     // /frames_complete: the number of frames written and flushed
+  io::H5Handle complete;   // /frames_complete: the number of frames written and flushed
   struct StepRecords {     // /integrator/<name>: an integrator's per-step records
-    hid_t dataset = -1;
+    io::H5Handle dataset;
     hsize_t width = 1, rows = 0;
   };
   std::map<std::string, StepRecords> step_records;
-  hid_t integrator_group = -1;
+  io::H5Handle integrator_group;
   std::string verdict, verdict_reasons, energy_scale;  // set_verdict
   H5Writer::ParticleSource particle_source;  // checkpoint_particles
   double last_frame_t = 0.0;                  // the time of the last frame written
@@ -152,12 +152,9 @@ struct H5Writer::Impl {
     checkpointed.clear();
     columns.clear();
     checksum_series.reset();
-    for (auto& [name, records] : step_records) H5Dclose(records.dataset);
     step_records.clear();
-    if (integrator_group >= 0) H5Gclose(integrator_group);
-    integrator_group = -1;
-    if (complete >= 0) H5Dclose(complete);
-    complete = -1;
+    integrator_group.reset();
+    complete.reset();
   }
 
 };

@@ -4,9 +4,9 @@
 #include <noether/particles.hpp>
 #include <noether/version.hpp>
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/frame_schema.hpp"
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
 #include "io/checksum.hpp"
 #include "run/binary_pair.hpp"
 #include "io/output_impl.hpp"
@@ -18,7 +18,7 @@
 namespace noether {
 
 namespace fs = std::filesystem;
-using namespace noether::h5;
+using namespace noether::io;
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include "io/run_record.hpp"
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 
@@ -56,7 +56,7 @@ bool read_hyperslab(hid_t dataset, hid_t mem_type, hsize_t first, hsize_t count,
 void RunRecord::damaged(const std::string& what) const { throw_damaged(file_, what); }
 
 RunRecord::RunRecord(const fs::path& path) : file_(path) {
-  using namespace noether::h5;
+
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   ::setenv("HDF5_USE_FILE_LOCKING", "FALSE", 0);
   std::error_code ec;
@@ -225,7 +225,7 @@ void RunRecord::read_particles() {
 std::vector<std::string> RunRecord::body_names() const {
   std::vector<std::string> names;
   try {
-    names = h5::read_string_list(h5_, "/particles/bodies/name");
+    names = read_string_list(h5_, "/particles/bodies/name");
   } catch (const OutputError& e) {
     damaged(e.what());
   }
@@ -245,7 +245,7 @@ std::vector<double> RunRecord::body_masses() const {
 }
 
 void RunRecord::read_pair_models(hid_t parameters) {
-  using namespace noether::h5;
+
   const htri_t exists = H5Lexists(parameters, "pair_models", H5P_DEFAULT);
   if (exists < 0) damaged("/parameters does not read");
   if (exists == 0) return;
@@ -297,7 +297,7 @@ void RunRecord::read_summary() {
     const std::string key = name;
     if (key == "checksum" || key == "description") continue;
     if (H5Tget_class(type) == H5T_STRING) {
-      summary_texts.emplace_back(key, h5::read_string(group, name, false));
+      summary_texts.emplace_back(key, read_string(group, name, false));
     } else {
       const hssize_t n = H5Sget_simple_extent_npoints(space);
       std::vector<double> values(static_cast<std::size_t>(std::max<hssize_t>(0, n)));
@@ -396,7 +396,7 @@ void RunRecord::read_step_records(const std::function<void(const StepSeries&)>& 
     StepSeries series;
     series.name = name;
     series.width = dims[1];
-    series.description = noether::h5::read_string(d, "description", false);
+    series.description = read_string(d, "description", false);
     const hsize_t rows_per_block = std::max<hsize_t>(1, 65536 / dims[1]);
     for (hsize_t r = 0; r < dims[0]; r += rows_per_block) {
       if (!read_hyperslab(d, H5T_NATIVE_DOUBLE, r, std::min(rows_per_block, dims[0] - r), series.values))

@@ -4,7 +4,7 @@
 // bounded size, each frame checked against /checkpoint/checksum before it is handed on
 // (docs/reliability.md, "Checksums"); memory does not grow with the number of frames.
 #include "io/frame_schema.hpp"
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
 
 #include <noether/integrator.hpp>
 #include <noether/particles.hpp>

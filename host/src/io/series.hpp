@@ -1,7 +1,7 @@
 #pragma once
 // Series: one [frame][shape...] series of an output file, written in blocks (internal to
 // libnoether).
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 
 #include <hdf5.h>
 
@@ -14,16 +14,13 @@
 
 namespace noether::io {
 
-using h5::check;
-using h5::check_id;
-
 // A series [frame][shape...] of 8-byte numbers (double, int64 or uint64: `type`): a chunked
 // dataset whose chunks are all allocated (and filled with `fill`) when it is created or grown,
 // so that writing frames changes raw data only, never the file's metadata (docs/user-guide.md,
 // "Output files": a kill at any moment leaves a consistent file).
 struct Series {
-  hid_t dataset = -1;
-  hid_t type = -1;
+  H5Handle dataset;
+  hid_t type = -1;  // a predefined type (not closed)
   std::vector<hsize_t> frame_shape;
   std::size_t frame_size = 1;           // numbers per frame
 
@@ -43,19 +40,13 @@ struct Series {
       maxdims.push_back(d);
       chunk.push_back(std::max<hsize_t>(1, d));
     }
-    hid_t space = H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data());
-    hid_t plist = H5Pcreate(H5P_DATASET_CREATE);
+    const H5Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), maxdims.data()));
+    const H5Handle plist(H5Pcreate(H5P_DATASET_CREATE));
     H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data());
     H5Pset_alloc_time(plist, H5D_ALLOC_TIME_EARLY);
     H5Pset_fill_value(plist, type, fill);
     H5Pset_fill_time(plist, H5D_FILL_TIME_ALLOC);
-    dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT),
-                       name);
-    H5Pclose(plist);
-    H5Sclose(space);
-  }
-  ~Series() {
-    if (dataset >= 0) H5Dclose(dataset);
+    dataset = check_id(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, plist, H5P_DEFAULT), name);
   }
   Series(const Series&) = delete;
   Series& operator=(const Series&) = delete;
@@ -108,12 +99,10 @@ struct Series {
       start.push_back(0);
       count.push_back(d);
     }
-    hid_t file_space = H5Dget_space(dataset);
+    const H5Handle file_space(H5Dget_space(dataset));
     H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-    hid_t mem_space = H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr);
+    const H5Handle mem_space(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr));
     const herr_t status = H5Dwrite(dataset, type, mem_space, file_space, H5P_DEFAULT, handed_.data());
-    H5Sclose(mem_space);
-    H5Sclose(file_space);
     check(status, "writing a block of frames");
   }
 

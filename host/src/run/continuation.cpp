@@ -5,7 +5,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "io/h5_helpers.hpp"
+#include "io/h5.hpp"
 #include "io/checksum.hpp"
 #include "io/file_access.hpp"
 #include "io/read_probe.hpp"

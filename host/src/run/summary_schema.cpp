@@ -115,11 +115,11 @@ const SummaryRow kRows[] = {
     {.key = "units", .kind = Kind::text, .label = "units", .doc = "the scene's units, when it declares them",
      .text = [](S s) { return s.units; }, .has = [](S s) { return !s.units.empty(); },
      .line = [](const SummaryRow& r, S s) { return s.units.empty() ? "" : summary_line(r.label, s.units); }},
-    {.key = "E0", .dimension = Dimension::energy, .label = "E0",
+    {.key = "E0", .dimension = Dimension::kEnergy, .label = "E0",
      .doc = "total energy at t0: Σ‖γ‖²/2m + Σ ½ Πᵀ J⁻¹ Π + U",
      .number = [](S s) { return s.initial.energy; },
      .line = [](const SummaryRow& r, S s) { return summary_line(r.label, printed("%.10g", s.initial.energy) + with_unit(s.energy_unit)); }},
-    {.key = "max_abs_energy_error", .dimension = Dimension::energy, .uses = kCheckpoint | kEnsemble | kCompare,
+    {.key = "max_abs_energy_error", .dimension = Dimension::kEnergy, .uses = kCheckpoint | kEnsemble | kCompare,
      .label = "max |E - E0|", .heading = "max|dE|",
      .doc = "largest \\|E − E0\\| over the output frames (\\|E − W − E0\\| with forces: their work W counts), with "
             "it relative to the energy scale and the frames interpolated between the method's steps",
@@ -169,7 +169,7 @@ const SummaryRow kRows[] = {
      .doc = "whether the scene conserves L (no net external torque about the origin at t0)",
      .number = [](S s) { return s.conserves_angular_momentum ? 1.0 : 0.0; },
      .restore_number = [](RunSummary& s, double v) { s.conserves_angular_momentum = v != 0; }},
-    {.key = "closest_approach", .dimension = Dimension::length, .uses = kCheckpoint | kEnsemble,
+    {.key = "closest_approach", .dimension = Dimension::kLength, .uses = kCheckpoint | kEnsemble,
      .label = "closest approach",
      .doc = "smallest distance between two body centres seen at the output frames (scenes of 2 to 64 bodies), the "
             "pair and the time",
@@ -181,7 +181,7 @@ const SummaryRow kRows[] = {
                             : "";
      },
      .restore_number = [](RunSummary& s, double v) { s.min_distance = v; }},
-    {.key = "t_of_closest_approach", .dimension = Dimension::time, .uses = kCheckpoint,
+    {.key = "t_of_closest_approach", .dimension = Dimension::kTime, .uses = kCheckpoint,
      .doc = "when the closest approach was seen (on its line)", .number = [](S s) { return s.t_of_min_distance; },
      .has = approached,
      .restore_number = [](RunSummary& s, double v) { s.t_of_min_distance = v; }},
@@ -189,12 +189,12 @@ const SummaryRow kRows[] = {
      .doc = "the bodies of the closest approach, \"a–b\" (on its line)", .text = [](S s) { return s.min_distance_pair; },
      .has = approached,
      .restore_text = [](RunSummary& s, const std::string& v) { s.min_distance_pair = v; }},
-    {.key = "smallest_gap", .dimension = Dimension::length, .uses = kCheckpoint,
+    {.key = "smallest_gap", .dimension = Dimension::kLength, .uses = kCheckpoint,
      .doc = "the smallest gap seen between two bodies with radii: between their surfaces when one has a solid shape "
             "(docs/equations.md eq. 16.5), else ‖x_a − x_b‖ − (r_a + r_b)",
      .number = [](S s) { return s.min_gap; }, .has = gap_seen,
      .restore_number = [](RunSummary& s, double v) { s.min_gap = v; }},
-    {.key = "smallest_gap_reach", .dimension = Dimension::length, .uses = kCheckpoint,
+    {.key = "smallest_gap_reach", .dimension = Dimension::kLength, .uses = kCheckpoint,
      .doc = "r_a + r_b of the smallest gap's pair", .number = [](S s) { return s.min_gap_reach; }, .has = gap_seen,
      .restore_number = [](RunSummary& s, double v) { s.min_gap_reach = v; }},
     {.key = "smallest_gap_pair", .kind = Kind::text, .uses = kCheckpoint, .doc = "the smallest gap's bodies, \"a–b\"",
@@ -209,7 +209,7 @@ const SummaryRow kRows[] = {
                                                          " (errors measured from the references each one moved)")
                              : "";
      }},
-    {.key = "impulse_energy", .dimension = Dimension::energy, .doc = "the energy the impulses changed (on their line)",
+    {.key = "impulse_energy", .dimension = Dimension::kEnergy, .doc = "the energy the impulses changed (on their line)",
      .number = [](S s) { return s.impulse_energy; }},
     {.key = "forces", .kind = Kind::structure, .label = "force",
      .doc = "per force beyond the potential: name, work, linear and angular momentum put in (docs/forces.md)",
@@ -217,7 +217,7 @@ const SummaryRow kRows[] = {
     {.key = "particles", .kind = Kind::structure, .label = "particles",
      .doc = "the massless particles: count, in flight, escaped, landed per body, the step-halving check (null: none)",
      .has = [](S s) { return s.particles.count > 0; }, .json = particles_json, .line = particles_lines},
-    {.key = "mutual_period", .dimension = Dimension::time, .label = "mutual orbit period",
+    {.key = "mutual_period", .dimension = Dimension::kTime, .label = "mutual orbit period",
      .doc = "a two-body-like scene's mutual orbit period from the trajectory: the last whole revolution's time / "
             "the revolutions",
      .number = [](S s) { return s.mutual_period; }, .has = [](S s) { return s.mutual_revolutions > 0; },
@@ -259,7 +259,7 @@ const SummaryRow kRows[] = {
     {.key = "interpolated_frames", .kind = Kind::integer,
      .doc = "frames interpolated between the method's steps (on the energy's line)",
      .number = [](S s) { return double(s.interpolated_frames); }},
-    {.key = "final_time", .dimension = Dimension::time, .uses = kEnsemble, .doc = "the time the run ended at",
+    {.key = "final_time", .dimension = Dimension::kTime, .uses = kEnsemble, .doc = "the time the run ended at",
      .number = [](S s) { return s.final_state.t; }},
     {.key = "steps", .kind = Kind::integer, .uses = kEnsemble | kCompare, .label = "steps",
      .doc = "the integrator's steps", .number = [](S s) { return double(s.work.steps); }},
@@ -284,7 +284,7 @@ const SummaryRow kRows[] = {
      .line = [](const SummaryRow& r, S s) {
        return s.threads > 1 ? summary_line(r.label, std::to_string(s.threads) + " in each evaluation") : "";
      }},
-    {.key = "wall_seconds", .label = "wall time", .doc = "the run's wall time in seconds",
+    {.key = "wall_seconds", .dimension = Dimension::kWallSeconds, .label = "wall time", .doc = "the run's wall time in seconds",
      .number = [](S s) { return s.wall_seconds; },
      .line = [](const SummaryRow& r, S s) { return summary_line(r.label, printed("%.3f", s.wall_seconds) + " s"); }},
     {.key = "stop_reason", .kind = Kind::text, .uses = kCheckpoint, .label = "stopped early",
@@ -326,16 +326,6 @@ std::vector<const SummaryRow*> summary_rows_for(SummaryUse use) {
   for (const SummaryRow& row : kRows)
     if (row.uses & use) out.push_back(&row);
   return out;
-}
-
-std::string unit_of(Dimension dimension, const Units& units) {
-  switch (dimension) {
-    case Dimension::time: return units.of_time();
-    case Dimension::length: return units.of_length();
-    case Dimension::energy: return units.of_energy();
-    case Dimension::one: break;
-  }
-  return "1";
 }
 
 std::string summary_line(std::string_view label, const std::string& text) {
@@ -440,10 +430,8 @@ std::string summary_reference_markdown() {
       "| key | text line | unit | written to | meaning |\n"
       "|-----|-----------|------|------------|---------|\n";
   for (const SummaryRow& row : kRows) {
-    const char* unit = row.dimension == Dimension::time     ? "time"
-                       : row.dimension == Dimension::length ? "length"
-                       : row.dimension == Dimension::energy ? "energy"
-                                                            : "";
+    // In symbols (L, M, T: a scene's units when it declares none); none for a number.
+    const std::string unit = row.dimension == Dimension::kOne ? "" : io::unit_of(row.dimension, Units{});
     std::string label;  // a table cell: its pipes escaped, in code too
     for (const char c : row.label) label += c == '|' ? std::string("\\|") : std::string(1, c);
     out += "| `" + std::string(row.key) + "` | " + (label.empty() ? "" : "`" + label + "`") + " | " +

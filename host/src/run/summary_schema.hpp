@@ -8,6 +8,8 @@
 // table printed by summary_reference_markdown() (test SummarySchema.DocumentedInUserGuide).
 #include <noether/simulation.hpp>
 
+#include "io/frame_schema.hpp"
+
 #include <span>
 #include <string>
 #include <string_view>
@@ -16,8 +18,9 @@
 
 namespace noether::detail {
 
-// What a row's value is measured in: the scene's unit of that dimension (Units::of_*), or 1.
-enum class Dimension { one, time, length, energy };
+// A row's value is measured in the scene's unit of its dimension (io::Dimension, io::unit_of:
+// the frame schema's, so a quantity has the same unit in the output series and the summary).
+using io::Dimension;
 
 // How a row's value is written: a double, a whole number, true/false, a string, or a structure
 // of its own (JSON written by the row's json function).
@@ -40,13 +43,13 @@ struct SavedSummary {
 };
 
 struct SummaryRow {
-  std::string_view key;
+  std::string_view key{};
   Kind kind = Kind::number;
-  Dimension dimension = Dimension::one;
+  Dimension dimension = Dimension::kOne;
   unsigned uses = 0;
-  std::string_view label;    // the text summary's line starts with it ("": the value is on another row's line)
-  std::string_view heading;  // compare's printed table heads its column with it ("": not in that table)
-  std::string_view doc;      // one line for docs/user-guide.md "Summary reference"
+  std::string_view label{};  // the text summary's line starts with it ("": the value is on another row's line)
+  std::string_view heading{};  // compare's printed table heads its column with it ("": not in that table)
+  std::string_view doc{};    // one line for docs/user-guide.md "Summary reference"
   // The value, for kinds number, integer and flag (flag: 0 or 1); kind text: text.
   double (*number)(const RunSummary&) = nullptr;
   std::string (*text)(const RunSummary&) = nullptr;
@@ -70,10 +73,6 @@ std::span<const SummaryRow> summary_rows();
 const SummaryRow& summary_row(std::string_view key);
 // The rows with a use (kEnsemble, kCompare, kCheckpoint), in order.
 std::vector<const SummaryRow*> summary_rows_for(SummaryUse use);
-
-// The unit of a dimension in the scene's units ("1" for Dimension::one; "" when the scene
-// declares none and the dimension has one).
-std::string unit_of(Dimension dimension, const Units& units);
 
 // A scalar row's value as the text summary prints it, and as JSON (null where the run lacks it).
 std::string summary_value_text(const SummaryRow& row, const RunSummary& summary);

@@ -7,8 +7,8 @@
 #include <noether/scene.hpp>
 #include <noether/tessellated_ellipsoid.hpp>
 
-#include "io/h5_helpers.hpp"
-#include "io/h5_handle.hpp"
+#include "io/h5.hpp"
+#include "io/h5.hpp"
 #include "io/run_record.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -67,7 +67,7 @@ PictureShape solid_shape(hid_t shapes, const std::string& name) {
   const H5Handle g(H5Gopen2(shapes, name.c_str(), H5P_DEFAULT));
   if (!g.valid()) throw OutputError(where + " does not open");
   PictureShape s;
-  if (h5::read_string(g, "kind", false) == "ellipsoid") {
+  if (io::read_string(g, "kind", false) == "ellipsoid") {
     const auto a = attribute<double>(g, "semi_axes", H5T_NATIVE_DOUBLE);
     if (a.size() != 3) throw OutputError(where + " has no semi_axes");
     s.kind = Kind::ellipsoid;
@@ -257,8 +257,8 @@ PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t
   }
 
   if (parameters.valid()) {
-    if (H5Aexists(parameters, "unit_length") > 0) out.unit_length = h5::read_string(parameters, "unit_length", false);
-    if (H5Aexists(parameters, "unit_time") > 0) out.unit_time = h5::read_string(parameters, "unit_time", false);
+    if (H5Aexists(parameters, "unit_length") > 0) out.unit_length = io::read_string(parameters, "unit_length", false);
+    if (H5Aexists(parameters, "unit_time") > 0) out.unit_time = io::read_string(parameters, "unit_time", false);
   }
   return out;
 }
