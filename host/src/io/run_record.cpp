@@ -311,23 +311,6 @@ void RunRecord::read_summary() {
   if (summary_numbers.empty()) damaged("/checkpoint/summary holds no numbers");
 }
 
-const std::vector<double>& RunRecord::summary_number(const std::string& name, std::size_t size) const {
-  for (const auto& [key, values] : summary_numbers)
-    if (key == name) {
-      if (values.size() != size)
-        damaged("/checkpoint/summary's " + name + " has " + std::to_string(values.size()) + " numbers, not " +
-                std::to_string(size));
-      return values;
-    }
-  damaged("/checkpoint/summary has no " + name);
-}
-
-std::string RunRecord::summary_text(const std::string& name) const {
-  for (const auto& [key, text] : summary_texts)
-    if (key == name) return text;
-  damaged("/checkpoint/summary has no " + name);
-}
-
 bool RunRecord::read(std::size_t first, std::size_t count,
                      const std::function<void(std::size_t, const RecordedFrame&)>& visit,
                      const volatile std::sig_atomic_t* interrupt, std::size_t block) const {

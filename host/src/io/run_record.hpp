@@ -46,8 +46,6 @@ class RunRecord {
   // /parameters/pair_models as the file's run last wrote them (when it finished, was interrupted
   // or was saved): what a tolerance chose, and whether it was exceeded before the file ended.
   std::vector<PairModel> pair_models;
-  const std::vector<double>& summary_number(const std::string& name, std::size_t size) const;
-  std::string summary_text(const std::string& name) const;
 
   // Visits frames [first, first + count) in order, reading at most `block` frames at a time;
   // OutputError names the dataset and frame that does not read or does not match its checksum.

@@ -169,11 +169,7 @@ class RunStatistics final : public Observer {
   }
   // Throws Error naming what a checkpoint lacks.
   void restore(const SavedSummary& in, bool forced) {
-    auto one = [&in](const char* key) {
-      const std::vector<double>* v = in.number(key);
-      if (!v || v->size() != 1) throw Error(std::string("the checkpoint's summary has no ") + key);
-      return (*v)[0];
-    };
+    auto one = [&in](const char* key) { return in.require(key, 1)[0]; };
     p_scale_ = one("linear_momentum_scale"), L_scale_ = one("angular_momentum_scale");
     if (forced) {
       if (!in.number("exchanged_linear_momentum"))

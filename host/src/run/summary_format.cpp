@@ -5,9 +5,7 @@
 
 #include <noether/simulation.hpp>
 
-#include <cmath>
 #include <cstdio>
-#include <sstream>
 
 namespace noether {
 

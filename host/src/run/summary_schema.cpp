@@ -4,6 +4,7 @@
 // run/summary_sections.cpp.
 #include "run/summary_schema.hpp"
 
+#include "io/h5.hpp"
 #include "io/json_text.hpp"
 #include "run/summary_sections.hpp"
 
@@ -24,10 +25,6 @@ std::string printed(const char* format, double value) {
   std::snprintf(text, sizeof text, format, value);
   return text;
 }
-// " kg m^2/s^2" after a number in declared units (nothing when the scene declares none).
-std::string with_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
-// The unit of time after a time, where the scene declares units.
-std::string time_unit(S s) { return with_unit(s.energy_unit.empty() ? "" : s.time_unit); }
 // " = 11.9326 h" after a time in seconds (none in other units).
 std::string hours(double t, const std::string& unit) { return unit == "s" ? printed(" = %.6g h", t / 3600.0) : ""; }
 
@@ -48,25 +45,17 @@ void save_diagnostics(const std::string& name, const Diagnostics& d, SavedSummar
   put("angular_momentum", {d.angular_momentum.x(), d.angular_momentum.y(), d.angular_momentum.z()});
   put("orthogonality_error", {d.orthogonality_error});
 }
-const std::vector<double>& saved(const SavedSummary& in, const std::string& key, std::size_t size) {
-  const std::vector<double>* v = in.number(key);
-  if (!v) throw Error("the checkpoint's summary has no " + key);
-  if (v->size() != size)
-    throw Error("the checkpoint's summary " + key + " has " + std::to_string(v->size()) + " numbers, not " +
-                std::to_string(size));
-  return *v;
-}
 Diagnostics restore_diagnostics(const std::string& name, const SavedSummary& in) {
   Diagnostics d;
-  d.kinetic_translational = saved(in, name + ".kinetic_translational", 1)[0];
-  d.kinetic_rotational = saved(in, name + ".kinetic_rotational", 1)[0];
-  d.potential = saved(in, name + ".potential", 1)[0];
-  d.energy = saved(in, name + ".energy", 1)[0];
-  const std::vector<double>& P = saved(in, name + ".linear_momentum", 3);
-  const std::vector<double>& L = saved(in, name + ".angular_momentum", 3);
+  d.kinetic_translational = in.require(name + ".kinetic_translational", 1)[0];
+  d.kinetic_rotational = in.require(name + ".kinetic_rotational", 1)[0];
+  d.potential = in.require(name + ".potential", 1)[0];
+  d.energy = in.require(name + ".energy", 1)[0];
+  const std::vector<double>& P = in.require(name + ".linear_momentum", 3);
+  const std::vector<double>& L = in.require(name + ".angular_momentum", 3);
   d.linear_momentum = Vec3(P[0], P[1], P[2]);
   d.angular_momentum = Vec3(L[0], L[1], L[2]);
-  d.orthogonality_error = saved(in, name + ".orthogonality_error", 1)[0];
+  d.orthogonality_error = in.require(name + ".orthogonality_error", 1)[0];
   return d;
 }
 
@@ -83,15 +72,12 @@ void restore_orbits(RunSummary& s, const SavedSummary& in) {
   const std::string* names = in.text("orbits");
   if (!names) throw Error("the checkpoint's summary has no orbits");
   s.orbits.clear();
-  for (std::size_t at = 0; at < names->size();) {
-    const std::size_t end = names->find('\n', at), tab = names->find('\t', at);
-    const std::string line = names->substr(at, end - at);
-    const std::size_t split = tab < end ? tab - at : std::string::npos;
-    s.orbits.push_back({line.substr(0, split), split == std::string::npos ? "" : line.substr(split + 1), 0.0, 0.0});
-    at = end == std::string::npos ? names->size() : end + 1;
+  for (const std::string& line : io::lines_of(*names)) {
+    const std::size_t tab = line.find('\t');
+    s.orbits.push_back({line.substr(0, tab), tab == std::string::npos ? "" : line.substr(tab + 1), 0.0, 0.0});
   }
   if (s.orbits.empty()) return;
-  const std::vector<double>& scales = saved(in, "orbits.energy_scale", s.orbits.size());
+  const std::vector<double>& scales = in.require("orbits.energy_scale", s.orbits.size());
   for (std::size_t k = 0; k < s.orbits.size(); ++k) s.orbits[k].energy_scale = scales[k];
 }
 
@@ -118,7 +104,7 @@ const SummaryRow kRows[] = {
     {.key = "E0", .dimension = Dimension::kEnergy, .label = "E0",
      .doc = "total energy at t0: Σ‖γ‖²/2m + Σ ½ Πᵀ J⁻¹ Π + U",
      .number = [](S s) { return s.initial.energy; },
-     .line = [](const SummaryRow& r, S s) { return summary_line(r.label, printed("%.10g", s.initial.energy) + with_unit(s.energy_unit)); }},
+     .line = [](const SummaryRow& r, S s) { return summary_line(r.label, printed("%.10g", s.initial.energy) + summary_unit(s.energy_unit)); }},
     {.key = "max_abs_energy_error", .dimension = Dimension::kEnergy, .uses = kCheckpoint | kEnsemble | kCompare,
      .label = "max |E - E0|", .heading = "max|dE|",
      .doc = "largest \\|E − E0\\| over the output frames (\\|E − W − E0\\| with forces: their work W counts), with "
@@ -129,7 +115,7 @@ const SummaryRow kRows[] = {
                                                                         std::to_string(s.frames) + " interpolated between the method's steps"
                                                                   : "";
        return summary_line(s.forces.empty() ? r.label : "max |E - W - E0|",
-                           printed("%.4e", s.max_abs_energy_error) + with_unit(s.energy_unit) + " (relative to " +
+                           printed("%.4e", s.max_abs_energy_error) + summary_unit(s.energy_unit) + " (relative to " +
                                s.energy_scale + ": " + printed("%.2e", s.max_rel_energy_error) + "; at the output frames" +
                                interpolated + ")");
      },
@@ -175,9 +161,9 @@ const SummaryRow kRows[] = {
             "pair and the time",
      .number = [](S s) { return s.min_distance; }, .has = approached,
      .line = [](const SummaryRow& r, S s) {
-       return approached(s) ? summary_line(r.label, printed("%.6g", s.min_distance) + with_unit(s.length_unit) + " (" +
+       return approached(s) ? summary_line(r.label, printed("%.6g", s.min_distance) + summary_unit(s.length_unit) + " (" +
                                                          s.min_distance_pair + ") at t = " +
-                                                         printed("%.6g", s.t_of_min_distance) + time_unit(s))
+                                                         printed("%.6g", s.t_of_min_distance) + summary_time_unit(s))
                             : "";
      },
      .restore_number = [](RunSummary& s, double v) { s.min_distance = v; }},
@@ -205,7 +191,7 @@ const SummaryRow kRows[] = {
      .number = [](S s) { return double(s.impulses); },
      .line = [](const SummaryRow& r, S s) {
        return s.impulses > 0 ? summary_line(r.label, std::to_string(s.impulses) + " applied, energy changed by " +
-                                                         printed("%+.6g", s.impulse_energy) + with_unit(s.energy_unit) +
+                                                         printed("%+.6g", s.impulse_energy) + summary_unit(s.energy_unit) +
                                                          " (errors measured from the references each one moved)")
                              : "";
      }},
@@ -307,6 +293,14 @@ const std::vector<double>* SavedSummary::number(std::string_view key) const {
     if (name == key) return &values;
   return nullptr;
 }
+const std::vector<double>& SavedSummary::require(std::string_view key, std::size_t size) const {
+  const std::vector<double>* v = number(key);
+  if (!v) throw Error("the checkpoint's summary has no " + std::string(key));
+  if (v->size() != size)
+    throw Error("the checkpoint's summary " + std::string(key) + " has " + std::to_string(v->size()) +
+                " numbers, not " + std::to_string(size));
+  return *v;
+}
 const std::string* SavedSummary::text(std::string_view key) const {
   for (const auto& [name, value] : texts)
     if (name == key) return &value;
@@ -333,6 +327,9 @@ std::string summary_line(std::string_view label, const std::string& text) {
   out.resize(std::max<std::size_t>(out.size() + 1, 30), ' ');
   return out + text + "\n";
 }
+
+std::string summary_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
+std::string summary_time_unit(const RunSummary& s) { return summary_unit(s.energy_unit.empty() ? "" : s.time_unit); }
 
 std::string summary_value_text(const SummaryRow& row, const RunSummary& s) {
   switch (row.kind) {
@@ -380,7 +377,7 @@ void restore_summary(RunSummary& s, const SavedSummary& in) {
       if (!text) throw Error("the checkpoint's summary has no " + key);
       row->restore_text(s, *text);
     } else {
-      row->restore_number(s, saved(in, key, 1)[0]);
+      row->restore_number(s, in.require(key, 1)[0]);
     }
   }
 }

@@ -40,6 +40,8 @@ struct SavedSummary {
   std::vector<std::pair<std::string, std::string>> texts;
   const std::vector<double>* number(std::string_view key) const;  // null: absent
   const std::string* text(std::string_view key) const;            // null: absent
+  // The numbers of `key`, `size` of them; throws Error naming the key otherwise.
+  const std::vector<double>& require(std::string_view key, std::size_t size) const;
 };
 
 struct SummaryRow {
@@ -80,6 +82,10 @@ std::string summary_value_json(const SummaryRow& row, const RunSummary& summary)
 
 // A row's text line padded as the summary prints it: the label in 30 columns, then the text.
 std::string summary_line(std::string_view label, const std::string& text);
+// " kg m^2/s^2" after a number in the scene's declared `unit` ("" when it declares none); the
+// unit of time after a time, likewise (RunSummary::time_unit is set even without units).
+std::string summary_unit(const std::string& unit);
+std::string summary_time_unit(const RunSummary& summary);
 
 // The checkpointed rows' values (Simulation::save), and the summary restored from them
 // (Simulation::load): throws Error naming the first key a checkpoint lacks.

@@ -9,8 +9,6 @@
 namespace noether::detail {
 
 namespace {
-// " kg m^2/s^2" after a number in declared units (nothing when the scene declares none).
-std::string with_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
 std::string vector(const Vec3& v) {
   return "[" + json_number(v.x()) + ", " + json_number(v.y()) + ", " + json_number(v.z()) + "]";
 }
@@ -31,7 +29,7 @@ std::string forces_lines(const SummaryRow&, const RunSummary& s) {  // docs/forc
   char line[512];
   for (const ForceSummary& f : s.forces) {
     std::snprintf(line, sizeof line, "force %-23s work %+.6g%s, angular momentum put in (%.4g, %.4g, %.4g)%s\n",
-                  f.name.c_str(), f.work, with_unit(s.energy_unit).c_str(), f.angular_momentum.x(),
+                  f.name.c_str(), f.work, summary_unit(s.energy_unit).c_str(), f.angular_momentum.x(),
                   f.angular_momentum.y(), f.angular_momentum.z(),
                   s.energy_unit.empty() ? "" : (" " + s.angular_momentum_unit).c_str());
     out += line;
@@ -72,7 +70,7 @@ std::string particles_lines(const SummaryRow& row, const RunSummary& s) {
                   "%zu checked: %zu fates differ; in flight moved <= %.2g of their distance, landing points <= %.2g of "
                   "the radius, times <= %.2g%s",
                   c.checked, c.fates_differ, c.position, c.landing_point, c.landing_time,
-                  with_unit(s.energy_unit.empty() ? "" : s.time_unit).c_str());
+                  summary_time_unit(s).c_str());
     out += summary_line("particles at half the step", text);
   }
   return out;
@@ -131,7 +129,7 @@ std::string chaos_lines(const SummaryRow& row, const RunSummary& s) {  // docs/d
   const ChaosValues& c = s.chaos_values;
   char text[512];
   std::snprintf(text, sizeof text, "MEGNO <Y> = %.6g, FLI = %.4g, lambda ~ ln|delta|/t = %.4g%s%s", c.megno, c.fli,
-                c.lyapunov, with_unit(s.energy_unit.empty() ? "" : "1/" + s.time_unit).c_str(),
+                c.lyapunov, summary_unit(s.energy_unit.empty() ? "" : "1/" + s.time_unit).c_str(),
                 c.overflowed ? " (the deviation overflowed: they stop there)" : "");
   std::string out = summary_line(row.label, text);
   std::snprintf(text, sizeof text, "at t = %.6g (<Y> -> 2 on a regular orbit, ~ lambda t/2 on a chaotic one)", c.t);
