@@ -2,6 +2,8 @@
 #include <noether/error.hpp>
 #include <noether/units.hpp>
 
+#include "scene/scene_schema.hpp"
+
 #include <utility>
 
 namespace noether {
@@ -53,15 +55,15 @@ Units parse_units(const Params& p) {
   }
   if (!p.is_map())
     throw SceneError(p.here() + "'units' must be SI or a mapping {length, mass, time}");
-  p.check_keys({"length", "mass", "time"}, "'units'");
+  const detail::SceneSection& keys = detail::scene_section("units");
+  keys.check(p, "'units'");
   const std::pair<const char*, std::pair<const Table*, std::pair<std::string*, double*>>> fields[] = {
       {"length", {&lengths, {&u.length, &u.length_si}}},
       {"mass", {&masses, {&u.mass, &u.mass_si}}},
       {"time", {&times, {&u.time, &u.time_si}}}};
   for (const auto& [key, target] : fields) {
     const auto& [table, out] = target;
-    if (!p.has(key)) continue;  // SI
-    const std::string name = p.at(key).as_string();
+    const std::string name = keys.text(p, key);  // SI's when absent
     const double si = lookup(*table, name);
     if (si == 0.0)
       throw SceneError(p.at(key).here() + "unknown " + key + " unit '" + name + "'; known: " + names(*table));
