@@ -2,6 +2,8 @@
 // (scene_sensitivity.hpp).
 #include "scene/scene_sensitivity.hpp"
 
+#include "scene/scene_schema.hpp"
+
 #include <noether/error.hpp>
 #include <noether/lie.hpp>
 
@@ -15,8 +17,12 @@
 namespace noether {
 namespace {
 
-const std::vector<std::string> kVectorFields = {"position", "velocity", "angular_velocity", "angular_momentum"};
-const std::vector<std::string> kElements = {"a", "e", "i", "Omega", "omega", "nu", "M"};
+// Whether `key` is a row of the scene schema's section `path` of type `type`: a body's [x, y, z] keys (position, velocity, angular_velocity, angular_momentum) and an
+// orbit's elements (a, e, i, Omega, omega, nu, M) are the schema's.
+bool schema_has(const char* path, const std::string& key, detail::KeyType type) {
+  const auto& keys = detail::scene_section(path).keys;
+  return std::any_of(keys.begin(), keys.end(), [&](const detail::SceneKey& k) { return k.key == key && k.type == type; });
+}
 
 const std::string kSemiAxes = "shape.ellipsoid.semi_axes";
 const std::string kScale = "shape.polyhedron.scale";  // [1, 1, 1] where the scene leaves it out
@@ -109,9 +115,9 @@ Key parse_key(const Scene& scene, const std::string& text) {
     rest.resize(rest.size() - 2);
   }
   key.field = rest;
-  const bool vector = std::find(kVectorFields.begin(), kVectorFields.end(), rest) != kVectorFields.end();
+  const bool vector = schema_has("bodies[]", rest, detail::KeyType::vector);
   const bool element = rest.compare(0, 6, "orbit.") == 0 &&
-                       std::find(kElements.begin(), kElements.end(), rest.substr(6)) != kElements.end();
+                       schema_has("particles.orbits[]", rest.substr(6), detail::KeyType::number);
   key.dynamics = ((rest == "mass" || rest == "density") && key.component < 0) || rest == kSemiAxes || rest == kScale ||
                  rest == "inertia";
   if (!(vector || rest == "attitude" || (element && key.component < 0) || key.dynamics))
