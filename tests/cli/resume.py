@@ -4,7 +4,9 @@ uninterrupted run writes (docs/user-guide.md, "Continuing a run").
 
 For the LGVI (inertial Hamiltonian, and relative Lagrangian: a method whose variables are not the
 State, restored from /checkpoint/integrator; the forced LGVI with tides, whose balance is read
-back; and with massless particles, restored from /checkpoint/particles) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
+back; with massless particles, restored from /checkpoint/particles; and carrying a tangent — the
+STM, sensitivities and the chaos indicators, read back from their frames and
+/checkpoint/run_features) and for rk4 on the dumbbells: one uninterrupted run; then the same run started and
 killed at a random moment, resumed and killed again, KILLS times (at least 5), then resumed to the
 end. Asserted:
   * every frame is in the file exactly once: the times are the uninterrupted run's, in order;
@@ -65,7 +67,14 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
                          # last complete block wrote (/checkpoint/particles), their recorded positions
                          # with every frame, their fates at the end
                          ("lgvi-particles", ["particles={states: [[3, 0, 0, 0, 0.577, 0], [0.67, 0, 1.2, 0, 0.67, -0.5]], "
-                                             "check: 1}"])]:
+                                             "check: 1}"]),
+                         # a tangent: the STM and the sensitivities (to an initial velocity and to a
+                         # mass, whose stencil the continuation makes again) read back from their
+                         # frames, the chaos indicators from /checkpoint/run_features; a tenth of
+                         # the time (each step carries 29 tangent columns)
+                         ("lgvi-tangent", ["run.stm=true", "run.chaos=true",
+                                           "run.sensitivities=[bodies.beta.velocity, bodies.alpha.mass]",
+                                           f"run.t_end={float(t_end) / 10!r}", "run.output_every=0.1"])]:
     sets = ["--set", f"run.t_end={t_end}", "--set", "run.output_every=0.01"]
     for o in overrides:
         sets += ["--set", o]
@@ -130,6 +139,8 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
         elif not (np.diff(tb) > 0).all():
             failures.append(f"{label}: the times are not strictly increasing: a frame is missing or repeated")
         extra = ["observables/force_balance/value"] if "observables/force_balance" in a else []
+        if "derivatives" in a:
+            extra += [f"derivatives/{k}/value" for k in ("stm", "sensitivity", "megno", "fli")] + ["checkpoint/run_features"]
         if "test_particles" in a:
             extra += ["particles/test_particles/position/value"] + [
                 "test_particles/" + k for k in ("position", "velocity", "fate", "time", "body", "impact_point")]
@@ -149,7 +160,7 @@ for label, overrides in [("lgvi", []), ("rk4", ["integrator={plugin: rk, method:
             failures.append(f"{label}: /checkpoint/resumed lists {len(resumes)} continuations, {resumed} were started")
         if b["work"].attrs["outcome"] != "completed":
             failures.append(f"{label}: the outcome is {b['work'].attrs['outcome']!r}")
-    for key in SUMMARY_KEYS + (["forces"] if "forces" in reference else []):
+    for key in SUMMARY_KEYS + (["forces"] if "forces" in reference else []) + (["chaos"] if "chaos" in reference else []):
         if got[key] != reference[key]:
             failures.append(f"{label}: summary {key} = {got[key]!r}, uninterrupted {reference[key]!r}")
     print(f"{label}: killed {killed} times, resumed {resumed} times; {len(ta)} frames; "

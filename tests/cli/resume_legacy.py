@@ -1,6 +1,6 @@
 """resume_legacy.py NOETHER SOURCE_DIR WORK_DIR: files from before /observables/force_balance
-was checkpointed (/checkpoint/checksum with 9 columns) or the recorded particles' positions were
-(10 columns; now 11) are still continued — bit for bit the uninterrupted run — unless they hold a
+was checkpointed (/checkpoint/checksum with 9 columns), the recorded particles' positions were
+(10 columns) or the tangent and the run features' fields were (11 columns; now 14) are still continued — bit for bit the uninterrupted run — unless they hold a
 forces' balance that no checksum covers, which is refused by name with the file unchanged
 (docs/user-guide.md, "Continuing a run")."""
 import hashlib
@@ -23,7 +23,7 @@ def run(*args):
     return subprocess.run([noether, *args, "--no-progress"], capture_output=True, text=True)
 
 
-COLUMNS = 11  # /checkpoint/checksum's columns now
+COLUMNS = 14  # /checkpoint/checksum's columns now
 
 
 def as_legacy(path, columns):
@@ -43,7 +43,7 @@ def digest(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
-for label, more, columns in [("plain", [], 9), ("plain", [], 10), ("tides", ["--set", TIDES], 9)]:
+for label, more, columns in [("plain", [], 9), ("plain", [], 10), ("plain", [], 11), ("tides", ["--set", TIDES], 9)]:
     full, part = f"legacy-{label}-full.h5", f"legacy-{label}-part.h5"
     for name in (full, part):
         if os.path.exists(name):

@@ -17,6 +17,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,9 @@ struct OutputOptions {
   std::size_t stm_columns = 0;
   std::vector<std::string> sensitivity_names;
   bool chaos = false;  // /derivatives/megno and /derivatives/fli (run.chaos)
+  // The run features' checkpointed fields, one name per number: /checkpoint/run_features
+  // [frame][field] and its attribute `fields` (none: no such series).
+  std::vector<std::string> feature_fields;
   std::vector<std::string> force_names;  // the scene's forces: /observables/force_balance, /parameters/forces
   std::size_t recorded_particles = 0;    // /particles/test_particles/position: particles.record's
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
@@ -63,11 +67,12 @@ class H5Writer {
   H5Writer& operator=(const H5Writer&) = delete;
 
   // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
-  // checkpoint a continued run starts from); the chaos indicators there (options.chaos).
+  // checkpoint a continued run starts from); the chaos indicators there (options.chaos); the
+  // run features' fields (options.feature_fields' numbers).
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
                    double wall_seconds, std::int64_t interpolated_frames = 0,
                    const std::vector<double>& integrator_checkpoint = {}, const ChaosValues& chaos = {},
-                   const Eigen::Matrix3Xd* particles = nullptr);
+                   const Eigen::Matrix3Xd* particles = nullptr, std::span<const double> features = {});
   // Moves the file from its hidden name to its path (done by the constructor unless
   // options.defer_publish); until then the path holds what it held before.
   void publish();

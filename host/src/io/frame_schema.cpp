@@ -56,6 +56,7 @@ void force_balance(const FrameInput& in, void* out) {  // [force][7]: Eigen's co
   std::copy(in.state.force_balance.data(), in.state.force_balance.data() + in.state.force_balance.size(), doubles(out));
 }
 void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
+void run_features(const FrameInput& in, void* out) { std::copy(in.features.begin(), in.features.end(), doubles(out)); }
 void particle_position(const FrameInput& in, void* out) { copy(*in.particles, out); }
 void spin(const FrameInput& in, void* out) { copy(in.state.Pi, out); }
 void energy(const FrameInput& in, void* out) { copy(in.diagnostics.energy, out); }
@@ -183,6 +184,23 @@ void restore_wall(const void* in, std::size_t, RecordedFrame& f) { f.wall_second
 void restore_integrator(const void* in, std::size_t width, RecordedFrame& f) {
   f.integrator.assign(doubles(in), doubles(in) + width);
 }
+// [coordinate][column] row-major into a matrix; the coordinates, 6 per body and 6 per rigid body
+// (eq. 21.1), from the state restored before (positions and attitudes have lower columns).
+Eigen::MatrixXd restore_tangent_columns(const void* in, std::size_t width, const RecordedFrame& f) {
+  const auto rows = 6 * (f.state.x.cols() + static_cast<Eigen::Index>(f.state.R.size()));
+  Eigen::MatrixXd V(rows, rows > 0 ? static_cast<Eigen::Index>(width) / rows : 0);
+  const double* v = doubles(in);
+  for (Eigen::Index r = 0; r < V.rows(); ++r)
+    for (Eigen::Index c = 0; c < V.cols(); ++c) V(r, c) = *v++;
+  return V;
+}
+void restore_stm(const void* in, std::size_t width, RecordedFrame& f) { f.stm = restore_tangent_columns(in, width, f); }
+void restore_sensitivity(const void* in, std::size_t width, RecordedFrame& f) {
+  f.sensitivity = restore_tangent_columns(in, width, f);
+}
+void restore_features(const void* in, std::size_t width, RecordedFrame& f) {
+  f.features.assign(doubles(in), doubles(in) + width);
+}
 void restore_work(const void* in, std::size_t, RecordedFrame& f) {
   std::int64_t w[5];
   std::memcpy(w, in, sizeof w);
@@ -194,7 +212,7 @@ using E = Extent;
 using D = Dimension;
 constexpr Element kH5md = Element::kH5md, kPlain = Element::kPlain;
 
-// The table. The checksum columns 0–10 are the file format of /checkpoint/checksum: a new
+// The table. The checksum columns 0–13 are the file format of /checkpoint/checksum: a new
 // checkpointed series takes the next free column.
 const FrameQuantity kFrameSchema[] = {
     {"step", "/particles/bodies/position/step", E::kStepCount, D::kOne, kH5md,
@@ -269,14 +287,14 @@ const FrameQuantity kFrameSchema[] = {
      "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "
      "columns in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1), named by /derivatives/coordinates; θ "
      "is the right perturbation R exp(S(θ)) of an attitude, Π the body-frame angular momentum",
-     -1, stm, nullptr},
+     12, stm, restore_stm},
     {"sensitivity", "/derivatives/sensitivity/value", E::kSensitivity, D::kMixed, kH5md,
      "the sensitivities ∂z(t)/∂p of the state to keys of the bodies' initial states and to parameters of the "
      "dynamics (run.sensitivities, "
      "docs/derivatives.md): rows in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1, "
      "/derivatives/coordinates), columns named by /derivatives/parameters, per unit of each key as the scene "
      "gives it",
-     -1, sensitivity, nullptr},
+     13, sensitivity, restore_sensitivity},
     {"megno", "/derivatives/megno/value", E::kChaos, D::kOne, kH5md,
      "MEGNO ⟨Y⟩ (Cincotta & Simó 2000; run.chaos, docs/derivatives.md, docs/equations.md eq. 23.3) of a deviation "
      "vector carried by the tangent map, at the method's last step up to each frame: → 2 on a regular orbit, "
@@ -313,6 +331,10 @@ const FrameQuantity kFrameSchema[] = {
      "work up to each frame: steps, potential evaluations, Newton iterations, rejected steps, frames interpolated "
      "between the method's steps",
      6, work, restore_work},
+    {"run_features", "/checkpoint/run_features", E::kRunFeatures, D::kMixed, kPlain,
+     "the run features' own variables at each frame, named by the attribute `fields` (run.chaos: the deviation "
+     "vector δ and the indicators' running sums), from which a continued run restores them",
+     11, run_features, restore_features},
 };
 
 }  // namespace
@@ -345,6 +367,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kChaos: return l.chaos;
     case E::kForceBalance: return l.forces > 0;
     case E::kParticleVector: return l.particles > 0;
+    case E::kRunFeatures: return l.features > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return l.binary;
@@ -378,13 +401,16 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kSensitivity: return {6 * (l.bodies + l.rigid), l.sensitivity_columns};
     case E::kForceBalance: return {l.forces, 7};
     case E::kParticleVector: return {l.particles, 3};
+    case E::kRunFeatures: return {l.features};
   }
   return {};
 }
 
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
-                      std::size_t sensitivity_columns, bool chaos, std::size_t forces, std::size_t particles) {
+                      std::size_t sensitivity_columns, bool chaos, std::size_t forces, std::size_t particles,
+                      std::size_t features) {
   FrameLayout l;
+  l.features = features;
   l.particles = particles;
   l.forces = forces;
   l.chaos = chaos;
@@ -407,7 +433,7 @@ bool rigid_only(const FrameQuantity& q) {
 }
 bool optional(const FrameQuantity& q) {
   return q.extent == E::kIntegrator || q.extent == E::kTangent || q.extent == E::kSensitivity || q.extent == E::kChaos ||
-         q.extent == E::kForceBalance || q.extent == E::kParticleVector;
+         q.extent == E::kForceBalance || q.extent == E::kParticleVector || q.extent == E::kRunFeatures;
 }
 bool binary_only(const FrameQuantity& q) {
   return q.extent == E::kBinaryScalar || q.extent == E::kBinaryVector || q.extent == E::kBinaryElements ||
@@ -425,6 +451,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kChaos: return "run.chaos";
     case E::kForceBalance: return "forces";
     case E::kParticleVector: return "particles";
+    case E::kRunFeatures: return "run.chaos";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";
@@ -471,6 +498,7 @@ std::string describe_extent(Extent e) {
     case E::kSensitivity: return "[frame][coordinate][parameter]";
     case E::kForceBalance: return "[frame][force][7]";
     case E::kParticleVector: return "[frame][particle][3]";
+    case E::kRunFeatures: return "[frame][field]";
     case E::kBinaryScalar:
     case E::kSecondaryAngle: return "[frame]";
     case E::kBinaryVector:

@@ -49,6 +49,8 @@ struct FrameInput {
   const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
   // The recorded massless particles' positions at the frame's time (particles.record; none: null).
   const Eigen::Matrix3Xd* particles = nullptr;
+  // The run features' checkpointed fields where the run stands (run/run_feature.hpp; none: empty).
+  std::span<const double> features = {};
 };
 
 // How one frame of a series is computed: from what the run hands the writer (`of_run`, on the
@@ -73,6 +75,10 @@ struct RecordedFrame {
   double wall_seconds = 0.0;
   std::vector<double> integrator;
   Eigen::Matrix3Xd particles;  // the recorded particles' positions (particles.record; none without)
+  // The tangent's state-transition matrix and sensitivities (run.stm, run.sensitivities; empty
+  // without), and the run features' checkpointed fields (run/run_feature.hpp; empty without).
+  Eigen::MatrixXd stm, sensitivity;
+  std::vector<double> features;
 };
 
 // The shape of one frame of a series (the file's dataset is [frame] followed by it).
@@ -98,6 +104,7 @@ enum class Extent {
   kChaos,            // []: a chaos indicator (run.chaos)
   kForceBalance,     // [force][7]: State::force_balance (the scene's `forces:`)
   kParticleVector,   // [recorded particle][3]: the scene's first particles.record particles
+  kRunFeatures,      // [field]: the run features' checkpointed fields (present when they have any)
 };
 
 // What decides which series a file has, and their shapes.
@@ -108,6 +115,7 @@ struct FrameLayout {
   bool chaos = false;                   // the chaos indicators (run.chaos)
   std::size_t forces = 0;               // forces beyond the potential (State::force_balance's columns)
   std::size_t particles = 0;            // massless particles recorded at every frame (particles.record)
+  std::size_t features = 0;             // the run features' checkpointed fields (run/run_feature.hpp)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
 
@@ -149,7 +157,7 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
 // a tangent of `stm_columns` + (δ of the chaos indicators) + `sensitivity_columns` columns.
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
                       std::size_t sensitivity_columns = 0, bool chaos = false, std::size_t forces = 0,
-                      std::size_t particles = 0);
+                      std::size_t particles = 0, std::size_t features = 0);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

@@ -145,12 +145,15 @@ void H5Writer::Impl::write_particles(const ParticleCheckpoint& particles, std::i
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
                            const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos,
-                           const Eigen::Matrix3Xd* particles) {
+                           const Eigen::Matrix3Xd* particles, std::span<const double> features) {
   Impl& m = *impl_;
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
+  if (features.size() != m.layout.features)
+    throw OutputError("the frame holds " + std::to_string(features.size()) + " fields of the run features, not the " +
+                      std::to_string(m.layout.features) + " the file was made for");
   const io::FrameInput in{state, d, work, interpolated_frames, wall_seconds, integrator_checkpoint,
-                          m.layout.stm_columns, m.layout.sensitivity_columns, chaos, particles};
+                          m.layout.stm_columns, m.layout.sensitivity_columns, chaos, particles, features};
   if (m.layout.particles > 0 && (!particles || static_cast<std::size_t>(particles->cols()) != m.layout.particles))
     throw OutputError("the frame does not hold the recorded particles' positions");
   // The run's own numbers, copied in place; the quantities of the state alone and the checksums

@@ -66,7 +66,8 @@ void H5Writer::create_layout(const Scene& scene) {
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
   m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size(),
-                           options.chaos, options.force_names.size(), options.recorded_particles);
+                           options.chaos, options.force_names.size(), options.recorded_particles,
+                           options.feature_fields.size());
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
@@ -283,6 +284,11 @@ void H5Writer::create_series(const Scene& scene) {
     series->reserve_frames(std::min<hsize_t>(m.options.block_frames, m.allocated));
     string_attribute(series->dataset, "unit", io::unit_of(q.unit, scene.units));
     string_attribute(series->dataset, "description", q.description);
+    if (q.extent == io::Extent::kRunFeatures) {  // the name of each field, one a line
+      std::string fields;
+      for (const auto& f : m.options.feature_fields) fields += (fields.empty() ? "" : "\n") + f;
+      string_attribute(series->dataset, "fields", fields);
+    }
     m.columns.push_back({&q, std::move(series)});
     if (q.checksum_column >= 0) m.checkpointed[static_cast<std::size_t>(q.checksum_column)] = &m.columns.back();
   }

@@ -149,6 +149,12 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
     FrameLayout layout{axis, axis, axis, true, true, true};
     layout.forces = axis;
     layout.particles = axis;
+    layout.features = axis;
+    if (q->extent == Extent::kTangent || q->extent == Extent::kSensitivity) {  // [coordinate][column]: 6 per body
+      layout.bodies = bodies;                                                  // and rigid body (read before)
+      layout.rigid = rigid;
+      layout.stm_columns = layout.sensitivity_columns = dims.size() > 2 ? dims[2] : 0;
+    }
     const std::vector<std::size_t> shape = frame_shape(*q, layout);
     if (dims.size() != shape.size() + 1 || !std::equal(shape.begin(), shape.end(), dims.begin() + 1))
       damaged(p + " is not " + describe_extent(q->extent));
@@ -166,18 +172,19 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
   if (checksummed) {
     const std::vector<hsize_t> dims = extent(open_dataset(file, kChecksumPath));
     const std::size_t columns = checkpointed_series().size();
-    // A file from before /observables/force_balance, or the particles' positions, were
-    // checkpointed has fewer columns (kChecksumColumnsBeforeForces, …BeforeParticles): readable,
-    // unless it holds such a series unchecked.
+    // A file from before /observables/force_balance, the particles' positions, or the tangent
+    // were checkpointed has fewer columns (kChecksumColumnsBeforeForces, …BeforeParticles,
+    // …BeforeTangent): readable, unless it holds such a series unchecked.
     if (dims.size() != 2 ||
-        (dims[1] != columns && dims[1] != kChecksumColumnsBeforeParticles && dims[1] != kChecksumColumnsBeforeForces) ||
+        (dims[1] != columns && dims[1] != kChecksumColumnsBeforeTangent && dims[1] != kChecksumColumnsBeforeParticles &&
+         dims[1] != kChecksumColumnsBeforeForces) ||
         dims[0] < n)
       damaged(std::string(kChecksumPath) + " is not [frame][" + std::to_string(columns) + "]");
     checksum_columns_ = dims[1];
     for (const FrameQuantity* q : checkpointed_series())
       if (static_cast<std::size_t>(q->checksum_column) >= checksum_columns_ && open_dataset(file, q->path).valid())
         throw OutputError(path.string() + " was written by an older noether, which did not checksum " + q->path +
-                          " (the forces' balance); it cannot be continued: run it again whole");
+                          "; it cannot be continued: run it again whole");
   }
   read_summary();
   read_particles();

@@ -73,5 +73,8 @@ class RunRecord {
 inline constexpr std::size_t kChecksumColumnsBeforeForces = 9;
 // … and before /particles/test_particles/position became column 10.
 inline constexpr std::size_t kChecksumColumnsBeforeParticles = 10;
+// … and before the run features' fields and the tangent's columns were (a run with run.stm,
+// run.sensitivities or run.chaos could not be continued then).
+inline constexpr std::size_t kChecksumColumnsBeforeTangent = 11;
 
 }  // namespace noether::io

@@ -9,15 +9,22 @@
 namespace noether {
 
 ChaosIndicators::ChaosIndicators(const System& system, const State& initial) {
-  const auto n = static_cast<Eigen::Index>(system.size()), m = static_cast<Eigen::Index>(system.rigid_count());
+  const auto n = static_cast<Eigen::Index>(system.size());
   double L = 0.0, M = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
     M += system.body(static_cast<std::size_t>(i)).mass;
     for (Eigen::Index j = i + 1; j < n; ++j) L = std::max(L, (initial.x.col(i) - initial.x.col(j)).norm());
   }
-  L_ = L > 0.0 && std::isfinite(L) ? L : 1.0;
+  const double length = L > 0.0 && std::isfinite(L) ? L : 1.0;
   const double GM = system.G() * M;
-  T_ = GM > 0.0 && std::isfinite(GM) ? std::sqrt(L_ * L_ * L_ / GM) : 1.0;  // the dynamical time
+  const double T = GM > 0.0 && std::isfinite(GM) ? std::sqrt(length * length * length / GM) : 1.0;  // the dynamical time
+  set_scales(system, length, T);
+}
+
+void ChaosIndicators::set_scales(const System& system, double L, double T) {
+  const auto n = static_cast<Eigen::Index>(system.size()), m = static_cast<Eigen::Index>(system.rigid_count());
+  L_ = L;
+  T_ = T;
   // Eq. 23.1: z = (x, θ, γ, Π) (eq. 21.1), each coordinate divided by its scale.
   weights_.resize(6 * (n + m));
   weights_.segment(0, 3 * n).setConstant(1.0 / L_);
@@ -71,6 +78,27 @@ void ChaosIndicators::step(double t, const Eigen::VectorXd& delta) {
   values_.fli = max_log10_;
   values_.lyapunov = (log_norm - log_norm0_) / s;
   values_.t = t;
+}
+
+void ChaosIndicators::save(double* out) const {
+  const double numbers[kCheckpointSize] = {L_, T_, t0_, t_, log_norm_, log_norm0_, weighted_sum_, y_integral_, y_,
+                                           max_log10_, values_.megno, values_.megno_y, values_.fli, values_.lyapunov,
+                                           values_.t, values_.overflowed ? 1.0 : 0.0};
+  std::copy(numbers, numbers + kCheckpointSize, out);
+}
+
+void ChaosIndicators::restore(const System& system, const double* in) {
+  set_scales(system, in[0], in[1]);
+  t0_ = in[2], t_ = in[3], log_norm_ = in[4], log_norm0_ = in[5];
+  weighted_sum_ = in[6], y_integral_ = in[7], y_ = in[8], max_log10_ = in[9];
+  values_ = values_of(in);
+}
+
+ChaosValues ChaosIndicators::values_of(const double* in) {
+  ChaosValues v;
+  v.megno = in[10], v.megno_y = in[11], v.fli = in[12], v.lyapunov = in[13], v.t = in[14];
+  v.overflowed = in[15] != 0.0;
+  return v;
 }
 
 }  // namespace noether

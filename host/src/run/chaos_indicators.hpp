@@ -30,12 +30,22 @@ class ChaosIndicators {
   void step(double t, const Eigen::VectorXd& delta);
 
   const ChaosValues& values() const { return values_; }
+  // Its running numbers, for a checkpoint (a continued run's indicators are the uninterrupted
+  // run's to the bit): the scales L and T, the segment's t0 and t, ln‖δ‖ and ln‖δ0‖, the two
+  // integrals, Y, the FLI's maximum, then values()' six (overflowed as 0 or 1).
+  static constexpr std::size_t kCheckpointSize = 16;
+  void save(double* out) const;
+  void restore(const System& system, const double* in);
+  // values() as a checkpoint holds them.
+  static ChaosValues values_of(const double* checkpoint);
   // ‖δ‖ in the scaled norm of eq. 23.1.
   double norm(const Eigen::VectorXd& delta) const { return weights_.cwiseProduct(delta).norm(); }
   double length_scale() const { return L_; }
   double time_scale() const { return T_; }
 
  private:
+  void set_scales(const System& system, double L, double T);  // weights_ from L and T (eq. 23.1)
+
   Eigen::VectorXd weights_;  // 1 / the scale of each coordinate of z
   double L_ = 1.0, T_ = 1.0;
   double t0_ = 0.0, t_ = 0.0;

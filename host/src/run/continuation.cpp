@@ -26,16 +26,14 @@ namespace noether {
 
 namespace {
 
-// What cannot be continued, saved or loaded yet: a run that carries a tangent (its files hold the
-// tangent's frames but not the state of its integration: the chaos indicators' sums, the
-// parameters' stencils) and a scene with impulses (which of them a continuation has passed).
-// Forces beyond the potential are continued: every frame holds their balance, and a saved
-// simulation the largest momenta they exchanged (the verdict's scales); particles from their
-// checkpoint (refuse_without_particles).
+// What cannot be continued, saved or loaded yet: a scene with impulses (which of them a
+// continuation has passed). A run that carries a tangent (run.stm, run.sensitivities, run.chaos)
+// continues from its frames' STM and sensitivities and its run features' fields
+// (/checkpoint/run_features: the chaos indicators' deviation and sums); the parameters of the
+// dynamics' stencils are made again from the scene. Forces beyond the potential are continued:
+// every frame holds their balance, and a saved simulation the largest momenta they exchanged
+// (the verdict's scales); particles from their checkpoint (refuse_without_particles).
 void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
-  if (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos)
-    throw Error(doing + " a run that carries the state-transition matrix, sensitivities or chaos indicators "
-                "(run.stm, run.sensitivities, run.chaos) is not supported yet" + advice);
   if (!scene.impulses.empty())
     throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
 }
@@ -73,9 +71,19 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     }
     forces.U = f.U;
     const Diagnostics d = m.observer->account(f.state, forces);
-    if (m.writer)
-      m.writer->write_frame(f.state, d, f.work, f.wall_seconds, f.interpolated, f.integrator, ChaosValues{},
-                            f.particles.cols() > 0 ? &f.particles : nullptr);
+    if (!m.writer) return;
+    // The frame as it was written: its tangent's STM and sensitivities (the features' columns
+    // are their fields'), the chaos indicators its fields hold.
+    State state = f.state;
+    if (m.carries_tangent()) {
+      const Eigen::Index stm = f.stm.cols(), sensitivities = f.sensitivity.cols();
+      state.tangent = Eigen::MatrixXd::Zero(State::tangent_rows(m.scene.system), stm + m.feature_columns() + sensitivities);
+      if (stm) state.tangent.leftCols(stm) = f.stm;
+      if (sensitivities) state.tangent.rightCols(sensitivities) = f.sensitivity;
+    }
+    m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator,
+                          m.chaos ? detail::ChaosFeature::values_of(f.features) : ChaosValues{},
+                          f.particles.cols() > 0 ? &f.particles : nullptr, f.features);
   }, interrupt);
 }
 
@@ -227,7 +235,8 @@ void Simulation::save(const std::filesystem::path& path) const {
   Eigen::Matrix3Xd recorded;  // the first `record` particles, as every frame holds them
   if (m.particles) m.particles->recorded_positions(m.state, recorded);
   writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall, m.summary.interpolated_frames,
-                     m.integrator->checkpoint(), ChaosValues{}, m.particles ? &recorded : nullptr);
+                     m.integrator->checkpoint(), m.chaos ? m.chaos->values() : ChaosValues{},
+                     m.particles ? &recorded : nullptr, m.feature_values(m.state));
   writer.flush();
   // The summary's checkpointed rows (run/summary_schema.cpp) and the statistics' running values.
   detail::SavedSummary saved = detail::save_summary(m.summary);
@@ -266,6 +275,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
   }
   const bool with_output = options.output.has_value();
+  if (with_output && (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos))
+    throw Error(path.string() + ": loading a run that carries a tangent (run.stm, run.sensitivities, run.chaos) into "
+                "a new output file is not supported yet; load it without one (it continues bit for bit), or "
+                "--resume its own file");
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
   if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();
   scene.models_chosen_at = scene.initial;  // the run's models, chosen where it started

@@ -93,6 +93,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
+  m.make_features();
   if (m.carries_tangent()) {
     const char* key = sc.run.stm ? "stm" : sc.run.chaos ? "chaos" : "sensitivities";
     if (const std::string why = m.integrator->tangent_map_unavailable(); !why.empty())
@@ -222,14 +223,12 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
       stop_flag = -1;
     }
   };
-  if (m.chaos)  // MEGNO and the FLI follow the deviation column after every step (eq. 23.2–23.5)
-    schedule.after_step = [&m, column = m.deviation_column()](const State& reached) {
-      m.chaos->step(reached.t, reached.tangent.col(column));
-    };
+  if (!m.features.empty())  // the run features follow every step (chaos: eqs. 23.2–23.5)
+    schedule.after_step = [&m](const State& reached) { m.features_after_step(reached); };
   if (m.particles) {  // carried over each step the bodies take (particles.hpp)
     m.particle_bodies = m.state;
-    schedule.after_step = [&m, chaos = std::move(schedule.after_step)](const State& reached) {
-      if (chaos) chaos(reached);
+    schedule.after_step = [&m, features = std::move(schedule.after_step)](const State& reached) {
+      if (features) features(reached);
       m.particles->advance(m.particle_bodies, reached, m.threads);
       m.particle_bodies = reached;
     };
@@ -465,10 +464,7 @@ RunSummary Simulation::summary() const {
   s.pair_models = m.pair_models();
   s.spin_states = m.observer->spin_states();
   s.particles = m.particle_summary();
-  if (m.chaos) {
-    s.chaos = true;
-    s.chaos_values = m.chaos->values();
-  }
+  for (const auto& feature : m.features) feature->summarize(s);
   judge(s, m.scene);
   return s;
 }

@@ -5,7 +5,8 @@
 #include <noether/particles.hpp>
 #include <noether/simulation.hpp>
 
-#include "run/chaos_indicators.hpp"
+#include "run/chaos_feature.hpp"
+#include "run/run_feature.hpp"
 #include "scene/scene_sensitivity.hpp"
 #include "io/frame_schema.hpp"
 #include "run/run_statistics.hpp"
@@ -13,6 +14,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 namespace noether {
 
@@ -43,8 +45,11 @@ struct Simulation::Impl {
   std::string failure;  // the error that ended the run, if any
   // The tangent's columns after the state-transition matrix's: ∂z/∂key for run.sensitivities.
   std::vector<std::string> sensitivity_names;
-  // MEGNO and the FLI (run.chaos) from the tangent's column deviation_column().
-  std::unique_ptr<ChaosIndicators> chaos;
+  // The run features (run_feature.hpp), in the order of their tangent columns (after the
+  // STM's, before the sensitivities'); `chaos` is one of them (run.chaos), or null.
+  std::vector<std::unique_ptr<detail::RunFeature>> features;
+  std::vector<std::size_t> field_counts;  // each feature's number of checkpointed fields
+  detail::ChaosFeature* chaos = nullptr;
   // The parameters of the dynamics among run.sensitivities (their columns are the tangent's last).
   std::shared_ptr<const ParameterDerivatives> parameters;
   // The scene's impulses in the order of their times, and the next one to apply.
@@ -57,27 +62,85 @@ struct Simulation::Impl {
 
   // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
   bool carries_tangent() const { return scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos; }
-  // The column of the tangent that holds the chaos indicators' deviation δ (after the STM's).
-  Eigen::Index deviation_column() const { return scene.run.stm ? State::tangent_rows(scene.system) : 0; }
+  // The scene's run features (before the tangent is made: their columns are in it).
+  void make_features() {
+    if (scene.run.chaos) {
+      auto feature = std::make_unique<detail::ChaosFeature>(scene.system);
+      chaos = feature.get();
+      features.push_back(std::move(feature));
+    }
+    for (const auto& f : features) field_counts.push_back(f->fields().size());
+  }
+  // Feature k's first column of the tangent: after the STM's and the features before it.
+  Eigen::Index first_column(std::size_t k) const {
+    Eigen::Index c = scene.run.stm ? State::tangent_rows(scene.system) : 0;
+    for (std::size_t j = 0; j < k; ++j) c += features[j]->tangent_columns();
+    return c;
+  }
+  Eigen::Index feature_columns() const { return first_column(features.size()) - first_column(0); }
+  // The features started where the run stands, their columns of V filled.
+  void start_features(Eigen::MatrixXd& V) {
+    for (std::size_t k = 0; k < features.size(); ++k)
+      features[k]->start(state, V.middleCols(first_column(k), features[k]->tangent_columns()));
+  }
+  // After each step (the stepping loop's Schedule::after_step).
+  void features_after_step(const State& reached) {
+    for (std::size_t k = 0; k < features.size(); ++k)
+      features[k]->after_step(reached, reached.tangent.middleCols(first_column(k), features[k]->tangent_columns()));
+  }
+  // The features' checkpointed fields: their names, and their values where the run stands (its
+  // tangent columns: `at`'s, the state a frame holds).
+  std::vector<std::string> feature_fields() const {
+    std::vector<std::string> out;
+    for (const auto& f : features)
+      for (std::string& name : f->fields()) out.push_back(std::move(name));
+    return out;
+  }
+  std::vector<double> feature_values(const State& at) const {
+    std::vector<double> out;
+    for (std::size_t k = 0; k < features.size(); ++k) {
+      const std::size_t begin = out.size();
+      out.resize(begin + field_counts[k]);
+      features[k]->save(at.tangent.middleCols(first_column(k), features[k]->tangent_columns()),
+                        std::span<double>(out).subspan(begin));
+    }
+    return out;
+  }
   // The tangent of a new segment from the state where the run stands (set_state): the STM's
-  // identity, or `stm` when given, and δ0; the indicators start again there.
+  // identity, or `stm` when given, and the features' columns; the features start again there.
   Eigen::MatrixXd segment_tangent(const Eigen::MatrixXd& stm) {
     const Eigen::Index N = State::tangent_rows(scene.system);
-    Eigen::MatrixXd V(N, (scene.run.stm ? N : 0) + (scene.run.chaos ? 1 : 0));
+    Eigen::MatrixXd V(N, (scene.run.stm ? N : 0) + feature_columns());
     if (scene.run.stm) V.leftCols(N) = stm.size() > 0 ? stm : Eigen::MatrixXd::Identity(N, N);
-    if (scene.run.chaos) start_chaos(V);
+    start_features(V);
     return V;
   }
-  // δ0 into V's deviation column, and the indicators started from the state where the run stands.
-  void start_chaos(Eigen::MatrixXd& V) {
-    chaos = std::make_unique<ChaosIndicators>(scene.system, state);
-    V.col(deviation_column()) = chaos->initial_deviation();
-    chaos->start(state.t, V.col(deviation_column()));
+  // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] — with
+  // the features restored to where they stood there (a continued or loaded run).
+  Eigen::MatrixXd recorded_tangent(const io::RecordedFrame& at, const std::filesystem::path& file) {
+    const Eigen::Index N = State::tangent_rows(scene.system);
+    const Eigen::Index stm = scene.run.stm ? N : 0, sensitivities = static_cast<Eigen::Index>(sensitivity_names.size());
+    if (at.stm.rows() != (stm ? N : 0) || at.stm.cols() != stm || at.sensitivity.cols() != sensitivities ||
+        (sensitivities > 0 && at.sensitivity.rows() != N) ||
+        at.features.size() != std::accumulate(field_counts.begin(), field_counts.end(), std::size_t{0}))
+      throw Error(file.string() + ": its frames do not hold the tangent the scene's run carries (run.stm, "
+                  "run.sensitivities, run.chaos)");
+    Eigen::MatrixXd V(N, stm + feature_columns() + sensitivities);
+    if (stm) V.leftCols(stm) = at.stm;
+    if (sensitivities) V.rightCols(sensitivities) = at.sensitivity;
+    std::size_t field = 0;
+    for (std::size_t k = 0; k < features.size(); ++k) {
+      features[k]->restore(std::span<const double>(at.features).subspan(field, field_counts[k]),
+                           V.middleCols(first_column(k), features[k]->tangent_columns()));
+      field += field_counts[k];
+    }
+    return V;
   }
 
-  // The tangent at t0: [I | δ0 | ∂z(t0)/∂keys] (each part only when asked for: run.stm,
-  // run.chaos, run.sensitivities; docs/derivatives.md); fills sensitivity_names, starts the
-  // chaos indicators and hands the integrator the parameters of the dynamics among the keys.
+  // The tangent at t0: [I | the features' columns (δ0) | ∂z(t0)/∂keys] (each part only when
+  // asked for: run.stm, run.chaos, run.sensitivities; docs/derivatives.md); fills
+  // sensitivity_names, starts the features and hands the integrator the parameters of the
+  // dynamics among the keys.
   Eigen::MatrixXd initial_tangent() {
     const Eigen::Index N = State::tangent_rows(scene.system);
     SceneSensitivity s;
@@ -98,10 +161,10 @@ struct Simulation::Impl {
     }
     sensitivity_names = s.names;
     parameters = s.parameters;
-    const Eigen::Index stm = scene.run.stm ? N : 0, deviation = scene.run.chaos ? 1 : 0;
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + deviation + s.columns.cols());
+    const Eigen::Index stm = scene.run.stm ? N : 0;
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + feature_columns() + s.columns.cols());
     V.leftCols(stm).setIdentity();
-    if (deviation) start_chaos(V);
+    start_features(V);
     if (s.columns.cols() > 0) V.rightCols(s.columns.cols()) = s.columns;  // (a 0×0 U does not fit N × 0)
     return V;
   }
@@ -179,6 +242,7 @@ struct Simulation::Impl {
   // time spent to reach it (a continued or loaded run).
   void restore(const io::RecordedFrame& at, const std::filesystem::path& file) {
     state = at.state;
+    if (carries_tangent()) state.tangent = recorded_tangent(at, file);
     if (at.integrator.size() != integrator->checkpoint().size())
       throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
     const std::int64_t evaluations = integrator->work().potential_evaluations;
@@ -200,8 +264,9 @@ struct Simulation::Impl {
     observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
       if (!writer) return;
       if (particles) particles->recorded_positions(s, recorded_particles);
+      const std::vector<double> fields = features.empty() ? std::vector<double>{} : feature_values(s);
       writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
-                          chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr);
+                          chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr, fields);
     });
   }
   // The output file's options; `continuation`: a resumed run's new file, which replaces the
@@ -217,6 +282,7 @@ struct Simulation::Impl {
     output.stm_columns = scene.run.stm ? static_cast<std::size_t>(State::tangent_rows(scene.system)) : 0;
     output.sensitivity_names = sensitivity_names;
     output.chaos = scene.run.chaos;
+    output.feature_fields = feature_fields();
     for (const auto& f : summary.forces) output.force_names.push_back(f.name);
     output.recorded_particles = scene.particles.empty() ? 0 : scene.particles.record;
     output.custom_potential = custom_potential;
