@@ -26,18 +26,6 @@ namespace noether {
 
 namespace {
 
-// What cannot be continued, saved or loaded yet: a scene with impulses (which of them a
-// continuation has passed). A run that carries a tangent (run.stm, run.sensitivities, run.chaos)
-// continues from its frames' STM and sensitivities and its run features' fields
-// (/checkpoint/run_features: the chaos indicators' deviation and sums); the parameters of the
-// dynamics' stencils are made again from the scene. Forces beyond the potential are continued:
-// every frame holds their balance, and a saved simulation the largest momenta they exchanged
-// (the verdict's scales); particles from their checkpoint (refuse_without_particles).
-void refuse_unsupported(const Scene& scene, const std::string& doing, const std::string& advice) {
-  if (!scene.impulses.empty())
-    throw Error(doing + " a run whose scene has impulses is not supported yet" + advice);
-}
-
 // A run with particles continues only from their checkpoint at its last frame (written with each
 // block of frames whose last frame is a step's end, H5Writer::checkpoint_particles).
 void refuse_without_particles(const io::RunRecord& run, const std::filesystem::path& file, std::size_t last,
@@ -64,23 +52,26 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
             const volatile std::sig_atomic_t* interrupt) {
   Forces forces;
   forces.resize(m.scene.system);
+  State before;  // the frame before, and how many impulses had been applied there
+  std::size_t applied = 0;
   return run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
     if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
       auto workspace = m.potential->make_workspace();
       m.potential->evaluate(f.state, forces, *workspace);
     }
     forces.U = f.U;
+    // An impulse between two frames at its time (the state before it, then after it): the
+    // statistics' references move by its jump, as they did in the run (RunStatistics::impulse).
+    const std::size_t applied_here = m.impulses_applied_in(f);
+    if (k > 0 && applied_here == applied + 1) m.observer->impulse(before, f.state, f.U);
+    applied = applied_here;
+    if (m.impulses) before = f.state;
     const Diagnostics d = m.observer->account(f.state, forces);
     if (!m.writer) return;
     // The frame as it was written: its tangent's STM and sensitivities (the features' columns
     // are their fields'), the chaos indicators its fields hold.
     State state = f.state;
-    if (m.carries_tangent()) {
-      const Eigen::Index stm = f.stm.cols(), sensitivities = f.sensitivity.cols();
-      state.tangent = Eigen::MatrixXd::Zero(State::tangent_rows(m.scene.system), stm + m.feature_columns() + sensitivities);
-      if (stm) state.tangent.leftCols(stm) = f.stm;
-      if (sensitivities) state.tangent.rightCols(sensitivities) = f.sensitivity;
-    }
+    state.tangent = m.recorded_tangent(f, run.file());
     m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator,
                           m.chaos ? detail::ChaosFeature::values_of(f.features) : ChaosValues{},
                           f.particles.cols() > 0 ? &f.particles : nullptr, f.features);
@@ -138,7 +129,6 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
     spdlog::warn("{} was written by a noether without checksums: its frames are continued unverified (the "
                  "continued file has them)", file.string());
   Scene scene = parse_scene(run.scene_text, run.scene_path, overrides);
-  refuse_unsupported(scene, file.string() + ": continuing", "; run it again whole");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(file.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
@@ -208,7 +198,6 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  refuse_unsupported(m.scene, "save: saving", "");
   if (m.particles && m.particles->time() != m.state.t) {
     std::ostringstream why;
     why.precision(17);
@@ -264,7 +253,6 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     throw Error(path.string() + " was saved from a simulation whose potential was given in code (a Python "
                                 "function), not by the scene: pass the same potential to load it");
   Scene scene = parse_scene(run.scene_text, run.scene_path, run.overrides);
-  refuse_unsupported(scene, path.string() + ": loading", "");
   if (scene.system.size() != run.bodies || scene.system.rigid_count() != run.rigid)
     throw Error(path.string() + ": its scene (" + run.scene_path + ") no longer gives the bodies the run had");
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 
 namespace noether {
@@ -104,16 +105,16 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
                                        : "sensitivities") +
                        ": " + why);
     m.state.tangent = m.initial_tangent();
+  } else if (!m.features.empty()) {
+    m.start_features_alone();
   }
   m.t_origin = sc.initial.t;
-  // Impulses in the order of their times; a fixed-step method applies each at a step of its grid.
-  m.impulse_order.resize(sc.impulses.size());
-  for (std::size_t k = 0; k < sc.impulses.size(); ++k) m.impulse_order[k] = k;
-  std::stable_sort(m.impulse_order.begin(), m.impulse_order.end(),
-                   [&sc](std::size_t a, std::size_t b) { return sc.impulses[a].time < sc.impulses[b].time; });
+  // A fixed-step method applies each impulse at a step of its grid (those still to come: a
+  // loaded simulation's initial state may stand after some).
   if (const double h = m.integrator->fixed_step(); h > 0)
     for (std::size_t k = 0; k < sc.impulses.size(); ++k)
-      whole_steps(sc.impulses[k].time - sc.initial.t, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
+      if (sc.impulses[k].time > sc.initial.t)
+        whole_steps(sc.impulses[k].time - sc.initial.t, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
   if (!sc.particles.empty()) {
     if (!(m.integrator->fixed_step() > 0.0) && !(sc.particles.step > 0.0))
       throw SceneError(sc.root.at("particles").here() + "particles: integrator '" + sc.integrator.plugin +
@@ -352,8 +353,8 @@ StopInfo Simulation::integrate(double t_end, bool impulse_at_t) {
   if (!m.failure.empty())
     throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
                 "); set a state to continue from");
-  const bool pending_now = m.next_impulse < m.impulse_order.size() &&
-                           m.scene.impulses[m.impulse_order[m.next_impulse]].time == m.state.t;
+  const std::optional<std::size_t> next = m.impulses ? m.impulses->next() : std::nullopt;
+  const bool pending_now = next && m.scene.impulses[*next].time == m.state.t;
   if (!(t_end > m.state.t) && !(t_end == m.state.t && pending_now && impulse_at_t)) {
     std::ostringstream why;
     why.precision(17);
@@ -361,16 +362,16 @@ StopInfo Simulation::integrate(double t_end, bool impulse_at_t) {
     throw Error(why.str());
   }
   // Up to each impulse before t_end, the impulse, and on (an event before one stops there).
-  while (m.next_impulse < m.impulse_order.size()) {
-    const std::size_t k = m.impulse_order[m.next_impulse];
+  while (m.impulses && m.impulses->next()) {
+    const std::size_t k = *m.impulses->next();
     const double t_impulse = m.scene.impulses[k].time;
     if (t_impulse > t_end || (t_impulse == t_end && !impulse_at_t)) break;
     if (t_impulse > m.state.t) {
       const StopInfo stop = integrate_to(m, t_impulse);
       if (!stop.event.empty()) return stop;
     }
+    m.impulses->mark_applied();  // before the frame after it, which holds the count
     apply_impulse(m, k);
-    ++m.next_impulse;
     if (t_impulse == t_end) {
       StopInfo stop;
       stop.t = t_end;
@@ -442,11 +443,12 @@ void Simulation::set_state(const State& s) {
     m.state.force_balance = Eigen::MatrixXd::Zero(kBalanceRows, static_cast<Eigen::Index>(m.scene.forces.size()));
   // A new segment: the state-transition matrix starts again at the identity unless one is given,
   // the chaos indicators again from δ0.
-  if (m.carries_tangent()) m.state.tangent = m.segment_tangent(s.tangent);
+  // The features start again there (the impulses after the new state's time are still to come).
+  if (m.carries_tangent())
+    m.state.tangent = m.segment_tangent(s.tangent);
+  else if (!m.features.empty())
+    m.start_features_alone();
   m.failure.clear();
-  m.next_impulse = 0;  // the impulses after the new state's time are still to come
-  while (m.next_impulse < m.impulse_order.size() && m.scene.impulses[m.impulse_order[m.next_impulse]].time <= s.t)
-    ++m.next_impulse;
   m.t_origin = s.t;
   m.steps_before = 0;
   m.integrator_at_state = false;

@@ -6,6 +6,7 @@
 #include <noether/simulation.hpp>
 
 #include "run/chaos_feature.hpp"
+#include "run/impulse_feature.hpp"
 #include "run/run_feature.hpp"
 #include "scene/scene_sensitivity.hpp"
 #include "io/frame_schema.hpp"
@@ -50,11 +51,9 @@ struct Simulation::Impl {
   std::vector<std::unique_ptr<detail::RunFeature>> features;
   std::vector<std::size_t> field_counts;  // each feature's number of checkpointed fields
   detail::ChaosFeature* chaos = nullptr;
+  detail::ImpulseFeature* impulses = nullptr;  // the scene's impulses, if it has any
   // The parameters of the dynamics among run.sensitivities (their columns are the tangent's last).
   std::shared_ptr<const ParameterDerivatives> parameters;
-  // The scene's impulses in the order of their times, and the next one to apply.
-  std::vector<std::size_t> impulse_order;
-  std::size_t next_impulse = 0;
   // The scene's massless particles (particles.hpp) and the bodies' state they were last carried to.
   std::unique_ptr<ParticleSwarm> particles;
   State particle_bodies;
@@ -67,6 +66,11 @@ struct Simulation::Impl {
     if (scene.run.chaos) {
       auto feature = std::make_unique<detail::ChaosFeature>(scene.system);
       chaos = feature.get();
+      features.push_back(std::move(feature));
+    }
+    if (!scene.impulses.empty()) {  // no tangent columns: after the others
+      auto feature = std::make_unique<detail::ImpulseFeature>(scene.impulses);
+      impulses = feature.get();
       features.push_back(std::move(feature));
     }
     for (const auto& f : features) field_counts.push_back(f->fields().size());
@@ -82,6 +86,11 @@ struct Simulation::Impl {
   void start_features(Eigen::MatrixXd& V) {
     for (std::size_t k = 0; k < features.size(); ++k)
       features[k]->start(state, V.middleCols(first_column(k), features[k]->tangent_columns()));
+  }
+  // The features started in a run without a tangent (those with tangent columns need one).
+  void start_features_alone() {
+    Eigen::MatrixXd none(State::tangent_rows(scene.system), 0);
+    start_features(none);
   }
   // After each step (the stepping loop's Schedule::after_step).
   void features_after_step(const State& reached) {
@@ -115,26 +124,39 @@ struct Simulation::Impl {
     start_features(V);
     return V;
   }
-  // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] — with
-  // the features restored to where they stood there (a continued or loaded run).
-  Eigen::MatrixXd recorded_tangent(const io::RecordedFrame& at, const std::filesystem::path& file) {
+  // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] — the
+  // features' columns zero (their fields hold them: restore_features); empty without a tangent.
+  Eigen::MatrixXd recorded_tangent(const io::RecordedFrame& at, const std::filesystem::path& file) const {
+    if (!carries_tangent()) return {};
     const Eigen::Index N = State::tangent_rows(scene.system);
     const Eigen::Index stm = scene.run.stm ? N : 0, sensitivities = static_cast<Eigen::Index>(sensitivity_names.size());
     if (at.stm.rows() != (stm ? N : 0) || at.stm.cols() != stm || at.sensitivity.cols() != sensitivities ||
-        (sensitivities > 0 && at.sensitivity.rows() != N) ||
-        at.features.size() != std::accumulate(field_counts.begin(), field_counts.end(), std::size_t{0}))
+        (sensitivities > 0 && at.sensitivity.rows() != N))
       throw Error(file.string() + ": its frames do not hold the tangent the scene's run carries (run.stm, "
                   "run.sensitivities, run.chaos)");
-    Eigen::MatrixXd V(N, stm + feature_columns() + sensitivities);
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + feature_columns() + sensitivities);
     if (stm) V.leftCols(stm) = at.stm;
     if (sensitivities) V.rightCols(sensitivities) = at.sensitivity;
+    return V;
+  }
+  // The features put back where a frame's fields say they stood, their columns of V too.
+  void restore_features(const std::vector<double>& fields, Eigen::MatrixXd& V, const std::filesystem::path& file) {
+    if (fields.size() != std::accumulate(field_counts.begin(), field_counts.end(), std::size_t{0}))
+      throw Error(file.string() + ": its frames do not hold the fields of the run's features (" +
+                  std::to_string(fields.size()) + " numbers; /checkpoint/run_features)");
     std::size_t field = 0;
     for (std::size_t k = 0; k < features.size(); ++k) {
-      features[k]->restore(std::span<const double>(at.features).subspan(field, field_counts[k]),
+      features[k]->restore(std::span<const double>(fields).subspan(field, field_counts[k]),
                            V.middleCols(first_column(k), features[k]->tangent_columns()));
       field += field_counts[k];
     }
-    return V;
+  }
+  // How many impulses a recorded frame says were applied (0 without impulses).
+  std::size_t impulses_applied_in(const io::RecordedFrame& f) const {
+    if (!impulses) return 0;
+    std::size_t field = 0;
+    for (std::size_t k = 0; features[k].get() != impulses; ++k) field += field_counts[k];
+    return detail::ImpulseFeature::applied_in(std::span<const double>(f.features).subspan(field));
   }
 
   // The tangent at t0: [I | the features' columns (δ0) | ∂z(t0)/∂keys] (each part only when
@@ -242,7 +264,8 @@ struct Simulation::Impl {
   // time spent to reach it (a continued or loaded run).
   void restore(const io::RecordedFrame& at, const std::filesystem::path& file) {
     state = at.state;
-    if (carries_tangent()) state.tangent = recorded_tangent(at, file);
+    state.tangent = recorded_tangent(at, file);
+    restore_features(at.features, state.tangent, file);
     if (at.integrator.size() != integrator->checkpoint().size())
       throw Error(file.string() + ": its integrator checkpoint does not fit the scene's integrator");
     const std::int64_t evaluations = integrator->work().potential_evaluations;

@@ -186,7 +186,7 @@ const SummaryRow kRows[] = {
     {.key = "smallest_gap_pair", .kind = Kind::text, .uses = kCheckpoint, .doc = "the smallest gap's bodies, \"a–b\"",
      .text = [](S s) { return s.min_gap_pair; }, .has = gap_seen,
      .restore_text = [](RunSummary& s, const std::string& v) { s.min_gap_pair = v; }},
-    {.key = "impulses", .kind = Kind::integer, .label = "impulses",
+    {.key = "impulses", .kind = Kind::integer, .uses = kCheckpoint, .label = "impulses",
      .doc = "the scene's impulses applied (in this segment), and the energy they changed (docs/user-guide.md \"Impulses\")",
      .number = [](S s) { return double(s.impulses); },
      .line = [](const SummaryRow& r, S s) {
@@ -194,9 +194,11 @@ const SummaryRow kRows[] = {
                                                          printed("%+.6g", s.impulse_energy) + summary_unit(s.energy_unit) +
                                                          " (errors measured from the references each one moved)")
                              : "";
-     }},
-    {.key = "impulse_energy", .dimension = Dimension::kEnergy, .doc = "the energy the impulses changed (on their line)",
-     .number = [](S s) { return s.impulse_energy; }},
+     },
+     .restore_number = [](RunSummary& s, double v) { s.impulses = static_cast<int>(v); }},
+    {.key = "impulse_energy", .dimension = Dimension::kEnergy, .uses = kCheckpoint,
+     .doc = "the energy the impulses changed (on their line)", .number = [](S s) { return s.impulse_energy; },
+     .restore_number = [](RunSummary& s, double v) { s.impulse_energy = v; }},
     {.key = "forces", .kind = Kind::structure, .label = "force",
      .doc = "per force beyond the potential: name, work, linear and angular momentum put in (docs/forces.md)",
      .json = forces_json, .line = forces_lines},
@@ -383,6 +385,8 @@ void restore_summary(RunSummary& s, const SavedSummary& in) {
 }
 
 SavedSummary upgrade_saved_summary(SavedSummary in) {
+  // Checkpoints from before the impulses' rows were kept: saving a run with impulses was refused.
+  if (!in.number("impulses")) in.numbers.insert(in.numbers.end(), {{"impulses", {0.0}}, {"impulse_energy", {0.0}}});
   if (!in.number("statistics")) return in;
   // The layout of Simulation::save before the schema: numbers by position.
   const char* const statistics[] = {"max_abs_energy_error", "max_rel_linear_momentum_error",
