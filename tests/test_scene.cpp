@@ -24,14 +24,6 @@ integrator: {plugin: lgvi, step: 0.01}
 run: {t_end: 1, output_every: 0.1}
 )";
 
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_scene(text, "s.yaml", overrides);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
 
 }  // namespace
 
@@ -57,8 +49,8 @@ TEST(Scene, OverridesByPathIndexAndBodyName) {
   EXPECT_DOUBLE_EQ(s.integrator.params.at("step").as_double(), 0.02);
   EXPECT_DOUBLE_EQ(s.system.body(1).mass, 4.0);
   EXPECT_DOUBLE_EQ(s.system.body(0).mass, 3.0);
-  EXPECT_NE(error_of(kTwoBodies, {"bodies.comet.mass=1"}).find("no 'comet'"), std::string::npos);
-  EXPECT_NE(error_of(kTwoBodies, {"integrator.step"}).find("expected key=value"),
+  EXPECT_NE(test::scene_error(kTwoBodies, {"bodies.comet.mass=1"}).find("no 'comet'"), std::string::npos);
+  EXPECT_NE(test::scene_error(kTwoBodies, {"integrator.step"}).find("expected key=value"),
             std::string::npos);
 }
 
@@ -67,7 +59,7 @@ TEST(Scene, ImpossiblePhysicsIsRefusedWithFileLineAndField) {
   auto with = [&](const std::string& from, const std::string& to) {
     std::string t = base;
     t.replace(t.find(from), from.size(), to);
-    return error_of(t);
+    return test::scene_error(t);
   };
   EXPECT_EQ(with("mass: 0.5", "mass: 0"), "s.yaml:5: body 'rock': mass must be positive, not 0");
   EXPECT_NE(with("[1, 2, 2.5]", "[1, 2, 3.5]").find("s.yaml:6: body 'rock': principal moments"),

@@ -10,21 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <set>
-#include <sstream>
 
 using namespace noether;
 using namespace noether::detail;
 
 namespace {
-
-std::string read_text(const std::string& relative) {
-  std::ifstream in(test::source_path(relative));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 const char* kScene = R"(G: 1
 bodies:
@@ -35,20 +26,11 @@ integrator: {plugin: lgvi, step: 0.01}
 run: {t_end: 1, output_every: 0.1}
 )";
 
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  try {
-    parse_scene(text, "s.yaml", overrides);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 }  // namespace
 
 // docs/user-guide.md's reference is the tables, printed.
 TEST(SceneSchema, DocumentedInUserGuide) {
-  const std::string guide = read_text("docs/user-guide.md");
+  const std::string guide = test::source_text("docs/user-guide.md");
   const std::string begin = "<!-- scene reference: generated from host/src/scene/scene_schema.cpp -->\n",
                     end = "<!-- end of the scene reference -->";
   const std::size_t from = guide.find(begin), to = guide.find(end);
@@ -152,14 +134,14 @@ TEST(SceneSchema, UnknownKeysAreNamedWithTheClosestAndTheirSection) {
        "unknown key 'chek' in 'particles' (did you mean 'check'?)"},
   };
   for (const Case& c : cases) {
-    const std::string error = error_of(kScene, {c.set});
+    const std::string error = test::scene_error(kScene, {c.set});
     EXPECT_NE(error.find(c.expected), std::string::npos) << c.set << ": " << error;
   }
   // A key of another section says which.
-  EXPECT_NE(error_of(kScene, {"t_end=3"}).find("; 't_end' is a key of 'run'"), std::string::npos);
-  EXPECT_NE(error_of(kScene, {"bodies.rock.a=2"}).find("'a' is a key of 'bodies[].orbit', 'particles.orbits[]'"),
+  EXPECT_NE(test::scene_error(kScene, {"t_end=3"}).find("; 't_end' is a key of 'run'"), std::string::npos);
+  EXPECT_NE(test::scene_error(kScene, {"bodies.rock.a=2"}).find("'a' is a key of 'bodies[].orbit', 'particles.orbits[]'"),
             std::string::npos)
-      << error_of(kScene, {"bodies.rock.a=2"});
+      << test::scene_error(kScene, {"bodies.rock.a=2"});
 }
 
 // A value of the wrong form is refused at its own line, before anything reads it; a missing
@@ -168,7 +150,7 @@ TEST(SceneSchema, TypesAndRequiredKeysAreChecked) {
   auto with = [](const std::string& from, const std::string& to) {
     std::string text = kScene;
     text.replace(text.find(from), from.size(), to);
-    return error_of(text);
+    return test::scene_error(text);
   };
   EXPECT_NE(with("t_end: 1,", "t_end: 1, collisions: maybe,").find("s.yaml:7: 'run.collisions' must be true or false"),
             std::string::npos);
@@ -179,13 +161,13 @@ TEST(SceneSchema, TypesAndRequiredKeysAreChecked) {
   EXPECT_NE(with("{t_end: 1, ", "{").find("'run' needs 't_end' (final time"), std::string::npos);
   EXPECT_NE(with("around: sun, a: 1,", "around: sun,").find("the orbit of body 'rock' needs 'a' (semi-major axis"),
             std::string::npos);
-  EXPECT_NE(error_of(kScene, {"bodies.rock.orbit.around=~"}).find("needs 'around'"), std::string::npos);
+  EXPECT_NE(test::scene_error(kScene, {"bodies.rock.orbit.around=~"}).find("needs 'around'"), std::string::npos);
 }
 
 // The scene fuzzer's dictionary (tests/fuzz/scene.dict) knows every key, so that fuzzing reaches
 // every section's reader.
 TEST(SceneSchema, FuzzDictionaryHasEveryKey) {
-  const std::string dictionary = read_text("tests/fuzz/scene.dict");
+  const std::string dictionary = test::source_text("tests/fuzz/scene.dict");
   for (const SceneSection& s : scene_sections())
     for (const SceneKey& k : s.keys)
       EXPECT_NE(dictionary.find("\"" + std::string(k.key) + ":\""), std::string::npos)

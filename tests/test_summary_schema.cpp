@@ -21,13 +21,6 @@ using namespace noether::detail;
 
 namespace {
 
-std::string read_text(const std::string& relative) {
-  std::ifstream in(test::source_path(relative));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A run with rigid bodies, orbits the verdict judges and a closest approach: the dumbbells to t = 1.
 RunSummary dumbbell_summary() {
   PluginRegistry registry = test::bundled_plugins();
@@ -151,7 +144,7 @@ TEST(SummarySchema, ACheckpointFromBeforeTheSchemaIsRead) {
 // docs/user-guide.md's "Summary reference" is the schema's table, and docs/ensembles.md names
 // the ensemble's columns.
 TEST(SummarySchema, DocumentedInUserGuide) {
-  const std::string guide = read_text("docs/user-guide.md");
+  const std::string guide = test::source_text("docs/user-guide.md");
   const std::string begin = "<!-- summary reference: generated from host/src/run/summary_schema.cpp -->\n",
                     end = "<!-- end of the summary reference -->";
   const std::size_t from = guide.find(begin), to = guide.find(end);
@@ -160,7 +153,7 @@ TEST(SummarySchema, DocumentedInUserGuide) {
   EXPECT_EQ(guide.substr(from + begin.size(), to - from - begin.size()), summary_reference_markdown())
       << "docs/user-guide.md's summary reference differs from the schema; the table should read:\n"
       << summary_reference_markdown();
-  const std::string ensembles = read_text("docs/ensembles.md");
+  const std::string ensembles = test::source_text("docs/ensembles.md");
   const std::size_t row = ensembles.find("| `/summary/*` |");
   ASSERT_NE(row, std::string::npos);
   const std::string line = ensembles.substr(row, ensembles.find('\n', row) - row);

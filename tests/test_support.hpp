@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the tests: paths of the source tree and of the built plugins.
+// Helpers shared by the tests: paths and files of the source tree, the built plugins, scenes.
+#include <noether/error.hpp>
 #include <noether/lie.hpp>
 #include <noether/registry.hpp>
 #include <noether/scene.hpp>
@@ -7,7 +8,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace noether::test {
 
@@ -16,6 +20,25 @@ inline std::string source_path(const std::string& relative) {
 }
 
 // A registry of the plugins built in this tree only (no NOETHER_PLUGIN_PATH, no install).
+// A file of the source tree as text ("" if it does not read).
+inline std::string source_text(const std::string& relative) {
+  std::ifstream in(source_path(relative));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The SceneError a scene's text (with overrides) gets, or "no error".
+inline std::string scene_error(const std::string& text, const std::vector<std::string>& overrides = {},
+                               const std::string& file = "s.yaml") {
+  try {
+    parse_scene(text, file, overrides);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 inline PluginRegistry bundled_plugins() { return PluginRegistry({NOETHER_TEST_PLUGIN_DIR}); }
 
 // An integrator's configuration from YAML text, as a scene's `integrator:` gives one.

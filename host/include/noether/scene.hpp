@@ -51,6 +51,8 @@ struct RunSettings {
   // /derivatives/fli at every output frame and their last values in the summary.
   bool chaos = false;
   TrustThresholds trust;
+  // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
+  bool carries_tangent() const { return stm || !sensitivities.empty() || chaos; }
 };
 
 // An instantaneous change of a body's velocity during the run (the scene's `impulses:`; a kinetic

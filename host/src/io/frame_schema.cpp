@@ -333,7 +333,8 @@ const FrameQuantity kFrameSchema[] = {
      6, work, restore_work},
     {"run_features", "/checkpoint/run_features", E::kRunFeatures, D::kMixed, kPlain,
      "the run features' own variables at each frame, named by the attribute `fields` (run.chaos: the deviation "
-     "vector δ and the indicators' running sums), from which a continued run restores them",
+     "vector δ and the indicators' running sums; impulses: how many were applied), from which a continued run "
+     "restores them",
      11, run_features, restore_features},
 };
 
@@ -451,7 +452,7 @@ std::string requirement(const FrameQuantity& q) {
     case E::kChaos: return "run.chaos";
     case E::kForceBalance: return "forces";
     case E::kParticleVector: return "particles";
-    case E::kRunFeatures: return "run.chaos";
+    case E::kRunFeatures: return "run.chaos or impulses";
     case E::kBinaryScalar:
     case E::kBinaryVector:
     case E::kBinaryElements: return "a binary";

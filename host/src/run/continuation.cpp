@@ -263,7 +263,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
   }
   const bool with_output = options.output.has_value();
-  if (with_output && (scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos))
+  if (with_output && scene.run.carries_tangent())
     throw Error(path.string() + ": loading a run that carries a tangent (run.stm, run.sensitivities, run.chaos) into "
                 "a new output file is not supported yet; load it without one (it continues bit for bit), or "
                 "--resume its own file");

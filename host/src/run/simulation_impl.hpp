@@ -59,8 +59,7 @@ struct Simulation::Impl {
   State particle_bodies;
   Eigen::Matrix3Xd recorded_particles;  // their first particles.record at the frame being written
 
-  // Whether the run carries a tangent at all (run.stm, run.sensitivities, run.chaos).
-  bool carries_tangent() const { return scene.run.stm || !scene.run.sensitivities.empty() || scene.run.chaos; }
+  bool carries_tangent() const { return scene.run.carries_tangent(); }
   // The scene's run features (before the tangent is made: their columns are in it).
   void make_features() {
     if (scene.run.chaos) {
