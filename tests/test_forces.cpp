@@ -23,29 +23,7 @@ PluginRegistry& registry() {
   return r;
 }
 
-// A fast-spinning, slightly triaxial primary (spin 5, tilted 20° from the orbit normal) and a
-// point-mass moon from r = 1 on an orbit of a ≈ 1.25, e ≈ 0.2 (n ≈ 0.74): the tide the moon raises spins the
-// primary down and pushes the moon out.
-Scene tidal_scene(const std::vector<std::string>& overrides = {}) {
-  return parse_scene(R"(G: 1
-bodies:
-  - name: planet
-    mass: 1
-    inertia: [0.0324, 0.036, 0.0396]
-    radius: 0.3
-    position: [0, 0, 0]
-    velocity: [0, 0, 0]
-    attitude: {euler_angles: [0, 20, 0]}
-    angular_velocity: [0, 0, 5]
-  - {name: moon, mass: 0.1, position: [1, 0, 0], velocity: [0, 1.15, 0]}
-barycentric: true
-potential: {plugin: point-mass}
-forces: [{plugin: tides, body: planet, k2: 0.5, time_lag: 0.1}]
-integrator: {plugin: lgvi, step: 0.01}
-run: {t_end: 50, output_every: 0.5}
-)",
-                     "tidal", overrides);
-}
+using test::tidal_scene;
 
 Vec3 angular_momentum(const System& system, const State& s) {
   return diagnose(system, s, 0.0).angular_momentum;

@@ -99,7 +99,7 @@ void expect_continuations_bitwise(const char* how, bool same_frames,
 TEST(ImpulseFeature, CountsTheAppliedImpulsesInTimeOrder) {
   const Scene scene = test::kepler_scene({"impulses=[{body: planet, time: 1.5, delta_v: [0, 0.01, 0]}, "
                                           "{body: planet, time: 1.25, delta_v: [0, 0.01, 0]}]"});
-  detail::ImpulseFeature feature(scene.impulses);
+  detail::ImpulseFeature feature(scene.system, scene.impulses, scene.initial.t, 0.0);
   Eigen::MatrixXd none(12, 0);
   State s = scene.initial;
   feature.start(s, none);
@@ -117,6 +117,34 @@ TEST(ImpulseFeature, CountsTheAppliedImpulsesInTimeOrder) {
   EXPECT_EQ(*feature.next(), 0u);
   EXPECT_THROW(feature.restore(std::vector<double>{3.0}, none), Error);
   EXPECT_THROW(feature.restore(std::vector<double>{0.5}, none), Error);
+}
+
+// Its jumps: the next impulse's time, the momentum jump m Δv (eq. 24.1) made where the run stands,
+// counted once; a fixed step that does not divide an impulse's time from t0 is refused.
+TEST(ImpulseFeature, JumpsAtEachImpulseByItsMomentum) {
+  const Scene scene = test::kepler_scene({"impulses=[{body: planet, time: 1.5, delta_v: [0, 0.01, 0]}, "
+                                          "{body: planet, time: 1.25, delta_v: [0.02, 0, 0]}]"});
+  detail::ImpulseFeature feature(scene.system, scene.impulses, scene.initial.t, 0.0);
+  Eigen::MatrixXd none(12, 0);
+  State s = scene.initial;
+  feature.start(s, none);
+  ASSERT_TRUE(feature.next_jump());
+  EXPECT_EQ(*feature.next_jump(), 1.25);
+  const auto planet = static_cast<std::size_t>(scene.system.index_of("planet"));
+  const double mass = scene.system.body(planet).mass;
+  const State before = s;
+  const std::vector<std::string> no_names;
+  detail::StateJump at{s, no_names, nullptr, nullptr};
+  feature.jump(at);
+  EXPECT_EQ(s.p.col(static_cast<Eigen::Index>(planet)), before.p.col(static_cast<Eigen::Index>(planet)) + mass * Vec3(0.02, 0, 0));
+  EXPECT_EQ(*feature.next_jump(), 1.5);
+  std::vector<double> field(1);
+  feature.save(none, field);
+  EXPECT_EQ(feature.jumps_in(field), 1u);
+  feature.jump(at);
+  EXPECT_FALSE(feature.next_jump());
+  EXPECT_THROW(detail::ImpulseFeature(scene.system, scene.impulses, scene.initial.t, 0.1 * std::sqrt(2.0)), SceneError);
+  EXPECT_NO_THROW(detail::ImpulseFeature(scene.system, scene.impulses, scene.initial.t, 0.25));
 }
 
 // Saved anywhere and loaded: the uninterrupted run's bits, tangent and summary.

@@ -2,17 +2,13 @@
 // that computes one frame of it and, for the series a continued run reads back, the function
 // that puts it back. docs/user-guide.md, "Output", lists the same series for users.
 #include "io/frame_schema.hpp"
-
-#include <noether/euler_angles.hpp>
-#include <noether/lie.hpp>
-#include <noether/orbital_elements.hpp>
+#include "io/state_quantities.hpp"
 
 #include "run/binary_pair.hpp"
 #include "run/spin_state_tracker.hpp"
 
 #include <algorithm>
 #include <limits>
-#include <numbers>
 #include <cstring>
 #include <stdexcept>
 
@@ -81,88 +77,6 @@ void work(const FrameInput& in, void* out) {
   std::memcpy(out, w, sizeof w);
 }
 
-// The quantities of the state alone (FrameFill::of_state), computed when their block is written.
-void velocity(const StateFrame& in, void* out) {  // v = γ/m
-  double* v = doubles(out);
-  for (std::size_t i = 0; i < in.system.size(); ++i)
-    for (int a = 0; a < 3; ++a) v[3 * i + a] = in.state.p(a, static_cast<Eigen::Index>(i)) / in.system.body(i).mass;
-}
-void quaternion(const StateFrame& in, void* out) {  // (w, x, y, z) of R
-  for (std::size_t k = 0; k < in.state.R.size(); ++k) {
-    const Vec4 q = quaternion_from_rotation(in.state.R[k]);
-    std::copy(q.data(), q.data() + 4, doubles(out) + 4 * k);
-  }
-}
-void angular_velocity(const StateFrame& in, void* out) {  // Ω = J⁻¹Π (docs/equations.md §2)
-  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
-    const Vec3 omega = in.system.body(in.system.body_of_rigid(k)).inertia_inverse *
-                       in.state.Pi.col(static_cast<Eigen::Index>(k));
-    copy(omega, doubles(out) + 3 * k);
-  }
-}
-// The binary's (present only when there is one: primary and secondary are set).
-Vec3 column(const Matrix& m, std::ptrdiff_t i) { return m.col(static_cast<Eigen::Index>(i)); }
-Vec3 relative_position(const StateFrame& in) { return column(in.state.x, in.secondary) - column(in.state.x, in.primary); }
-Vec3 relative_velocity(const StateFrame& in) {
-  const auto mass = [&in](std::ptrdiff_t i) { return in.system.body(static_cast<std::size_t>(i)).mass; };
-  return column(in.state.p, in.secondary) / mass(in.secondary) - column(in.state.p, in.primary) / mass(in.primary);
-}
-const Mat3& attitude_of(const StateFrame& in, std::ptrdiff_t body) {
-  return in.state.R[static_cast<std::size_t>(in.system.rigid_index(static_cast<std::size_t>(body)))];
-}
-void separation(const StateFrame& in, void* out) { copy(relative_position(in).norm(), out); }
-void binary_position(const StateFrame& in, void* out) { copy(relative_position(in), out); }
-void binary_velocity(const StateFrame& in, void* out) { copy(relative_velocity(in), out); }
-void position_in_primary_frame(const StateFrame& in, void* out) {  // R_pᵀ r
-  copy(Vec3(attitude_of(in, in.primary).transpose() * relative_position(in)), out);
-}
-void velocity_in_primary_frame(const StateFrame& in, void* out) {  // R_pᵀ v − Ω_p × R_pᵀ r (rotating frame)
-  const Mat3& R = attitude_of(in, in.primary);
-  const auto k = static_cast<Eigen::Index>(in.system.rigid_index(static_cast<std::size_t>(in.primary)));
-  const Vec3 omega = in.system.body(static_cast<std::size_t>(in.primary)).inertia_inverse * Vec3(in.state.Pi.col(k));
-  const Vec3 r = R.transpose() * relative_position(in);
-  copy(Vec3(R.transpose() * relative_velocity(in) - omega.cross(r)), out);
-}
-void osculating_elements(const StateFrame& in, void* out) {  // a, e, i, Ω, ω, ν (eqs. 17.5–17.8)
-  const double mu = in.system.G() * (in.system.body(static_cast<std::size_t>(in.primary)).mass +
-                                     in.system.body(static_cast<std::size_t>(in.secondary)).mass);
-  double* el = doubles(out);
-  const Vec3 r = relative_position(in), v = relative_velocity(in);
-  // Unbound (elements_from_state's own test, made here: a throw per frame cost microseconds).
-  if (!(0.5 * v.squaredNorm() - mu / r.norm() < 0.0)) {
-    std::fill(el, el + 6, std::numeric_limits<double>::quiet_NaN());
-    return;
-  }
-  const OrbitalElements e = elements_from_state({r, v}, mu);
-  const double deg = 180.0 / std::numbers::pi;
-  const double values[6] = {e.a, e.e, e.i * deg, e.Omega * deg, e.omega * deg, e.nu * deg};
-  std::copy(values, values + 6, el);
-}
-void libration(const StateFrame& in, void* out) {  // the primary's direction in the secondary's body frame
-  const Vec3 u = attitude_of(in, in.secondary).transpose() * (-relative_position(in));
-  double angle = std::atan2(u.y(), u.x()) * 180.0 / std::numbers::pi;  // (−180, 180]
-  if (angle > 90.0) angle -= 180.0;  // the axis is a line: either end may face the primary
-  if (angle <= -90.0) angle += 180.0;
-  copy(angle, out);
-}
-
-void copy_degrees(const Vec3& radians, void* out) { copy(Vec3(radians * (180.0 / std::numbers::pi)), out); }
-void euler_angles(const StateFrame& in, void* out) {  // eq. 17.9 of each rigid body's R
-  for (std::size_t k = 0; k < in.state.R.size(); ++k) copy_degrees(euler_angles_321(in.state.R[k]), doubles(out) + 3 * k);
-}
-// Eq. 17.10: the secondary's attitude in the orbit frame, whose x axis points at the primary and
-// z along the orbit normal, yaw folded into (−90, 90].
-void secondary_euler_angles(const StateFrame& in, void* out) {
-  const Vec3 r = relative_position(in);
-  copy_degrees(orbit_frame_angles(-r, r.cross(relative_velocity(in)), attitude_of(in, in.secondary)), out);
-}
-void nutation_angles(const StateFrame& in, void* out) {  // eq. 17.11, degrees
-  for (std::size_t k = 0; k < in.system.rigid_count(); ++k) {
-    doubles(out)[k] = nutation_angle(in.largest_moment_axes[k], in.state.Pi.col(static_cast<Eigen::Index>(k))) *
-                      (180.0 / std::numbers::pi);
-  }
-}
-
 // The restore functions of the checkpointed series (FrameQuantity::restore).
 void restore_force_balance(const void* in, std::size_t width, RecordedFrame& f) {  // [force][7]
   f.state.force_balance = Eigen::Map<const Eigen::MatrixXd>(doubles(in), kBalanceRows,
@@ -222,15 +136,15 @@ const FrameQuantity kFrameSchema[] = {
     {"positions", "/particles/bodies/position/value", E::kBodyVector, D::kLength, kH5md,
      "position x of each body's centre of mass, inertial frame [frame][body][xyz]", 1, position, restore_position},
     {"velocities", "/particles/bodies/velocity/value", E::kBodyVector, D::kVelocity, kH5md,
-     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]", -1, velocity, nullptr},
+     "velocity of each body's centre of mass, inertial frame [frame][body][xyz]", -1, of_state::velocity, nullptr},
     {"quaternions", "/particles/bodies/orientation/value", E::kRigidQuaternion, D::kOne, kH5md,
      "attitude R (body to inertial frame) of each rigid body as a unit quaternion (w, x, y, z) "
      "[frame][rigid body][wxyz]; body_index names the bodies",
-     -1, quaternion, nullptr},
+     -1, of_state::quaternion, nullptr},
     {"angular_momenta", "/particles/bodies/angular_momentum/value", E::kRigidVector, D::kAngularMomentum, kH5md,
      "spin angular momentum Π = J Ω of each rigid body, body frame [frame][rigid body][xyz]", 4, spin, restore_spin},
     {"angular_velocities", "/particles/bodies/angular_velocity/value", E::kRigidVector, D::kAngularVelocity, kH5md,
-     "angular velocity Ω = J⁻¹Π of each rigid body, body frame [frame][rigid body][xyz]", -1, angular_velocity,
+     "angular velocity Ω = J⁻¹Π of each rigid body, body frame [frame][rigid body][xyz]", -1, of_state::angular_velocity,
      nullptr},
     {"energy", "/observables/energy/value", E::kScalar, D::kEnergy, kH5md, "total energy E = T + U at each frame", -1,
      energy, nullptr},
@@ -249,40 +163,40 @@ const FrameQuantity kFrameSchema[] = {
     {"separation", "/observables/separation/value", E::kBinaryScalar, D::kLength, kH5md,
      "distance between the centres of mass of the binary (attrs primary, secondary: the two bodies that hold 99 % "
      "of the mass)",
-     -1, separation, nullptr},
+     -1, of_state::separation, nullptr},
     {"relative_positions", "/observables/relative_position/value", E::kBinaryVector, D::kLength, kH5md,
-     "the secondary's position relative to the primary, x_s − x_p, inertial frame", -1, binary_position, nullptr},
+     "the secondary's position relative to the primary, x_s − x_p, inertial frame", -1, of_state::binary_position, nullptr},
     {"relative_velocities", "/observables/relative_velocity/value", E::kBinaryVector, D::kVelocity, kH5md,
-     "the secondary's velocity relative to the primary, v_s − v_p, inertial frame", -1, binary_velocity, nullptr},
+     "the secondary's velocity relative to the primary, v_s − v_p, inertial frame", -1, of_state::binary_velocity, nullptr},
     {"relative_positions_primary_frame", "/observables/relative_position_primary_frame/value", E::kPrimaryFrame,
      D::kLength, kH5md, "the secondary's position in the primary's body frame, R_pᵀ (x_s − x_p)", -1,
-     position_in_primary_frame, nullptr},
+     of_state::position_in_primary_frame, nullptr},
     {"relative_velocities_primary_frame", "/observables/relative_velocity_primary_frame/value", E::kPrimaryFrame,
      D::kVelocity, kH5md,
      "the secondary's velocity seen in the primary's rotating body frame, R_pᵀ (v_s − v_p) − Ω_p × R_pᵀ (x_s − x_p)",
-     -1, velocity_in_primary_frame, nullptr},
+     -1, of_state::velocity_in_primary_frame, nullptr},
     {"osculating_elements", "/observables/osculating_elements/value", E::kBinaryElements, D::kMixed, kH5md,
      "the binary's osculating Keplerian elements as two point masses (μ = G (m_p + m_s)): a [length], e, i, Ω, ω, "
      "ν [deg] (docs/equations.md §17); NaN when unbound",
-     -1, osculating_elements, nullptr},
+     -1, of_state::osculating_elements, nullptr},
     {"libration_angles", "/observables/libration_angle/value", E::kSecondaryAngle, D::kDegrees, kH5md,
      "the angle in the secondary's body xy plane between its x axis and the line to the primary, atan2(u_y, u_x) "
      "with u = R_sᵀ (x_p − x_s), folded into (−90, 90] (either end of the axis may face the primary): a synchronous "
      "secondary librates about 0",
-     -1, libration, nullptr},
+     -1, of_state::libration, nullptr},
     {"euler_angles", "/particles/bodies/euler_angles/value", E::kRigidVector, D::kDegrees, kH5md,
      "3-2-1 Euler angles (yaw ψ, pitch θ, roll φ) of each rigid body's attitude in the scene frame, "
      "R = Rz(ψ) Ry(θ) Rx(φ) (docs/equations.md eq. 17.9); ψ, φ in (−180, 180], θ in [−90, 90]",
-     -1, euler_angles, nullptr},
+     -1, of_state::euler_angles, nullptr},
     {"secondary_euler_angles", "/observables/secondary_euler_angles/value", E::kSecondaryVector, D::kDegrees, kH5md,
      "3-2-1 Euler angles (yaw, pitch, roll) of the secondary's attitude in the orbit frame (x towards the primary, "
      "z along the orbit normal r × v; eq. 17.10), yaw folded into (−90, 90] (either end of the axis may face the "
      "primary): a synchronous secondary's libration in yaw, pitch and roll",
-     -1, secondary_euler_angles, nullptr},
+     -1, of_state::secondary_euler_angles, nullptr},
     {"nutation_angles", "/observables/nutation_angle/value", E::kRigidScalar, D::kDegrees, kH5md,
      "the angle between each rigid body's angular momentum and its principal axis of largest moment (eq. 17.11), "
      "in [0, 90]: 0 for rotation about that axis (the relaxed state), larger for a tumbling or precessing body",
-     -1, nutation_angles, nullptr},
+     -1, of_state::nutation_angles, nullptr},
     {"stm", "/derivatives/stm/value", E::kTangent, D::kMixed, kH5md,
      "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "
      "columns in the order of z = (x, θ, γ, Π) (docs/equations.md eq. 21.1), named by /derivatives/coordinates; θ "

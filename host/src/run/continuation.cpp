@@ -52,20 +52,21 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
             const volatile std::sig_atomic_t* interrupt) {
   Forces forces;
   forces.resize(m.scene.system);
-  State before;  // the frame before, and how many impulses had been applied there
-  std::size_t applied = 0;
+  State before;  // the frame before, and how many jumps (impulses) the features had made there
+  std::size_t jumps = 0;
+  const bool can_jump = m.next_jump().first != nullptr;  // (the features stand at t0)
   return run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
     if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
       auto workspace = m.potential->make_workspace();
       m.potential->evaluate(f.state, forces, *workspace);
     }
     forces.U = f.U;
-    // An impulse between two frames at its time (the state before it, then after it): the
-    // statistics' references move by its jump, as they did in the run (RunStatistics::impulse).
-    const std::size_t applied_here = m.impulses_applied_in(f);
-    if (k > 0 && applied_here == applied + 1) m.observer->impulse(before, f.state, f.U);
-    applied = applied_here;
-    if (m.impulses) before = f.state;
+    // A jump between two frames at its time (the state before it, then after it): the
+    // statistics' references move by it, as they did in the run (RunStatistics::impulse).
+    const std::size_t jumps_here = m.jumps_in(f);
+    if (k > 0 && jumps_here == jumps + 1) m.observer->impulse(before, f.state, f.U);
+    jumps = jumps_here;
+    if (can_jump) before = f.state;
     const Diagnostics d = m.observer->account(f.state, forces);
     if (!m.writer) return;
     // The frame as it was written: its tangent's STM and sensitivities (the features' columns
@@ -73,7 +74,7 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     State state = f.state;
     state.tangent = m.recorded_tangent(f, run.file());
     m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator,
-                          m.chaos ? detail::ChaosFeature::values_of(f.features) : ChaosValues{},
+                          m.chaos ? detail::ChaosFeature::values_of(m.fields_of(m.chaos, f.features)) : ChaosValues{},
                           f.particles.cols() > 0 ? &f.particles : nullptr, f.features);
   }, interrupt);
 }
@@ -230,6 +231,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   // The summary's checkpointed rows (run/summary_schema.cpp) and the statistics' running values.
   detail::SavedSummary saved = detail::save_summary(m.summary);
   m.observer->save(saved, !m.scene.forces.empty());  // the forces' balance is the state's; their largest exchange is not (33.3)
+  for (const auto& f : m.features) f->save_running(saved);
   if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint(), 0);
   writer.write_pair_models(m.pair_models());  // with a tolerance exceeded so far, which load keeps
   writer.write_summary_values(saved.numbers, saved.texts);
@@ -263,15 +265,15 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
   }
   const bool with_output = options.output.has_value();
-  if (with_output && scene.run.carries_tangent())
-    throw Error(path.string() + ": loading a run that carries a tangent (run.stm, run.sensitivities, run.chaos) into "
-                "a new output file is not supported yet; load it without one (it continues bit for bit), or "
-                "--resume its own file");
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
   if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();
   scene.models_chosen_at = scene.initial;  // the run's models, chosen where it started
   scene.initial = at_last.state;            // frame 0 of the loaded simulation is where the file stood
-  auto sim = std::make_unique<Simulation>(std::move(scene), registry, options, std::move(potential));
+  // A new output file is opened once the run stands where the file stood (below): its frame 0
+  // holds the restored integrator, tangent and features, not those of a fresh start there.
+  RunOptions unwritten = options;
+  unwritten.output.reset();
+  auto sim = std::make_unique<Simulation>(std::move(scene), registry, unwritten, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
   m.t_origin = origin_of(run);
@@ -281,6 +283,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
       const detail::SavedSummary saved = saved_of(run);
       detail::restore_summary(s, saved);
       m.observer->restore(saved, !m.scene.forces.empty());
+      for (const auto& f : m.features) f->restore_running(saved);
     } catch (const Error& e) {
       throw Error(path.string() + ": " + e.what() +
                   "; load it with an output file (its summary then starts there) or run the scene again");
@@ -294,6 +297,17 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     s.interpolated_frames = at_last.interpolated;
   }
   m.restore(at_last, path);
+  if (with_output) {  // the new file, its summary from here (frame 0, with the potential's forces)
+    m.writer = std::make_unique<H5Writer>(*options.output, m.scene, m.output_options(false));
+    m.writer->write_pair_models(m.summary.pair_models);
+    m.checkpoint_particles();
+    m.new_segment();
+    Forces forces;
+    forces.resize(m.scene.system);
+    m.potential->evaluate(m.state, forces, *m.potential->make_workspace());
+    m.observer->observe(m.state, forces, false);
+  }
+  m.options = std::move(options);
   return sim;
 }
 }  // namespace noether

@@ -2,16 +2,27 @@
 #include "run/impulse_feature.hpp"
 
 #include <noether/error.hpp>
+#include <noether/parameter_derivatives.hpp>
+#include <noether/stepping.hpp>
+
+#include "run/impulse_frame.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace noether::detail {
 
-ImpulseFeature::ImpulseFeature(const std::vector<Impulse>& impulses) : impulses_(impulses), order_(impulses.size()) {
+ImpulseFeature::ImpulseFeature(const System& system, const std::vector<Impulse>& impulses, double t0, double h)
+    : system_(system), impulses_(impulses), order_(impulses.size()) {
   for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = k;
   std::stable_sort(order_.begin(), order_.end(),
                    [this](std::size_t a, std::size_t b) { return impulses_[a].time < impulses_[b].time; });
+  // A fixed-step method applies each impulse at a step of its grid (those still to come: a
+  // loaded simulation's initial state may stand after some).
+  if (h > 0)
+    for (std::size_t k = 0; k < impulses.size(); ++k)
+      if (impulses[k].time > t0) whole_steps(impulses[k].time - t0, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
 }
 
 void ImpulseFeature::start(const State& state, Eigen::Ref<Eigen::MatrixXd>) {
@@ -33,6 +44,84 @@ void ImpulseFeature::restore(std::span<const double> in, Eigen::Ref<Eigen::Matri
 std::optional<std::size_t> ImpulseFeature::next() const {
   if (applied_ >= order_.size()) return std::nullopt;
   return order_[applied_];
+}
+
+std::optional<double> ImpulseFeature::next_jump() const {
+  if (const std::optional<std::size_t> k = next()) return impulses_[*k].time;
+  return std::nullopt;
+}
+
+// Applies impulse k where the run stands, at its time (docs/equations.md §24): the body's
+// momentum jumps by m Δv (24.1), the tangent by the jump's derivative (24.2, 24.6, 24.7). Counted
+// as applied first: the frame after it holds the count.
+void ImpulseFeature::jump(StateJump& at) {
+  const std::size_t k = *next();
+  mark_applied();
+  const Impulse& impulse = impulses_[k];
+  const System& sys = system_;
+  State& state = at.state;
+  const auto b = static_cast<Eigen::Index>(impulse.body), c = static_cast<Eigen::Index>(impulse.around);
+  const double mass = sys.body(impulse.body).mass;
+  const State before = state;
+  const bool rtn = impulse.frame == Impulse::Frame::rtn;
+  const RelativeOrbit orbit = rtn ? relative_orbit(impulse, sys, before) : RelativeOrbit{};
+  Mat3 Q = Mat3::Identity();
+  if (rtn) {
+    try {
+      Q = rtn_frame(orbit.r, orbit.v);
+    } catch (const Error& e) {  // named: which impulse, whose orbit, when
+      std::ostringstream where;
+      where.precision(10);
+      where << "impulses." << k << " (body '" << sys.body(impulse.body).name << "' about '"
+            << sys.body(impulse.around).name << "', t = " << impulse.time << "): " << e.what();
+      throw Error(where.str());
+    }
+  }
+  const Vec3 dv = Q * impulse.delta_v;
+  state.p.col(b) += mass * dv;  // (24.1)
+  Eigen::MatrixXd& V = state.tangent;
+  if (V.size() == 0) return;
+  const auto n = static_cast<Eigen::Index>(sys.size()), q = 3 * (n + static_cast<Eigen::Index>(sys.rigid_count()));
+  const Eigen::Index row = q + 3 * b;  // γ_b's rows; x_b's are 3b
+  const auto P = static_cast<Eigen::Index>(at.sensitivity_names.size());
+  const auto Qp = at.parameters ? static_cast<Eigen::Index>(at.parameters->size()) : Eigen::Index{0};
+  auto mass_derivative = [&](Eigen::Index column, std::size_t body) {  // ∂m_body/∂p of a parameter's column
+    const Eigen::Index j = column - (V.cols() - Qp);
+    return j >= 0 ? at.parameters->parameters[static_cast<std::size_t>(j)].mass(static_cast<Eigen::Index>(body)) : 0.0;
+  };
+  if (rtn) {  // (24.6): the frame turns with the orbit, ∂γ_b⁺/∂z⁻ = m_b (∂Q/∂z⁻) Δv_RTN, on every column
+    const double mc = sys.body(impulse.around).mass;
+    const Eigen::MatrixXd W = V;
+    for (Eigen::Index j = 0; j < V.cols(); ++j) {
+      const double dmb = mass_derivative(j, impulse.body), dmc = mass_derivative(j, impulse.around);
+      const Vec3 dr = W.block<3, 1>(3 * b, j) - W.block<3, 1>(3 * c, j);
+      const Vec3 dvel = (W.block<3, 1>(q + 3 * b, j) - before.p.col(b) * dmb / mass) / mass -
+                        (W.block<3, 1>(q + 3 * c, j) - before.p.col(c) * dmc / mc) / mc;
+      V.block<3, 1>(row, j) += mass * rtn_frame_derivative(orbit.r, orbit.v, dr, dvel) * impulse.delta_v;
+    }
+  }
+  const std::string key = "impulses." + std::to_string(k) + ".";  // + delta_v.a or time
+  for (Eigen::Index col = 0; col < P; ++col) {
+    const std::string& name = at.sensitivity_names[static_cast<std::size_t>(col)];
+    if (name.rfind(key, 0) != 0) continue;
+    const Eigen::Index j = V.cols() - P + col;
+    if (name == key + "time") {
+      // (24.7): ∂z⁺/∂t_i = F(z⁻) − F(z⁺) + (∂z⁺/∂z⁻ − I) F(z⁻): x_b's rate drops by Δv; in the RTN
+      // frame Δv also turns with the orbit along the flow (δr = v, δv = the relative acceleration).
+      V.block<3, 1>(3 * b, j) -= dv;
+      if (rtn) {
+        Forces f;  // at z⁻, by the run's own evaluator (its workspace: the orders it chose)
+        f.resize(sys);
+        at.forces_at(before, f);
+        const Vec3 acceleration = f.f.col(b) / mass - f.f.col(c) / sys.body(impulse.around).mass;
+        V.block<3, 1>(row, j) += mass * rtn_frame_derivative(orbit.r, orbit.v, orbit.v, acceleration) * impulse.delta_v;
+      }
+    } else {  // (24.2): ∂γ_b⁺/∂Δv = m_b Q
+      V.block<3, 1>(row, j) += mass * Q.col(name.back() - '0');
+    }
+  }
+  for (Eigen::Index j = V.cols() - Qp; j < V.cols(); ++j)  // (24.2): ∂γ_b⁺/∂p += (∂m_b/∂p) Δv
+    V.block<3, 1>(row, j) += mass_derivative(j, impulse.body) * dv;
 }
 
 }  // namespace noether::detail

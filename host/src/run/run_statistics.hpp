@@ -9,7 +9,6 @@
 
 #include "run/binary_pair.hpp"
 #include "run/event_watch.hpp"
-#include "run/spin_state_tracker.hpp"
 #include "run/summary_schema.hpp"
 
 #include <algorithm>
@@ -24,8 +23,11 @@ namespace noether::detail {
 // The run's accounting at every frame: the summary's statistics, and the frame to the output.
 class RunStatistics final : public Observer {
  public:
-  RunStatistics(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write)
-      : system_(system), s_(summary), write_(std::move(write)), spin_(system) {
+  // `write` hands each observed frame on (to the output); `on_frame` is called at the end of
+  // every frame's accounting (the run features' observe_frame), with whether it was a segment's first.
+  RunStatistics(const System& system, RunSummary& summary, std::function<void(const State&, const Diagnostics&)> write,
+                std::function<void(const State&, bool)> on_frame = nullptr)
+      : system_(system), s_(summary), write_(std::move(write)), on_frame_(std::move(on_frame)) {
     if (system.size() <= 64) contacts_ = watches(system, Events{0.0, true, {}});  // O(n²): small scenes only
   }
 
@@ -83,8 +85,8 @@ class RunStatistics final : public Observer {
       s_.orbits = orbit_scales(state);
       start_mutual_orbit(state);
       detect_conservation(state, forces);
-      spin_.start();
     }
+    const bool first_of_segment = s_.frames == 0;
     s_.final = d;
     // Forces beyond the potential put in W, ΔP, ΔL since t0: the forced flow conserves E − W,
     // P − ΔP and L − ΔL (docs/equations.md eq. 33.3), so errors are measured from E0 + W, ….
@@ -94,13 +96,7 @@ class RunStatistics final : public Observer {
       const Eigen::VectorXd total = state.force_balance.rowwise().sum();
       W = total(0);
       dP = total.segment<3>(1);
-      dL = total.segment<3>(4);
-      for (std::size_t j = 0; j < s_.forces.size() && j < static_cast<std::size_t>(state.force_balance.cols()); ++j) {
-        const auto c = static_cast<Eigen::Index>(j);
-        s_.forces[j].work = state.force_balance(0, c);
-        s_.forces[j].linear_momentum = state.force_balance.col(c).segment<3>(1);
-        s_.forces[j].angular_momentum = state.force_balance.col(c).segment<3>(4);
-      }
+      dL = total.segment<3>(4);  // (each force's part: ForceBalanceFeature)
     }
     s_.max_abs_energy_error = std::max(s_.max_abs_energy_error, std::abs(d.energy - W - s_.initial.energy));
     // Momentum the forces put in counts in the scale: what they exchange (a flyby accelerating
@@ -136,8 +132,8 @@ class RunStatistics final : public Observer {
       }
     }
     track_mutual_orbit(state);
-    if (system_.rigid_count() > 0) spin_.observe(state);
     ++s_.frames;
+    if (on_frame_) on_frame_(state, first_of_segment);
     return d;
   }
 
@@ -157,7 +153,7 @@ class RunStatistics final : public Observer {
 
   // Its running values beyond the summary's rows, named, for a saved simulation: the scales of
   // the relative momentum errors, the largest ‖ΔP‖, ‖ΔL‖ the forces put in so far (part of
-  // those scales in a forced run: `forced`), the spin states' running values.
+  // those scales in a forced run: `forced`).
   void save(SavedSummary& out, bool forced) const {
     out.numbers.push_back({"linear_momentum_scale", {p_scale_}});
     out.numbers.push_back({"angular_momentum_scale", {L_scale_}});
@@ -165,7 +161,6 @@ class RunStatistics final : public Observer {
       out.numbers.push_back({"exchanged_linear_momentum", {exchanged_p_}});
       out.numbers.push_back({"exchanged_angular_momentum", {exchanged_L_}});
     }
-    if (const auto spin = spin_.pack(); !spin.empty()) out.numbers.push_back({"spin_state", spin});
   }
   // Throws Error naming what a checkpoint lacks.
   void restore(const SavedSummary& in, bool forced) {
@@ -176,10 +171,7 @@ class RunStatistics final : public Observer {
         throw Error("saved without the momenta its forces exchanged, which the verdict's scales need");
       exchanged_p_ = one("exchanged_linear_momentum"), exchanged_L_ = one("exchanged_angular_momentum");
     }
-    if (const std::vector<double>* spin = in.number("spin_state")) spin_.unpack(*spin);  // absent: an older file
   }
-  // RunSummary::spin_states where the run stands (made when a summary is asked for, not per frame).
-  std::vector<SpinState> spin_states() const { return spin_.spin_states(); }
 
  private:
   // The mutual orbit of a two-body-like scene (RunSummary::mutual_period): its plane at t0.
@@ -282,6 +274,7 @@ class RunStatistics final : public Observer {
   RunSummary& s_;
   std::vector<Watch> contacts_;  // every pair with radii, for the smallest gap (RunSummary::min_gap)
   std::function<void(const State&, const Diagnostics&)> write_;
+  std::function<void(const State&, bool)> on_frame_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
   double exchanged_p_ = 0.0, exchanged_L_ = 0.0;  // the largest ‖ΔP‖, ‖ΔL‖ the forces put in so far
   struct MutualOrbit {
@@ -289,7 +282,6 @@ class RunStatistics final : public Observer {
     Vec3 e1 = Vec3::Zero(), e2 = Vec3::Zero();  // the orbit's plane at t0: r0 and its prograde normal
     double t0 = 0.0, t_prev = 0.0, angle_prev = 0.0, swept = 0.0;
   } mutual_;
-  SpinStateTracker spin_;  // the rigid bodies' libration and nutation (RunSummary::spin_states)
 };
 
 // Work counters added up; −1 (not reported) stays −1.

@@ -6,7 +6,6 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "run/impulse_frame.hpp"
 #include "run/simulation_impl.hpp"
 
 #include <algorithm>
@@ -94,7 +93,6 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   }
   m.summary.pair_models = m.pair_models();
   m.state = sc.initial;
-  m.make_features();
   if (m.carries_tangent()) {
     const char* key = sc.run.stm ? "stm" : sc.run.chaos ? "chaos" : "sensitivities";
     if (const std::string why = m.integrator->tangent_map_unavailable(); !why.empty())
@@ -104,28 +102,11 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
                         : sc.run.chaos ? "the deviation vector of the chaos indicators"
                                        : "sensitivities") +
                        ": " + why);
-    m.state.tangent = m.initial_tangent();
-  } else if (!m.features.empty()) {
-    m.start_features_alone();
   }
+  // The run features, started at t0 (the tangent: [I | their columns | ∂z(t0)/∂keys]).
+  m.make_features();
+  m.start_features_here();
   m.t_origin = sc.initial.t;
-  // A fixed-step method applies each impulse at a step of its grid (those still to come: a
-  // loaded simulation's initial state may stand after some).
-  if (const double h = m.integrator->fixed_step(); h > 0)
-    for (std::size_t k = 0; k < sc.impulses.size(); ++k)
-      if (sc.impulses[k].time > sc.initial.t)
-        whole_steps(sc.impulses[k].time - sc.initial.t, h, ("impulses." + std::to_string(k) + ".time − t0").c_str());
-  if (!sc.particles.empty()) {
-    if (!(m.integrator->fixed_step() > 0.0) && !(sc.particles.step > 0.0))
-      throw SceneError(sc.root.at("particles").here() + "particles: integrator '" + sc.integrator.plugin +
-                       "' chooses its own steps, which may be long for the particles: give particles.step (their "
-                       "longest Verlet step)");
-    try {
-      m.particles = std::make_unique<ParticleSwarm>(sc.system, sc.particles, m.state, forcing);
-    } catch (const SceneError& e) {  // where in the scene: the particles' block
-      throw SceneError(sc.root.at("particles").here() + e.what());
-    }
-  }
   m.make_observer();
   // Frame 0: the integrator started at the initial state (which also tells the size of its
   // checkpoint, for the output's layout), its forces there.
@@ -224,16 +205,9 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
       stop_flag = -1;
     }
   };
-  if (!m.features.empty())  // the run features follow every step (chaos: eqs. 23.2–23.5)
-    schedule.after_step = [&m](const State& reached) { m.features_after_step(reached); };
-  if (m.particles) {  // carried over each step the bodies take (particles.hpp)
-    m.particle_bodies = m.state;
-    schedule.after_step = [&m, features = std::move(schedule.after_step)](const State& reached) {
-      if (features) features(reached);
-      m.particles->advance(m.particle_bodies, reached, m.threads);
-      m.particle_bodies = reached;
-    };
-  }
+  // The run features follow every step (chaos: eqs. 23.2–23.5; the particles: eq. 38.3).
+  for (const auto& f : m.features) f->before_steps(m.state);
+  if (!m.features.empty()) schedule.after_step = [&m](const State& reached) { m.features_after_step(reached); };
   StopInfo stop;
   const EvaluationThreads evaluation_threads(m.threads);  // the potential's, on this thread, while it integrates
   try {
@@ -266,81 +240,19 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
   return stop;
 }
 
-// Applies the scene's impulse k where the run stands, at its time (docs/equations.md §24): the
-// body's momentum jumps by m Δv (24.1), the tangent by the jump's derivative (24.2, 24.6), the
-// integrator starts afresh there, and the frame after the jump is observed with the statistics'
-// references moved by it.
-void apply_impulse(Simulation::Impl& m, std::size_t k) {
-  const Impulse& impulse = m.scene.impulses[k];
-  const System& sys = m.scene.system;
-  const auto b = static_cast<Eigen::Index>(impulse.body), c = static_cast<Eigen::Index>(impulse.around);
-  const double mass = sys.body(impulse.body).mass;
+// The jump of `feature` where the run stands, at its time t (an impulse, docs/equations.md §24):
+// the feature changes the state and its tangent, the integrator starts afresh there, and the
+// frame after the jump is observed with the statistics' references moved by it.
+void jump(Simulation::Impl& m, detail::RunFeature& feature, double t) {
   const State before = m.state;
-  const bool rtn = impulse.frame == Impulse::Frame::rtn;
-  const detail::RelativeOrbit orbit = rtn ? detail::relative_orbit(impulse, sys, before) : detail::RelativeOrbit{};
-  Mat3 Q = Mat3::Identity();
-  if (rtn) {
-    try {
-      Q = detail::rtn_frame(orbit.r, orbit.v);
-    } catch (const Error& e) {  // named: which impulse, whose orbit, when
-      std::ostringstream where;
-      where.precision(10);
-      where << "impulses." << k << " (body '" << sys.body(impulse.body).name << "' about '"
-            << sys.body(impulse.around).name << "', t = " << impulse.time << "): " << e.what();
-      throw Error(where.str());
-    }
-  }
-  const Vec3 dv = Q * impulse.delta_v;
-  m.state.p.col(b) += mass * dv;  // (24.1)
-  Eigen::MatrixXd& V = m.state.tangent;
-  if (V.size() > 0) {
-    const auto n = static_cast<Eigen::Index>(sys.size()), q = 3 * (n + static_cast<Eigen::Index>(sys.rigid_count()));
-    const Eigen::Index row = q + 3 * b;  // γ_b's rows; x_b's are 3b
-    const auto P = static_cast<Eigen::Index>(m.sensitivity_names.size());
-    const auto Qp = m.parameters ? static_cast<Eigen::Index>(m.parameters->size()) : Eigen::Index{0};
-    auto mass_derivative = [&](Eigen::Index column, std::size_t body) {  // ∂m_body/∂p of a parameter's column
-      const Eigen::Index j = column - (V.cols() - Qp);
-      return j >= 0 ? m.parameters->parameters[static_cast<std::size_t>(j)].mass(static_cast<Eigen::Index>(body)) : 0.0;
-    };
-    if (rtn) {  // (24.6): the frame turns with the orbit, ∂γ_b⁺/∂z⁻ = m_b (∂Q/∂z⁻) Δv_RTN, on every column
-      const double mc = sys.body(impulse.around).mass;
-      const Eigen::MatrixXd W = V;
-      for (Eigen::Index j = 0; j < V.cols(); ++j) {
-        const double dmb = mass_derivative(j, impulse.body), dmc = mass_derivative(j, impulse.around);
-        const Vec3 dr = W.block<3, 1>(3 * b, j) - W.block<3, 1>(3 * c, j);
-        const Vec3 dvel = (W.block<3, 1>(q + 3 * b, j) - before.p.col(b) * dmb / mass) / mass -
-                          (W.block<3, 1>(q + 3 * c, j) - before.p.col(c) * dmc / mc) / mc;
-        V.block<3, 1>(row, j) += mass * detail::rtn_frame_derivative(orbit.r, orbit.v, dr, dvel) * impulse.delta_v;
-      }
-    }
-    const std::string key = "impulses." + std::to_string(k) + ".";  // + delta_v.a or time
-    for (Eigen::Index col = 0; col < P; ++col) {
-      const std::string& name = m.sensitivity_names[static_cast<std::size_t>(col)];
-      if (name.rfind(key, 0) != 0) continue;
-      const Eigen::Index j = V.cols() - P + col;
-      if (name == key + "time") {
-        // (24.7): ∂z⁺/∂t_i = F(z⁻) − F(z⁺) + (∂z⁺/∂z⁻ − I) F(z⁻): x_b's rate drops by Δv; in the RTN
-        // frame Δv also turns with the orbit along the flow (δr = v, δv = the relative acceleration).
-        V.block<3, 1>(3 * b, j) -= dv;
-        if (rtn) {
-          Forces f;  // at z⁻, by the run's own evaluator (its workspace: the orders it chose)
-          f.resize(sys);
-          if (PotentialEvaluator* evaluate = m.integrator->potential_evaluator())
-            (*evaluate)(before, f);
-          else
-            m.potential->evaluate(before, f, *m.potential->make_workspace());
-          const Vec3 acceleration = f.f.col(b) / mass - f.f.col(c) / sys.body(impulse.around).mass;
-          V.block<3, 1>(row, j) +=
-              mass * detail::rtn_frame_derivative(orbit.r, orbit.v, orbit.v, acceleration) * impulse.delta_v;
-        }
-      } else {  // (24.2): ∂γ_b⁺/∂Δv = m_b Q
-        V.block<3, 1>(row, j) += mass * Q.col(name.back() - '0');
-      }
-    }
-    for (Eigen::Index j = V.cols() - Qp; j < V.cols(); ++j)  // (24.2): ∂γ_b⁺/∂p += (∂m_b/∂p) Δv
-      V.block<3, 1>(row, j) += mass_derivative(j, impulse.body) * dv;
-  }
-  const Forces forces = m.start_here(impulse.time);
+  detail::StateJump at{m.state, m.sensitivity_names, m.parameters.get(), [&m](const State& s, Forces& f) {
+    if (PotentialEvaluator* evaluate = m.integrator->potential_evaluator())
+      (*evaluate)(s, f);  // the run's own evaluator (its workspace: the orders it chose)
+    else
+      m.potential->evaluate(s, f, *m.potential->make_workspace());
+  }};
+  feature.jump(at);
+  const Forces forces = m.start_here(t);
   m.observer->impulse(before, m.state, forces.U);
   m.observer->observe(m.state, forces, false);
 }
@@ -353,26 +265,24 @@ StopInfo Simulation::integrate(double t_end, bool impulse_at_t) {
   if (!m.failure.empty())
     throw Error("the simulation failed at t = " + std::to_string(m.state.t) + " (" + m.failure +
                 "); set a state to continue from");
-  const std::optional<std::size_t> next = m.impulses ? m.impulses->next() : std::nullopt;
-  const bool pending_now = next && m.scene.impulses[*next].time == m.state.t;
+  const auto [next, t_next] = m.next_jump();
+  const bool pending_now = next && t_next == m.state.t;
   if (!(t_end > m.state.t) && !(t_end == m.state.t && pending_now && impulse_at_t)) {
     std::ostringstream why;
     why.precision(17);
     why << "integrate(t): t = " << t_end << " is not after the current time " << m.state.t;
     throw Error(why.str());
   }
-  // Up to each impulse before t_end, the impulse, and on (an event before one stops there).
-  while (m.impulses && m.impulses->next()) {
-    const std::size_t k = *m.impulses->next();
-    const double t_impulse = m.scene.impulses[k].time;
-    if (t_impulse > t_end || (t_impulse == t_end && !impulse_at_t)) break;
-    if (t_impulse > m.state.t) {
-      const StopInfo stop = integrate_to(m, t_impulse);
+  // Up to each jump (impulse) before t_end, the jump, and on (an event before one stops there).
+  for (;;) {
+    const auto [feature, t_jump] = m.next_jump();
+    if (!feature || t_jump > t_end || (t_jump == t_end && !impulse_at_t)) break;
+    if (t_jump > m.state.t) {
+      const StopInfo stop = integrate_to(m, t_jump);
       if (!stop.event.empty()) return stop;
     }
-    m.impulses->mark_applied();  // before the frame after it, which holds the count
-    apply_impulse(m, k);
-    if (t_impulse == t_end) {
+    jump(m, *feature, t_jump);
+    if (t_jump == t_end) {
       StopInfo stop;
       stop.t = t_end;
       stop.steps = m.steps_before;
@@ -399,7 +309,7 @@ Eigen::MatrixXd Simulation::mass_sensitivities() const {
   return dm;
 }
 const Potential& Simulation::potential() const { return *impl_->potential; }
-const ParticleSwarm* Simulation::particles() const { return impl_->particles.get(); }
+const ParticleSwarm* Simulation::particles() const { return impl_->particles; }
 
 void Simulation::set_state(const State& s) {
   Impl& m = *impl_;
@@ -421,33 +331,19 @@ void Simulation::set_state(const State& s) {
       throw Error(why.str());
     }
   }
-  const Eigen::Index N = State::tangent_rows(sys);
-  if (!m.scene.run.sensitivities.empty())
-    throw Error("set_state: this run carries sensitivities to its scene's initial state (run.sensitivities), which "
-                "a state set here would no longer start from; make a Simulation for the new state instead");
+  // The features may refuse the new state (the sensitivities do; the STM one whose tangent does
+  // not fit) before anything changes, then take it (the particles move into the new bodies'
+  // field); what they carry in it starts a new segment (the forces' balance).
+  for (const auto& f : m.features) f->refuse_state(s);
   if (s.tangent.size() > 0 && !m.scene.run.stm)
     throw Error("set_state: the state carries a tangent but the run does not carry one (run.stm is off)");
-  if (s.tangent.size() > 0 && (s.tangent.rows() != N || s.tangent.cols() != N || !s.tangent.allFinite()))
-    throw Error("set_state: the tangent must be " + std::to_string(N) + " × " + std::to_string(N) +
-                " (6 coordinates per body and 6 per rigid body, docs/equations.md eq. 21.1) and finite");
-  if (m.particles) {  // where they stand, in the new bodies' field (or refused before anything changes)
-    try {
-      m.particles->set_bodies(s);
-    } catch (const Error& e) {
-      throw Error(std::string("set_state: ") + e.what());
-    }
-  }
+  for (const auto& f : m.features) f->accept_state(s);
   m.state = s;
-  // What the forces put in starts again with the segment's references (docs/forces.md).
-  if (!m.scene.forces.empty())
-    m.state.force_balance = Eigen::MatrixXd::Zero(kBalanceRows, static_cast<Eigen::Index>(m.scene.forces.size()));
-  // A new segment: the state-transition matrix starts again at the identity unless one is given,
-  // the chaos indicators again from δ0.
-  // The features start again there (the impulses after the new state's time are still to come).
-  if (m.carries_tangent())
-    m.state.tangent = m.segment_tangent(s.tangent);
-  else if (!m.features.empty())
-    m.start_features_alone();
+  for (const auto& f : m.features) f->begin_segment(m.state);
+  // A new segment: the features start again there (the state-transition matrix at the identity
+  // unless one is given, the chaos indicators from δ0; the impulses after the new state's time
+  // are still to come).
+  m.start_features_here();
   m.failure.clear();
   m.t_origin = s.t;
   m.steps_before = 0;
@@ -464,8 +360,6 @@ RunSummary Simulation::summary() const {
   s.wall_seconds = m.wall_now();
   s.final_state = m.state;
   s.pair_models = m.pair_models();
-  s.spin_states = m.observer->spin_states();
-  s.particles = m.particle_summary();
   for (const auto& feature : m.features) feature->summarize(s);
   judge(s, m.scene);
   return s;

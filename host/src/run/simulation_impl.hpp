@@ -6,9 +6,9 @@
 #include <noether/simulation.hpp>
 
 #include "run/chaos_feature.hpp"
-#include "run/impulse_feature.hpp"
-#include "run/run_feature.hpp"
-#include "scene/scene_sensitivity.hpp"
+#include "run/particle_feature.hpp"
+#include "run/run_features.hpp"
+#include "run/sensitivity_feature.hpp"
 #include "io/frame_schema.hpp"
 #include "run/run_statistics.hpp"
 
@@ -44,52 +44,67 @@ struct Simulation::Impl {
   bool in_call = false, finished = false;
   bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
-  // The tangent's columns after the state-transition matrix's: ∂z/∂key for run.sensitivities.
-  std::vector<std::string> sensitivity_names;
-  // The run features (run_feature.hpp), in the order of their tangent columns (after the
-  // STM's, before the sensitivities'); `chaos` is one of them (run.chaos), or null.
+  // The run features (run_features.cpp's list), in the order of their tangent columns: the
+  // tangent is [STM | chaos δ | sensitivities]. Two have frame rows of their own, which the
+  // output writes: the chaos indicators (run.chaos) and the particles' recorded positions; and
+  // the sensitivities' keys and parameters name the output's and the impulses' columns (null,
+  // empty without them).
   std::vector<std::unique_ptr<detail::RunFeature>> features;
   std::vector<std::size_t> field_counts;  // each feature's number of checkpointed fields
   detail::ChaosFeature* chaos = nullptr;
-  detail::ImpulseFeature* impulses = nullptr;  // the scene's impulses, if it has any
-  // The parameters of the dynamics among run.sensitivities (their columns are the tangent's last).
+  // The keys of run.sensitivities (the tangent's last columns: ∂z/∂key), the parameters of the
+  // dynamics among them (the last of those).
+  std::vector<std::string> sensitivity_names;
   std::shared_ptr<const ParameterDerivatives> parameters;
-  // The scene's massless particles (particles.hpp) and the bodies' state they were last carried to.
-  std::unique_ptr<ParticleSwarm> particles;
-  State particle_bodies;
+  // The scene's massless particles (particles.hpp), which their feature carries.
+  ParticleSwarm* particles = nullptr;
   Eigen::Matrix3Xd recorded_particles;  // their first particles.record at the frame being written
 
   bool carries_tangent() const { return scene.run.carries_tangent(); }
-  // The scene's run features (before the tangent is made: their columns are in it).
+  // The scene's run features, at the initial state (before the tangent is made: their columns
+  // are in it).
   void make_features() {
-    if (scene.run.chaos) {
-      auto feature = std::make_unique<detail::ChaosFeature>(scene.system);
-      chaos = feature.get();
-      features.push_back(std::move(feature));
+    features = detail::make_run_features({scene, *integrator, state, *potential, *registry, custom_potential, forcing, threads});
+    for (const auto& f : features) {
+      field_counts.push_back(f->fields().size());
+      if (auto* c = dynamic_cast<detail::ChaosFeature*>(f.get())) chaos = c;
+      if (auto* p = dynamic_cast<detail::ParticleFeature*>(f.get())) particles = &p->swarm();
+      if (auto* s = dynamic_cast<detail::SensitivityFeature*>(f.get())) {
+        sensitivity_names = s->names();
+        parameters = s->parameters();
+      }
     }
-    if (!scene.impulses.empty()) {  // no tangent columns: after the others
-      auto feature = std::make_unique<detail::ImpulseFeature>(scene.impulses);
-      impulses = feature.get();
-      features.push_back(std::move(feature));
-    }
-    for (const auto& f : features) field_counts.push_back(f->fields().size());
   }
-  // Feature k's first column of the tangent: after the STM's and the features before it.
+  // The feature whose jump comes first, and its time (equal times: the list's order), if any.
+  std::pair<detail::RunFeature*, double> next_jump() const {
+    std::pair<detail::RunFeature*, double> first{nullptr, 0.0};
+    for (const auto& f : features)
+      if (const std::optional<double> t = f->next_jump(); t && (!first.first || *t < first.second)) first = {f.get(), *t};
+    return first;
+  }
+  // Feature k's first column of the tangent: after the features before it.
   Eigen::Index first_column(std::size_t k) const {
-    Eigen::Index c = scene.run.stm ? State::tangent_rows(scene.system) : 0;
+    Eigen::Index c = 0;
     for (std::size_t j = 0; j < k; ++j) c += features[j]->tangent_columns();
     return c;
   }
-  Eigen::Index feature_columns() const { return first_column(features.size()) - first_column(0); }
   // The features started where the run stands, their columns of V filled.
   void start_features(Eigen::MatrixXd& V) {
     for (std::size_t k = 0; k < features.size(); ++k)
       features[k]->start(state, V.middleCols(first_column(k), features[k]->tangent_columns()));
   }
-  // The features started in a run without a tangent (those with tangent columns need one).
-  void start_features_alone() {
-    Eigen::MatrixXd none(State::tangent_rows(scene.system), 0);
-    start_features(none);
+  // The features started where the run stands (t0, a new segment): the tangent made of their
+  // columns — [STM | the others' | sensitivities] — when the run carries one.
+  void start_features_here() {
+    const Eigen::Index N = State::tangent_rows(scene.system);
+    if (!carries_tangent()) {
+      Eigen::MatrixXd none(N, 0);
+      start_features(none);
+      return;
+    }
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, first_column(features.size()));
+    start_features(V);
+    state.tangent = std::move(V);
   }
   // After each step (the stepping loop's Schedule::after_step).
   void features_after_step(const State& reached) {
@@ -114,28 +129,21 @@ struct Simulation::Impl {
     }
     return out;
   }
-  // The tangent of a new segment from the state where the run stands (set_state): the STM's
-  // identity, or `stm` when given, and the features' columns; the features start again there.
-  Eigen::MatrixXd segment_tangent(const Eigen::MatrixXd& stm) {
-    const Eigen::Index N = State::tangent_rows(scene.system);
-    Eigen::MatrixXd V(N, (scene.run.stm ? N : 0) + feature_columns());
-    if (scene.run.stm) V.leftCols(N) = stm.size() > 0 ? stm : Eigen::MatrixXd::Identity(N, N);
-    start_features(V);
-    return V;
-  }
-  // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] — the
-  // features' columns zero (their fields hold them: restore_features); empty without a tangent.
+  // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] —, the
+  // columns of features that keep them among their fields zero (restore_features puts them
+  // back); empty without a tangent.
   Eigen::MatrixXd recorded_tangent(const io::RecordedFrame& at, const std::filesystem::path& file) const {
+    const bool stm = scene.run.stm, sensitivities = !sensitivity_names.empty();
+    if ((!stm && at.stm.size() > 0) || (!sensitivities && at.sensitivity.size() > 0))
+      throw Error(file.string() + ": its frames hold a tangent the scene's run does not carry (run.stm, run.sensitivities)");
     if (!carries_tangent()) return {};
-    const Eigen::Index N = State::tangent_rows(scene.system);
-    const Eigen::Index stm = scene.run.stm ? N : 0, sensitivities = static_cast<Eigen::Index>(sensitivity_names.size());
-    if (at.stm.rows() != (stm ? N : 0) || at.stm.cols() != stm || at.sensitivity.cols() != sensitivities ||
-        (sensitivities > 0 && at.sensitivity.rows() != N))
-      throw Error(file.string() + ": its frames do not hold the tangent the scene's run carries (run.stm, "
-                  "run.sensitivities, run.chaos)");
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + feature_columns() + sensitivities);
-    if (stm) V.leftCols(stm) = at.stm;
-    if (sensitivities) V.rightCols(sensitivities) = at.sensitivity;
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(State::tangent_rows(scene.system), first_column(features.size()));
+    try {
+      for (std::size_t k = 0; k < features.size(); ++k)
+        features[k]->read_frame(at, V.middleCols(first_column(k), features[k]->tangent_columns()));
+    } catch (const Error& e) {
+      throw Error(file.string() + ": " + e.what());
+    }
     return V;
   }
   // The features put back where a frame's fields say they stood, their columns of V too.
@@ -150,44 +158,21 @@ struct Simulation::Impl {
       field += field_counts[k];
     }
   }
-  // How many impulses a recorded frame says were applied (0 without impulses).
-  std::size_t impulses_applied_in(const io::RecordedFrame& f) const {
-    if (!impulses) return 0;
+  // A feature's fields among a frame's (all features' fields, in list order).
+  std::span<const double> fields_of(const detail::RunFeature* feature, const std::vector<double>& fields) const {
     std::size_t field = 0;
-    for (std::size_t k = 0; features[k].get() != impulses; ++k) field += field_counts[k];
-    return detail::ImpulseFeature::applied_in(std::span<const double>(f.features).subspan(field));
+    for (std::size_t k = 0; k < features.size() && features[k].get() != feature; ++k) field += field_counts[k];
+    return std::span<const double>(fields).subspan(field);
   }
-
-  // The tangent at t0: [I | the features' columns (δ0) | ∂z(t0)/∂keys] (each part only when
-  // asked for: run.stm, run.chaos, run.sensitivities; docs/derivatives.md); fills
-  // sensitivity_names, starts the features and hands the integrator the parameters of the
-  // dynamics among the keys.
-  Eigen::MatrixXd initial_tangent() {
-    const Eigen::Index N = State::tangent_rows(scene.system);
-    SceneSensitivity s;
-    if (!scene.run.sensitivities.empty())
-      s = scene_sensitivity(scene, scene.run.sensitivities, *potential, [this](const Scene& other) {
-        if (custom_potential)  // refused before anything is made at p ± d
-          throw SceneError("run.sensitivities: the model is given in code, so noether cannot make it at other "
-                           "values of a parameter of the dynamics");
-        return make_scene_potential(other, *registry);
-      }, [this](const Scene& other) { return make_scene_forcing(other, *registry); });
-    if (s.parameters) {
-      std::string names;
-      for (const auto& p : s.parameters->parameters) names += (names.empty() ? "" : ", ") + p.name;
-      const std::string why = integrator->carry_parameters(s.parameters);
-      if (!why.empty())
-        throw SceneError("run.sensitivities: the parameters of the dynamics " + names + " cannot be carried by integrator '" +
-                         scene.integrator.plugin + "': " + why);
+  // How many jumps (impulses) a recorded frame says the features had made.
+  std::size_t jumps_in(const io::RecordedFrame& f) const {
+    std::size_t jumps = 0, field = 0;
+    for (std::size_t k = 0; k < features.size(); ++k) {
+      if (f.features.size() >= field + field_counts[k])
+        jumps += features[k]->jumps_in(std::span<const double>(f.features).subspan(field, field_counts[k]));
+      field += field_counts[k];
     }
-    sensitivity_names = s.names;
-    parameters = s.parameters;
-    const Eigen::Index stm = scene.run.stm ? N : 0;
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, stm + feature_columns() + s.columns.cols());
-    V.leftCols(stm).setIdentity();
-    start_features(V);
-    if (s.columns.cols() > 0) V.rightCols(s.columns.cols()) = s.columns;  // (a 0×0 U does not fit N × 0)
-    return V;
+    return jumps;
   }
 
   // Starts the integrator afresh at `state` (a new segment, an impulse), which stands at time t;
@@ -202,23 +187,6 @@ struct Simulation::Impl {
     return forces;
   }
 
-  ParticleSummary particle_summary() const {
-    ParticleSummary s;
-    if (!particles) return s;
-    s.count = particles->size();
-    s.bodies = particles->surfaces();
-    s.impacts.assign(s.bodies.size(), 0);
-    for (const ParticleOutcome& o : particles->outcomes()) {
-      if (o.fate == ParticleFate::impact) ++s.impacts[static_cast<std::size_t>(o.body)];
-      if (o.fate == ParticleFate::escape) ++s.escaped;
-      if (o.fate == ParticleFate::in_flight) ++s.in_flight;
-    }
-    s.steps = particles->particle_steps();
-    s.seconds = particles->seconds();
-    s.fields = particles->fields();
-    s.check = particles->check(state);
-    return s;
-  }
   WorkCounters work() const { return base_work + integrator->work(); }
   double wall_now() const {
     return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
@@ -283,13 +251,18 @@ struct Simulation::Impl {
     });
   }
   void make_observer() {
-    observer = std::make_unique<detail::RunStatistics>(scene.system, summary, [this](const State& s, const Diagnostics& d) {
-      if (!writer) return;
-      if (particles) particles->recorded_positions(s, recorded_particles);
-      const std::vector<double> fields = features.empty() ? std::vector<double>{} : feature_values(s);
-      writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
-                          chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr, fields);
-    });
+    observer = std::make_unique<detail::RunStatistics>(
+        scene.system, summary,
+        [this](const State& s, const Diagnostics& d) {
+          if (!writer) return;
+          if (particles) particles->recorded_positions(s, recorded_particles);
+          const std::vector<double> fields = features.empty() ? std::vector<double>{} : feature_values(s);
+          writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
+                              chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr, fields);
+        },
+        [this](const State& s, bool first_of_segment) {
+          for (const auto& f : features) f->observe_frame(s, first_of_segment, summary);
+        });
   }
   // The output file's options; `continuation`: a resumed run's new file, which replaces the
   // old one once the recorded frames are in.

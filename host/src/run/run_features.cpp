@@ -1,0 +1,33 @@
+// The one list of run features (run_features.hpp). A new feature: its file, one line here, its
+// test (docs/architecture.md, "Run features").
+#include "run/run_features.hpp"
+
+#include "run/chaos_feature.hpp"
+#include "run/force_balance_feature.hpp"
+#include "run/impulse_feature.hpp"
+#include "run/particle_feature.hpp"
+#include "run/sensitivity_feature.hpp"
+#include "run/spin_state_feature.hpp"
+#include "run/stm_feature.hpp"
+
+namespace noether::detail {
+
+std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext& c) {
+  const Scene& sc = c.scene;
+  std::vector<std::unique_ptr<RunFeature>> features;
+  // The tangent: [STM | the other features' columns | sensitivities] (docs/derivatives.md).
+  if (sc.run.stm) features.push_back(std::make_unique<StmFeature>(State::tangent_rows(sc.system)));
+  if (sc.run.chaos) features.push_back(std::make_unique<ChaosFeature>(sc.system));
+  if (!sc.impulses.empty())
+    features.push_back(std::make_unique<ImpulseFeature>(sc.system, sc.impulses, sc.initial.t, c.integrator.fixed_step()));
+  if (!sc.particles.empty())
+    features.push_back(std::make_unique<ParticleFeature>(sc, c.integrator, c.initial, c.forcing, c.threads));
+  if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));
+  if (!sc.forces.empty()) features.push_back(std::make_unique<ForceBalanceFeature>(sc.forces.size()));
+  if (!sc.run.sensitivities.empty())  // the tangent's last columns
+    features.push_back(
+        std::make_unique<SensitivityFeature>(sc, c.potential, c.registry, c.custom_potential, c.integrator));
+  return features;
+}
+
+}  // namespace noether::detail
