@@ -7,9 +7,13 @@
 #include <noether/lie.hpp>
 #include <noether/simulation.hpp>
 
+#include "io/h5.hpp"
 #include "run/particle_feature.hpp"
 
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <unistd.h>
 
 using namespace noether;
 
@@ -90,4 +94,29 @@ TEST(ParticleFeature, RefusalsSayWhereAndWhy) {
     EXPECT_EQ(std::string(e.what()).rfind("set_state: ", 0), 0u) << e.what();
   }
   EXPECT_EQ(feature.swarm().time(), 0.0);  // unchanged
+}
+
+// The output file keeps the summary's verdict, the particles' check included: particles whose
+// step is too long are called untrustworthy in the file as in the summary (the file said
+// "trustworthy" before: its verdict was judged without the features' parts).
+TEST(ParticleFeature, TheFilesVerdictSeesTheParticlesCheck) {
+  const Scene scene = parse_scene(
+      "units: SI\nG: 6.674e-11\nbodies:\n"
+      "  - {name: rock, density: 2000, shape: {ellipsoid: {semi_axes: [500, 500, 500]}}, position: [0, 0, 0], "
+      "angular_velocity: [0, 0, 3e-4]}\n"
+      "potential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 1000}\n"
+      "run: {t_end: 88000, output_every: 88000}\n"
+      "particles: {around: rock, orbits: [{a: 1500, e: 0.2, i: 30}, {a: 2500, e: 0.1}], step: 500, check: 32}\n",
+      test::source_path("examples/particles-test.yaml"));
+  const auto file = std::filesystem::temp_directory_path() / ("noether-particle-verdict-" + std::to_string(::getpid()) + ".h5");
+  RunOptions options;
+  options.output = file;
+  options.overwrite = true;
+  const RunSummary s = run_scene(scene, registry(), options);
+  ASSERT_FALSE(s.verdict.trustworthy);
+  const io::H5Handle f(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
+  const io::H5Handle work(H5Gopen2(f, "/work", H5P_DEFAULT));
+  EXPECT_EQ(io::read_string(work, "verdict", false), "untrustworthy");
+  EXPECT_NE(io::read_string(work, "verdict_reasons", false).find("the particles are not resolved"), std::string::npos);
+  std::filesystem::remove(file);
 }

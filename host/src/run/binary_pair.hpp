@@ -1,7 +1,7 @@
 #pragma once
 // The binary of a two-body-like scene: the two most massive bodies, when they hold 99 % of
 // the mass (a binary, with or without spacecraft). Its orbit is timed in the summary
-// (RunStatistics) and described frame by frame in the output (io/frame_schema.cpp).
+// (run/mutual_orbit_feature.cpp) and described frame by frame in the output (io/frame_schema.cpp).
 #include <noether/system.hpp>
 
 #include <optional>

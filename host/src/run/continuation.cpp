@@ -64,7 +64,7 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     // A jump between two frames at its time (the state before it, then after it): the
     // statistics' references move by it, as they did in the run (RunStatistics::impulse).
     const std::size_t jumps_here = m.jumps_in(f);
-    if (k > 0 && jumps_here == jumps + 1) m.observer->impulse(before, f.state, f.U);
+    if (k > 0 && jumps_here == jumps + 1) m.jumped(before, f.state, f.U);
     jumps = jumps_here;
     if (can_jump) before = f.state;
     const Diagnostics d = m.observer->account(f.state, forces);

@@ -4,7 +4,9 @@
 
 #include "run/chaos_feature.hpp"
 #include "run/force_balance_feature.hpp"
+#include "run/binary_pair.hpp"
 #include "run/impulse_feature.hpp"
+#include "run/mutual_orbit_feature.hpp"
 #include "run/particle_feature.hpp"
 #include "run/sensitivity_feature.hpp"
 #include "run/spin_state_feature.hpp"
@@ -22,6 +24,8 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
     features.push_back(std::make_unique<ImpulseFeature>(sc.system, sc.impulses, sc.initial.t, c.integrator.fixed_step()));
   if (!sc.particles.empty())
     features.push_back(std::make_unique<ParticleFeature>(sc, c.integrator, c.initial, c.forcing, c.threads));
+  if (const auto pair = binary_pair(sc.system))
+    features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
   if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));
   if (!sc.forces.empty()) features.push_back(std::make_unique<ForceBalanceFeature>(sc.forces.size()));
   if (!sc.run.sensitivities.empty())  // the tangent's last columns

@@ -7,7 +7,6 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
-#include "run/binary_pair.hpp"
 #include "run/event_watch.hpp"
 #include "run/summary_schema.hpp"
 
@@ -15,7 +14,6 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numbers>
 #include <sstream>
 
 namespace noether::detail {
@@ -83,7 +81,6 @@ class RunStatistics final : public Observer {
       for (Eigen::Index k = 0; k < state.Pi.cols(); ++k) L_scale_ += state.Pi.col(k).norm();
       s_.min_distance = std::numeric_limits<double>::infinity();
       s_.orbits = orbit_scales(state);
-      start_mutual_orbit(state);
       detect_conservation(state, forces);
     }
     const bool first_of_segment = s_.frames == 0;
@@ -131,7 +128,6 @@ class RunStatistics final : public Observer {
         s_.min_gap_pair = system_.body(w.a).name + "–" + system_.body(w.b).name;
       }
     }
-    track_mutual_orbit(state);
     ++s_.frames;
     if (on_frame_) on_frame_(state, first_of_segment);
     return d;
@@ -139,7 +135,7 @@ class RunStatistics final : public Observer {
 
   // An impulse (Simulation, docs/equations.md §24) changed the momenta from `before` to `after` at
   // the same positions (potential energy U): the references of the conserved quantities move by
-  // the jump (24.3), and the mutual orbit is timed afresh from here.
+  // the jump (24.3).
   void impulse(const State& before, const State& after, double U) {
     const Diagnostics a = diagnose(system_, before, U), b = diagnose(system_, after, U);
     s_.initial.energy += b.energy - a.energy;
@@ -148,7 +144,6 @@ class RunStatistics final : public Observer {
     s_.initial.angular_momentum += b.angular_momentum - a.angular_momentum;
     ++s_.impulses;
     s_.impulse_energy += b.energy - a.energy;
-    start_mutual_orbit(after);
   }
 
   // Its running values beyond the summary's rows, named, for a saved simulation: the scales of
@@ -174,46 +169,6 @@ class RunStatistics final : public Observer {
   }
 
  private:
-  // The mutual orbit of a two-body-like scene (RunSummary::mutual_period): its plane at t0.
-  void start_mutual_orbit(const State& state) {
-    s_.mutual_pair.clear();
-    s_.mutual_period = std::numeric_limits<double>::quiet_NaN();
-    s_.mutual_revolutions = 0;
-    mutual_ = {};
-    const auto pair = binary_pair(system_);
-    if (!pair) return;
-    auto a = static_cast<Eigen::Index>(pair->primary), b = static_cast<Eigen::Index>(pair->secondary);
-    if (a > b) std::swap(a, b);
-    const Vec3 r = relative(state, a, b), v = state.p.col(b) / system_.body(static_cast<std::size_t>(b)).mass -
-                                             state.p.col(a) / system_.body(static_cast<std::size_t>(a)).mass;
-    const Vec3 h = r.cross(v);
-    if (!(h.norm() > 0)) return;  // a radial fall: no orbit to time
-    mutual_.a = a, mutual_.b = b;
-    mutual_.e1 = r.normalized();
-    mutual_.e2 = h.cross(r).normalized();
-    mutual_.t0 = mutual_.t_prev = state.t;
-    s_.mutual_pair = system_.body(static_cast<std::size_t>(a)).name + "–" + system_.body(static_cast<std::size_t>(b)).name;
-  }
-  // The angle swept since t0, unwrapped; each whole revolution's time interpolated linearly.
-  void track_mutual_orbit(const State& state) {
-    if (mutual_.a < 0 || state.t <= mutual_.t_prev) return;
-    const Vec3 r = relative(state, mutual_.a, mutual_.b);
-    const double angle = std::atan2(r.dot(mutual_.e2), r.dot(mutual_.e1));
-    double step = angle - mutual_.angle_prev;
-    step -= 2 * std::numbers::pi * std::round(step / (2 * std::numbers::pi));  // to (−π, π]
-    const double before = mutual_.swept, after = before + step;
-    for (double turn = 2 * std::numbers::pi * (s_.mutual_revolutions + 1); after >= turn && after > before;
-         turn += 2 * std::numbers::pi) {
-      const double t_turn = mutual_.t_prev + (turn - before) / (after - before) * (state.t - mutual_.t_prev);
-      ++s_.mutual_revolutions;
-      s_.mutual_period = (t_turn - mutual_.t0) / s_.mutual_revolutions;
-    }
-    mutual_.swept = after;
-    mutual_.angle_prev = angle;
-    mutual_.t_prev = state.t;
-  }
-  static Vec3 relative(const State& state, Eigen::Index a, Eigen::Index b) { return state.x.col(b) - state.x.col(a); }
-
   // Each body's orbit about the body that attracts it most (largest G m_j / r²) at t0, one per
   // pair, with the pair's two-body energy as its scale (RunSummary::orbits). Scenes of more than
   // 64 bodies are judged on E0 alone (O(n²)).
@@ -277,11 +232,6 @@ class RunStatistics final : public Observer {
   std::function<void(const State&, bool)> on_frame_;
   double p_scale_ = 0.0, L_scale_ = 0.0;
   double exchanged_p_ = 0.0, exchanged_L_ = 0.0;  // the largest ‖ΔP‖, ‖ΔL‖ the forces put in so far
-  struct MutualOrbit {
-    Eigen::Index a = -1, b = -1;
-    Vec3 e1 = Vec3::Zero(), e2 = Vec3::Zero();  // the orbit's plane at t0: r0 and its prograde normal
-    double t0 = 0.0, t_prev = 0.0, angle_prev = 0.0, swept = 0.0;
-  } mutual_;
 };
 
 // Work counters added up; −1 (not reported) stays −1.

@@ -253,7 +253,7 @@ void jump(Simulation::Impl& m, detail::RunFeature& feature, double t) {
   }};
   feature.jump(at);
   const Forces forces = m.start_here(t);
-  m.observer->impulse(before, m.state, forces.U);
+  m.jumped(before, m.state, forces.U);
   m.observer->observe(m.state, forces, false);
 }
 
@@ -353,17 +353,7 @@ void Simulation::set_state(const State& s) {
   m.observer->observe(m.state, forces, false);
 }
 
-RunSummary Simulation::summary() const {
-  const Impl& m = *impl_;
-  RunSummary s = m.summary;
-  s.work = m.work();
-  s.wall_seconds = m.wall_now();
-  s.final_state = m.state;
-  s.pair_models = m.pair_models();
-  for (const auto& feature : m.features) feature->summarize(s);
-  judge(s, m.scene);
-  return s;
-}
+RunSummary Simulation::summary() const { return impl_->summary_now(); }
 
 RunSummary Simulation::finish() {
   Impl& m = *impl_;

@@ -158,6 +158,13 @@ struct Simulation::Impl {
       field += field_counts[k];
     }
   }
+  // A jump (an impulse) took the run from `before` to `after` at the same positions (potential
+  // energy U): the statistics' references move by it (RunStatistics::impulse), the features
+  // measure afresh from `after`.
+  void jumped(const State& before, const State& after, double U) {
+    observer->impulse(before, after, U);
+    for (const auto& f : features) f->after_jump(after);
+  }
   // A feature's fields among a frame's (all features' fields, in list order).
   std::span<const double> fields_of(const detail::RunFeature* feature, const std::vector<double>& fields) const {
     std::size_t field = 0;
@@ -188,6 +195,18 @@ struct Simulation::Impl {
   }
 
   WorkCounters work() const { return base_work + integrator->work(); }
+  // The summary where the run stands, with every feature's part, judged (Simulation::summary, and
+  // the verdict the output file keeps).
+  RunSummary summary_now() const {
+    RunSummary s = summary;
+    s.work = work();
+    s.wall_seconds = wall_now();
+    s.final_state = state;
+    s.pair_models = pair_models();
+    for (const auto& feature : features) feature->summarize(s);
+    judge(s, scene);
+    return s;
+  }
   double wall_now() const {
     return wall_seconds + (in_call ? std::chrono::duration<double>(Clock::now() - call_start).count() : 0.0);
   }
@@ -296,9 +315,7 @@ struct Simulation::Impl {
     if (!records.empty()) writer->append_step_series(records);
     writer->write_pair_models(pair_models());
     if (particles) writer->write_particles(*particles, scene);
-    RunSummary judged = summary;
-    judged.work = work();
-    judge(judged, scene);
+    const RunSummary judged = summary_now();  // the file's verdict is the summary's
     std::string reasons;
     for (const auto& r : judged.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;
     writer->set_verdict(judged.verdict.trustworthy ? "trustworthy" : "untrustworthy", reasons,
