@@ -20,7 +20,6 @@
 #include <vector>
 
 namespace noether {
-class Integrator;
 struct ParameterDerivatives;
 }  // namespace noether
 namespace noether::io {
