@@ -178,3 +178,21 @@ TEST(ImpulseFeature, ResumedAnywhereContinuesBitwise) {
   });
   std::filesystem::remove(file);
 }
+
+// A run's output file (not a saved simulation) loaded anywhere: its frames replayed into the
+// summary — the impulses' jumps found in them also when all of them lie before the file's last
+// frame — and the run continued: the uninterrupted run's bits and summary.
+TEST(ImpulseFeature, LoadedFromItsOutputFileAnywhereContinuesBitwise) {
+  const auto file = temporary("impulse-loaded-file");
+  expect_continuations_bitwise("loaded from its file", false, [&file](const Scene& scene, const Cut& cut) {
+    RunOptions options;
+    options.output = file;
+    options.overwrite = true;
+    {
+      Simulation first(scene, registry(), options);
+      first.integrate(cut.t, cut.impulse_at_t);
+    }
+    return Simulation::load(file, registry());
+  });
+  std::filesystem::remove(file);
+}

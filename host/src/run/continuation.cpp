@@ -50,23 +50,18 @@ void refuse_without_particles(const io::RunRecord& run, const std::filesystem::p
 // into its output file, if it has one), a block at a time. False when interrupted.
 bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
             const volatile std::sig_atomic_t* interrupt) {
-  Forces forces;
-  forces.resize(m.scene.system);
+  Forces forces;  // frame 0's (what the scene conserves), then U alone
   State before;  // the frame before, and how many jumps (impulses) the features had made there
   std::size_t jumps = 0;
-  const bool can_jump = m.next_jump().first != nullptr;  // (the features stand at t0)
   return run.read(0, last + 1, [&](std::size_t k, const io::RecordedFrame& f) {
-    if (k == 0) {  // frame 0 with its forces (what the scene conserves), the others with U alone
-      auto workspace = m.potential->make_workspace();
-      m.potential->evaluate(f.state, forces, *workspace);
-    }
+    if (k == 0) forces = m.forces_at(f.state);
     forces.U = f.U;
     // A jump between two frames at its time (the state before it, then after it): the
     // statistics' references move by it, as they did in the run (RunStatistics::impulse).
     const std::size_t jumps_here = m.jumps_in(f);
     if (k > 0 && jumps_here == jumps + 1) m.jumped(before, f.state, f.U);
     jumps = jumps_here;
-    if (can_jump) before = f.state;
+    before = f.state;
     const Diagnostics d = m.observer->account(f.state, forces);
     if (!m.writer) return;
     // The frame as it was written: its tangent's STM and sensitivities (the features' columns
@@ -74,7 +69,7 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     State state = f.state;
     state.tangent = m.recorded_tangent(f, run.file());
     m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator,
-                          m.chaos ? detail::ChaosFeature::values_of(m.fields_of(m.chaos, f.features)) : ChaosValues{},
+                          m.chaos ? detail::ChaosFeature::values_of(m.chaos_fields(f.features)) : ChaosValues{},
                           f.particles.cols() > 0 ? &f.particles : nullptr, f.features);
   }, interrupt);
 }
@@ -216,10 +211,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   output.inputs.clear();
   if (m.options.output) output.inputs.push_back(*m.options.output);
   H5Writer writer(path, m.scene, output);
-  Forces forces;  // U at the state saved (the frame's potential energy; no work is counted)
-  forces.resize(m.scene.system);
-  auto workspace = m.potential->make_workspace();
-  m.potential->evaluate(m.state, forces, *workspace);
+  const Forces forces = m.forces_at(m.state);  // U at the state saved (the frame's potential energy)
   const WorkCounters work = m.work();
   const double wall = m.wall_now();
   Eigen::Matrix3Xd recorded;  // the first `record` particles, as every frame holds them
@@ -302,10 +294,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
     m.writer->write_pair_models(m.summary.pair_models);
     m.checkpoint_particles();
     m.new_segment();
-    Forces forces;
-    forces.resize(m.scene.system);
-    m.potential->evaluate(m.state, forces, *m.potential->make_workspace());
-    m.observer->observe(m.state, forces, false);
+    m.observer->observe(m.state, m.forces_at(m.state), false);
   }
   m.options = std::move(options);
   return sim;

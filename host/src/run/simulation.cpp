@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <optional>
 #include <sstream>
 
 namespace noether {
@@ -249,7 +248,7 @@ void jump(Simulation::Impl& m, detail::RunFeature& feature, double t) {
     if (PotentialEvaluator* evaluate = m.integrator->potential_evaluator())
       (*evaluate)(s, f);  // the run's own evaluator (its workspace: the orders it chose)
     else
-      m.potential->evaluate(s, f, *m.potential->make_workspace());
+      f = m.forces_at(s);
   }};
   feature.jump(at);
   const Forces forces = m.start_here(t);

@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numeric>
 
 namespace noether {
 
@@ -50,7 +49,11 @@ struct Simulation::Impl {
   // the sensitivities' keys and parameters name the output's and the impulses' columns (null,
   // empty without them).
   std::vector<std::unique_ptr<detail::RunFeature>> features;
-  std::vector<std::size_t> field_counts;  // each feature's number of checkpointed fields
+  // Feature k's columns of the tangent are [column_begin[k], column_begin[k + 1]), its
+  // checkpointed fields [field_begin[k], field_begin[k + 1]) of a frame's (one entry more than
+  // features: the ends).
+  std::vector<Eigen::Index> column_begin{0};
+  std::vector<std::size_t> field_begin{0};
   detail::ChaosFeature* chaos = nullptr;
   // The keys of run.sensitivities (the tangent's last columns: ∂z/∂key), the parameters of the
   // dynamics among them (the last of those).
@@ -66,7 +69,8 @@ struct Simulation::Impl {
   void make_features() {
     features = detail::make_run_features({scene, *integrator, state, *potential, *registry, custom_potential, forcing, threads});
     for (const auto& f : features) {
-      field_counts.push_back(f->fields().size());
+      column_begin.push_back(column_begin.back() + f->tangent_columns());
+      field_begin.push_back(field_begin.back() + f->fields().size());
       if (auto* c = dynamic_cast<detail::ChaosFeature*>(f.get())) chaos = c;
       if (auto* p = dynamic_cast<detail::ParticleFeature*>(f.get())) particles = &p->swarm();
       if (auto* s = dynamic_cast<detail::SensitivityFeature*>(f.get())) {
@@ -82,16 +86,26 @@ struct Simulation::Impl {
       if (const std::optional<double> t = f->next_jump(); t && (!first.first || *t < first.second)) first = {f.get(), *t};
     return first;
   }
-  // Feature k's first column of the tangent: after the features before it.
-  Eigen::Index first_column(std::size_t k) const {
-    Eigen::Index c = 0;
-    for (std::size_t j = 0; j < k; ++j) c += features[j]->tangent_columns();
-    return c;
+  // Feature k's columns of V (a tangent), and its fields among a frame's.
+  template <class Matrix>
+  auto columns_of(std::size_t k, Matrix& V) const {
+    return V.middleCols(column_begin[k], column_begin[k + 1] - column_begin[k]);
+  }
+  std::span<const double> fields_of(std::size_t k, std::span<const double> fields) const {
+    return fields.subspan(field_begin[k], field_begin[k + 1] - field_begin[k]);
+  }
+  // The chaos indicators' fields among a frame's (none: empty; so also for a frame that does not
+  // hold the features' fields, which restore_features refuses by name).
+  std::span<const double> chaos_fields(std::span<const double> fields) const {
+    if (fields.size() != field_begin.back()) return {};
+    for (std::size_t k = 0; k < features.size(); ++k)
+      if (features[k].get() == chaos) return fields_of(k, fields);
+    return {};
   }
   // The features started where the run stands, their columns of V filled.
   void start_features(Eigen::MatrixXd& V) {
     for (std::size_t k = 0; k < features.size(); ++k)
-      features[k]->start(state, V.middleCols(first_column(k), features[k]->tangent_columns()));
+      features[k]->start(state, columns_of(k, V));
   }
   // The features started where the run stands (t0, a new segment): the tangent made of their
   // columns — [STM | the others' | sensitivities] — when the run carries one.
@@ -102,14 +116,14 @@ struct Simulation::Impl {
       start_features(none);
       return;
     }
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, first_column(features.size()));
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(N, column_begin.back());
     start_features(V);
     state.tangent = std::move(V);
   }
   // After each step (the stepping loop's Schedule::after_step).
   void features_after_step(const State& reached) {
     for (std::size_t k = 0; k < features.size(); ++k)
-      features[k]->after_step(reached, reached.tangent.middleCols(first_column(k), features[k]->tangent_columns()));
+      features[k]->after_step(reached, columns_of(k, reached.tangent));
   }
   // The features' checkpointed fields: their names, and their values where the run stands (its
   // tangent columns: `at`'s, the state a frame holds).
@@ -120,13 +134,10 @@ struct Simulation::Impl {
     return out;
   }
   std::vector<double> feature_values(const State& at) const {
-    std::vector<double> out;
-    for (std::size_t k = 0; k < features.size(); ++k) {
-      const std::size_t begin = out.size();
-      out.resize(begin + field_counts[k]);
-      features[k]->save(at.tangent.middleCols(first_column(k), features[k]->tangent_columns()),
-                        std::span<double>(out).subspan(begin));
-    }
+    std::vector<double> out(field_begin.back());
+    for (std::size_t k = 0; k < features.size(); ++k)
+      features[k]->save(columns_of(k, at.tangent),
+                        std::span<double>(out).subspan(field_begin[k], field_begin[k + 1] - field_begin[k]));
     return out;
   }
   // The tangent a recorded frame holds — [STM | the features' columns | sensitivities] —, the
@@ -137,10 +148,9 @@ struct Simulation::Impl {
     if ((!stm && at.stm.size() > 0) || (!sensitivities && at.sensitivity.size() > 0))
       throw Error(file.string() + ": its frames hold a tangent the scene's run does not carry (run.stm, run.sensitivities)");
     if (!carries_tangent()) return {};
-    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(State::tangent_rows(scene.system), first_column(features.size()));
+    Eigen::MatrixXd V = Eigen::MatrixXd::Zero(State::tangent_rows(scene.system), column_begin.back());
     try {
-      for (std::size_t k = 0; k < features.size(); ++k)
-        features[k]->read_frame(at, V.middleCols(first_column(k), features[k]->tangent_columns()));
+      for (std::size_t k = 0; k < features.size(); ++k) features[k]->read_frame(at, columns_of(k, V));
     } catch (const Error& e) {
       throw Error(file.string() + ": " + e.what());
     }
@@ -148,15 +158,10 @@ struct Simulation::Impl {
   }
   // The features put back where a frame's fields say they stood, their columns of V too.
   void restore_features(const std::vector<double>& fields, Eigen::MatrixXd& V, const std::filesystem::path& file) {
-    if (fields.size() != std::accumulate(field_counts.begin(), field_counts.end(), std::size_t{0}))
+    if (fields.size() != field_begin.back())
       throw Error(file.string() + ": its frames do not hold the fields of the run's features (" +
                   std::to_string(fields.size()) + " numbers; /checkpoint/run_features)");
-    std::size_t field = 0;
-    for (std::size_t k = 0; k < features.size(); ++k) {
-      features[k]->restore(std::span<const double>(fields).subspan(field, field_counts[k]),
-                           V.middleCols(first_column(k), features[k]->tangent_columns()));
-      field += field_counts[k];
-    }
+    for (std::size_t k = 0; k < features.size(); ++k) features[k]->restore(fields_of(k, fields), columns_of(k, V));
   }
   // A jump (an impulse) took the run from `before` to `after` at the same positions (potential
   // energy U): the statistics' references move by it (RunStatistics::impulse), the features
@@ -165,20 +170,12 @@ struct Simulation::Impl {
     observer->impulse(before, after, U);
     for (const auto& f : features) f->after_jump(after);
   }
-  // A feature's fields among a frame's (all features' fields, in list order).
-  std::span<const double> fields_of(const detail::RunFeature* feature, const std::vector<double>& fields) const {
-    std::size_t field = 0;
-    for (std::size_t k = 0; k < features.size() && features[k].get() != feature; ++k) field += field_counts[k];
-    return std::span<const double>(fields).subspan(field);
-  }
   // How many jumps (impulses) a recorded frame says the features had made.
+  // (A frame without the features' fields — a file from before they were kept — holds none.)
   std::size_t jumps_in(const io::RecordedFrame& f) const {
-    std::size_t jumps = 0, field = 0;
-    for (std::size_t k = 0; k < features.size(); ++k) {
-      if (f.features.size() >= field + field_counts[k])
-        jumps += features[k]->jumps_in(std::span<const double>(f.features).subspan(field, field_counts[k]));
-      field += field_counts[k];
-    }
+    if (f.features.size() != field_begin.back()) return 0;
+    std::size_t jumps = 0;
+    for (std::size_t k = 0; k < features.size(); ++k) jumps += features[k]->jumps_in(fields_of(k, f.features));
     return jumps;
   }
 
@@ -195,6 +192,14 @@ struct Simulation::Impl {
   }
 
   WorkCounters work() const { return base_work + integrator->work(); }
+  // The potential's forces and U at `at`, outside the integration (no work counted): a frame
+  // the run did not step to (a saved one, a loaded one, a replayed frame 0).
+  Forces forces_at(const State& at) const {
+    Forces forces;
+    forces.resize(scene.system);
+    potential->evaluate(at, forces, *potential->make_workspace());
+    return forces;
+  }
   // The summary where the run stands, with every feature's part, judged (Simulation::summary, and
   // the verdict the output file keeps).
   RunSummary summary_now() const {
