@@ -368,3 +368,51 @@ TEST(Output, PublishingCompletesEveryFrameSoFar) {
   fs::remove(file);
   fs::remove(dump);
 }
+
+// A run feature's own series (RunFeature::series: rows of the frame schema marked kByFeature)
+// are written where the schema puts them, each from its place among the numbers the frame hands
+// over — whatever order the features declared them in —, with the shape the feature declared;
+// a series that is not such a row, and a frame with too few or too many numbers, are refused.
+TEST(Output, AFeaturesSeriesAreTheRowsItDeclaresFilledFromItsNumbers) {
+  const Scene scene = test::dumbbell_scene();
+  const fs::path file = temp_file("noether-feature-series");
+  OutputOptions o;
+  o.overwrite = true;
+  o.feature_series = {{"particle_positions", {2, 3}}, {"fli", {}}, {"megno", {}}};
+  {
+    H5Writer writer(file, scene, o);
+    for (int k = 0; k < 3; ++k) {
+      const State s = varied_state(scene, k);
+      std::vector<double> numbers;
+      for (int j = 0; j < 6; ++j) numbers.push_back(100.0 * k + j);  // the particles', [particle][xyz]
+      numbers.push_back(10.0 * k + 0.5);                              // fli
+      numbers.push_back(k + 0.25);                                    // megno
+      writer.write_frame(s, diagnose(scene.system, s, -1.0), WorkCounters{}, 0.0, 0, {}, numbers);
+    }
+    const State s = varied_state(scene, 3);
+    const std::vector<double> short_frame(7, 0.0);
+    EXPECT_THROW(writer.write_frame(s, diagnose(scene.system, s, -1.0), WorkCounters{}, 0.0, 0, {}, short_frame),
+                 OutputError);
+    writer.finish(WorkCounters{}, 0.0, "completed");
+  }
+  const auto datasets = numeric_datasets(file);
+  auto doubles = [&](const std::string& name) {
+    std::vector<double> out;
+    for (const std::uint64_t w : datasets.at(name)) out.push_back(std::bit_cast<double>(w));
+    return out;
+  };
+  EXPECT_EQ(doubles("derivatives/megno/value"), (std::vector<double>{0.25, 1.25, 2.25}));
+  EXPECT_EQ(doubles("derivatives/fli/value"), (std::vector<double>{0.5, 10.5, 20.5}));
+  const std::vector<double> positions = doubles("particles/test_particles/position/value");
+  ASSERT_EQ(positions.size(), 18u);  // [frame][particle][3]
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 6; ++j) EXPECT_EQ(positions[static_cast<std::size_t>(6 * k + j)], 100.0 * k + j);
+  fs::remove(file);
+  // Not a row a feature fills: one the run fills (energy), one the schema does not have.
+  for (const char* name : {"energy", "no_such_series"}) {
+    OutputOptions wrong = o;
+    wrong.feature_series = {{name, {}}};
+    EXPECT_THROW(H5Writer(file, scene, wrong), std::logic_error) << name;
+    fs::remove(file);
+  }
+}

@@ -1,6 +1,7 @@
 // ParticleFeature (run/particle_feature.cpp): the swarm carried over every step the bodies take,
 // exactly as ParticleSwarm::advance carries it; the scene's refusals located; a state set from
-// outside refused before anything changes.
+// outside refused before anything changes; its checkpoint beside the frames continued from or
+// refused.
 #include "test_support.hpp"
 
 #include <noether/error.hpp>
@@ -118,5 +119,50 @@ TEST(ParticleFeature, TheFilesVerdictSeesTheParticlesCheck) {
   const io::H5Handle work(H5Gopen2(f, "/work", H5P_DEFAULT));
   EXPECT_EQ(io::read_string(work, "verdict", false), "untrustworthy");
   EXPECT_NE(io::read_string(work, "verdict_reasons", false).find("the particles are not resolved"), std::string::npos);
+  std::filesystem::remove(file);
+}
+
+// What the feature keeps beside its fields (continue_from, save_into): a loaded run's particles
+// stand where the file's checkpoint has them at its last frame, bit for bit; a file without that
+// checkpoint is refused by load and by a continuation alike, saying what it lacks, and is left
+// as it was.
+TEST(ParticleFeature, AContinuationStartsFromTheirCheckpointOrIsRefused) {
+  const Scene scene = rock();
+  const auto file = std::filesystem::temp_directory_path() / ("noether-particle-continue-" + std::to_string(::getpid()) + ".h5");
+  RunOptions options;
+  options.output = file;
+  options.overwrite = true;
+  Eigen::Matrix3Xd where;
+  {
+    Simulation sim(scene, registry(), options);
+    sim.integrate(scene.run.t_end);
+    where = sim.particles()->positions();
+    sim.finish();
+  }
+  {
+    const auto loaded = Simulation::load(file, registry(), {});
+    ASSERT_NE(loaded->particles(), nullptr);
+    EXPECT_EQ(loaded->particles()->time(), scene.run.t_end);
+    EXPECT_EQ(loaded->particles()->positions(), where);
+  }
+  {  // the checkpoint taken out of the file
+    const io::H5Handle f(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT));
+    ASSERT_GE(H5Ldelete(f, "/checkpoint/particles", H5P_DEFAULT), 0);
+  }
+  const auto size = std::filesystem::file_size(file);
+  for (const bool resume : {false, true}) {
+    try {
+      if (resume)
+        Simulation::resume(file, registry(), {}, 400.0);
+      else
+        Simulation::load(file, registry(), {});
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("massless particles needs them where they stood at its last frame 2"),
+                std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("the file holds none"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(std::filesystem::file_size(file), size);
+  }
   std::filesystem::remove(file);
 }

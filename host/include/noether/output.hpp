@@ -5,7 +5,6 @@
 // /frames_complete advanced, so a run killed at any moment leaves a readable file whose
 // series all have one length and whose first /frames_complete frames are complete. Every frame
 // of what a continued run reads back is checksummed (/checkpoint/checksum).
-#include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
 #include <noether/potential.hpp>
@@ -26,6 +25,15 @@ namespace noether {
 
 class ParticleSwarm;
 
+// A series of the output file that a run feature fills (the chaos indicators, the particles'
+// positions: rows of the frame schema, io/frame_schema.cpp): its name there and the shape of
+// one frame.
+struct FeatureSeries {
+  std::string name;
+  std::vector<std::size_t> shape;
+  std::size_t size() const;  // the numbers in one frame
+};
+
 struct OutputOptions {
   std::size_t block_frames = 1024; // write a block at least every this many frames
   double block_seconds = 1.0;      // and at least this often in wall time
@@ -43,12 +51,12 @@ struct OutputOptions {
   // off), then one per sensitivity (/derivatives/sensitivity, named by /derivatives/parameters).
   std::size_t stm_columns = 0;
   std::vector<std::string> sensitivity_names;
-  bool chaos = false;  // /derivatives/megno and /derivatives/fli (run.chaos)
   // The run features' checkpointed fields, one name per number: /checkpoint/run_features
   // [frame][field] and its attribute `fields` (none: no such series).
   std::vector<std::string> feature_fields;
   std::vector<std::string> force_names;  // the scene's forces: /observables/force_balance, /parameters/forces
-  std::size_t recorded_particles = 0;    // /particles/test_particles/position: particles.record's
+  // The series the run features fill, in the order write_frame takes their values.
+  std::vector<FeatureSeries> feature_series;
   bool custom_potential = false;     // the run's potential was given in code (Python), not by the scene
   // Build the file under its hidden name until publish() (a continued run: the old file stays
   // as it is until its frames have been read back, verified and copied).
@@ -67,12 +75,12 @@ class H5Writer {
   H5Writer& operator=(const H5Writer&) = delete;
 
   // One frame: the state, its diagnostics, and the work and wall time spent to reach it (the
-  // checkpoint a continued run starts from); the chaos indicators there (options.chaos); the
-  // run features' fields (options.feature_fields' numbers).
+  // checkpoint a continued run starts from); the run features' series there (the numbers of
+  // options.feature_series, one after another) and their fields (options.feature_fields').
   void write_frame(const State& state, const Diagnostics& diagnostics, const WorkCounters& work,
                    double wall_seconds, std::int64_t interpolated_frames = 0,
-                   const std::vector<double>& integrator_checkpoint = {}, const ChaosValues& chaos = {},
-                   const Eigen::Matrix3Xd* particles = nullptr, std::span<const double> features = {});
+                   const std::vector<double>& integrator_checkpoint = {}, std::span<const double> series = {},
+                   std::span<const double> features = {});
   // Moves the file from its hidden name to its path (done by the constructor unless
   // options.defer_publish); until then the path holds what it held before.
   void publish();

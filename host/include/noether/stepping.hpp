@@ -45,6 +45,33 @@ struct Events {
   std::optional<Escape> escape;
 };
 
+struct StopInfo;
+
+// What may end a step early (docs/equations.md §16): a function of the state crossing zero
+// inside a step, which the stepping loop locates and cuts the step at. The events are one
+// (run/event_watch.hpp); contact will be another. The loop calls `arm` where it starts, `cut`
+// after every step the method takes, and, when the earliest cut of all is this one's, stops
+// there and asks `describe` for the stop's reason.
+class StepCut {
+ public:
+  virtual ~StepCut() = default;
+  // At the state the loop starts from.
+  virtual void arm(const System& system, const State& start) = 0;
+  // A step the method took, (t_prev, t]: the states at its ends and `at(τ)`, the state at τ
+  // inside it (the method's dense output, else hermite_state).
+  struct Step {
+    double t_prev, t;
+    const State& previous;
+    const State& reached;
+    const std::function<const State&(double)>& at;
+  };
+  // The earliest time in the step where the cut falls (none: the step stands). Called for
+  // every step, whatever the other cuts found.
+  virtual std::optional<double> cut(const System& system, const Step& step) = 0;
+  // The stop at its last cut, time t: its reason, event and pair (StopInfo's).
+  virtual void describe(const System& system, double t, StopInfo& stop) const = 0;
+};
+
 struct Schedule {
   double t_end = 0.0;         // integrate from state.t to t_end
   double output_every = 0.0;  // observer interval; the observer also sees t0 and t_end
@@ -58,6 +85,9 @@ struct Schedule {
   // reached, its tangent included, and at an event with the state there; before the frame at
   // that time is observed. May be empty (then no state is read after a step without events).
   std::function<void(const State&)> after_step = nullptr;
+  // Further cuts of the steps beside `events` (the run features': run/event_feature.cpp), in
+  // the order that breaks ties; not owned.
+  std::vector<StepCut*> cuts = {};
 
   // Continuing a run (Simulation::integrate called again, `noether run --resume`): the time of
   // step 0 and of frame 0 (NaN: state.t); the fixed steps already taken from there to state.t;

@@ -47,13 +47,10 @@ void sensitivity(const FrameInput& in, void* out) {
   const Eigen::Index last = in.state.tangent.cols();
   tangent_columns(in.state.tangent, last - static_cast<Eigen::Index>(in.sensitivity_columns), last, out);
 }
-void megno(const FrameInput& in, void* out) { copy(in.chaos.megno, out); }
 void force_balance(const FrameInput& in, void* out) {  // [force][7]: Eigen's columns are the forces
   std::copy(in.state.force_balance.data(), in.state.force_balance.data() + in.state.force_balance.size(), doubles(out));
 }
-void fli(const FrameInput& in, void* out) { copy(in.chaos.fli, out); }
 void run_features(const FrameInput& in, void* out) { std::copy(in.features.begin(), in.features.end(), doubles(out)); }
-void particle_position(const FrameInput& in, void* out) { copy(*in.particles, out); }
 void spin(const FrameInput& in, void* out) { copy(in.state.Pi, out); }
 void energy(const FrameInput& in, void* out) { copy(in.diagnostics.energy, out); }
 void kinetic_translational(const FrameInput& in, void* out) { copy(in.diagnostics.kinetic_translational, out); }
@@ -83,7 +80,6 @@ void restore_force_balance(const void* in, std::size_t width, RecordedFrame& f) 
                                                             static_cast<Eigen::Index>(width / kBalanceRows));
 }
 void restore_time(const void* in, std::size_t, RecordedFrame& f) { f.state.t = *doubles(in); }
-void restore_particle_position(const void* in, std::size_t width, RecordedFrame& f) { f.particles = matrix(in, width); }
 void restore_position(const void* in, std::size_t width, RecordedFrame& f) { f.state.x = matrix(in, width); }
 void restore_momentum(const void* in, std::size_t width, RecordedFrame& f) { f.state.p = matrix(in, width); }
 void restore_spin(const void* in, std::size_t width, RecordedFrame& f) { f.state.Pi = matrix(in, width); }
@@ -213,12 +209,12 @@ const FrameQuantity kFrameSchema[] = {
      "MEGNO ⟨Y⟩ (Cincotta & Simó 2000; run.chaos, docs/derivatives.md, docs/equations.md eq. 23.3) of a deviation "
      "vector carried by the tangent map, at the method's last step up to each frame: → 2 on a regular orbit, "
      "grows as λ t / 2 on a chaotic one; NaN before the first step and after ‖δ‖ overflowed",
-     -1, megno, nullptr},
+     -1, kByFeature, nullptr},
     {"fli", "/derivatives/fli/value", E::kChaos, D::kOne, kH5md,
      "fast Lyapunov indicator, max over s ≤ t of log10 ‖δ(s)‖/‖δ0‖ (Froeschlé, Lega & Gonczi 1997; run.chaos, "
      "docs/equations.md eq. 23.4), in the scaled norm of eq. 23.1: grows as log10 t on a regular orbit, linearly in "
      "t on a chaotic one",
-     -1, fli, nullptr},
+     -1, kByFeature, nullptr},
     {"force_balance", "/observables/force_balance/value", E::kForceBalance, D::kMixed, kH5md,
      "what each force beyond the potential (the scene's forces:, named by /parameters/forces) put into the run since "
      "t0 [frame][force][7]: the work W, the linear momentum ΔP (3) and the angular momentum ΔL about the origin (3) "
@@ -229,7 +225,7 @@ const FrameQuantity kFrameSchema[] = {
      "position of each recorded massless particle (the scene's first particles.record particles, docs/user-guide.md "
      "\"Particles\"), inertial frame [frame][particle][xyz]; a landed particle rides on its body at the point "
      "where it landed",
-     10, particle_position, restore_particle_position},
+     10, kByFeature, nullptr},
     {"momenta", "/checkpoint/linear_momentum", E::kBodyVector, D::kMomentum, kPlain,
      "linear momentum γ = m v of each body, inertial frame [frame][body][xyz], exact", 2, momentum, restore_momentum},
     {"attitudes", "/checkpoint/attitude", E::kRigidMatrix, D::kOne, kPlain,
@@ -263,14 +259,23 @@ std::vector<const FrameQuantity*> checkpointed_series() {
   std::sort(out.begin(), out.end(),
             [](const FrameQuantity* a, const FrameQuantity* b) { return a->checksum_column < b->checksum_column; });
   for (std::size_t c = 0; c < out.size(); ++c)
-    if (out[c]->checksum_column != static_cast<int>(c) || !out[c]->restore || !out[c]->fill.of_run)
+    if (out[c]->checksum_column != static_cast<int>(c) ||
+        !(out[c]->fill.by_feature || (out[c]->restore && out[c]->fill.of_run)))
       throw std::logic_error(
-          "frame schema: the checksum columns must be 0, 1, 2, … each with a restore function and filled from the "
-          "run (a quantity of the state alone is computed from them)");
+          "frame schema: the checksum columns must be 0, 1, 2, … each filled by a feature or from the run with a "
+          "restore function (a quantity of the state alone is computed from them)");
   return out;
 }
 
+const FeatureSeries* feature_series(const FrameQuantity& q, const FrameLayout& l) {
+  if (!q.fill.by_feature) return nullptr;
+  for (const auto& s : l.feature_series)
+    if (s.name == q.name) return &s;
+  return nullptr;
+}
+
 bool present(const FrameQuantity& q, const FrameLayout& l) {
+  if (q.fill.by_feature) return feature_series(q, l) != nullptr;
   switch (q.extent) {
     case E::kRigidVector:
     case E::kRigidQuaternion:
@@ -279,9 +284,7 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
     case E::kIntegrator: return l.width > 0;
     case E::kTangent: return l.stm_columns > 0;
     case E::kSensitivity: return l.sensitivity_columns > 0;
-    case E::kChaos: return l.chaos;
     case E::kForceBalance: return l.forces > 0;
-    case E::kParticleVector: return l.particles > 0;
     case E::kRunFeatures: return l.features > 0;
     case E::kBinaryScalar:
     case E::kBinaryVector:
@@ -294,6 +297,10 @@ bool present(const FrameQuantity& q, const FrameLayout& l) {
 }
 
 std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& l) {
+  if (q.fill.by_feature) {  // as the feature declares it
+    const FeatureSeries* s = feature_series(q, l);
+    return s ? s->shape : std::vector<std::size_t>{};
+  }
   switch (q.extent) {
     case E::kStepCount:
     case E::kScalar:
@@ -315,20 +322,24 @@ std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& 
     case E::kTangent: return {6 * (l.bodies + l.rigid), l.stm_columns};
     case E::kSensitivity: return {6 * (l.bodies + l.rigid), l.sensitivity_columns};
     case E::kForceBalance: return {l.forces, 7};
-    case E::kParticleVector: return {l.particles, 3};
+    case E::kParticleVector: return {};  // filled by a feature: its shape as declared (above)
     case E::kRunFeatures: return {l.features};
   }
   return {};
 }
 
+std::size_t frame_rank(Extent e) {
+  const std::string brackets = describe_extent(e);
+  return static_cast<std::size_t>(std::count(brackets.begin(), brackets.end(), '[')) - 1;
+}
+
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns,
-                      std::size_t sensitivity_columns, bool chaos, std::size_t forces, std::size_t particles,
+                      std::size_t sensitivity_columns, std::size_t forces, std::vector<FeatureSeries> feature_series,
                       std::size_t features) {
   FrameLayout l;
   l.features = features;
-  l.particles = particles;
   l.forces = forces;
-  l.chaos = chaos;
+  l.feature_series = std::move(feature_series);
   l.stm_columns = stm_columns;
   l.sensitivity_columns = sensitivity_columns;
   l.bodies = system.size();
@@ -424,4 +435,26 @@ std::string describe_extent(Extent e) {
   return "";
 }
 
+std::span<const double> RecordedFrame::series_named(std::string_view name) const {
+  for (const auto& [n, values] : series)
+    if (n == name) return values;
+  return {};
+}
+
+void RecordedFrame::set_series(std::string_view name, const double* values, std::size_t count) {
+  for (auto& [n, v] : series)
+    if (n == name) return v.assign(values, values + count);
+  series.emplace_back(std::string(name), std::vector<double>(values, values + count));
+}
+
 }  // namespace noether::io
+
+namespace noether {
+
+std::size_t FeatureSeries::size() const {
+  std::size_t n = 1;
+  for (const auto d : shape) n *= d;
+  return n;
+}
+
+}  // namespace noether

@@ -8,9 +8,9 @@
 // docs/user-guide.md's layout are tested against it (tests/python/test_output.py). Adding an
 // output quantity is one row here plus the function that computes it (docs/architecture.md,
 // "Where to add").
-#include <noether/chaos_values.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
+#include <noether/output.hpp>
 #include <noether/state.hpp>
 #include <noether/system.hpp>
 #include <noether/units.hpp>
@@ -19,6 +19,8 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace noether::io {
@@ -46,12 +48,14 @@ struct FrameInput {
   const std::vector<double>& integrator;  // Integrator::checkpoint()
   std::size_t stm_columns = 0;  // the state-transition matrix's columns of State::tangent (first), 0: none
   std::size_t sensitivity_columns = 0;  // the sensitivities' columns of State::tangent (last), 0: none
-  const ChaosValues& chaos;             // the chaos indicators (run.chaos) where the run stands
-  // The recorded massless particles' positions at the frame's time (particles.record; none: null).
-  const Eigen::Matrix3Xd* particles = nullptr;
   // The run features' checkpointed fields where the run stands (run/run_feature.hpp; none: empty).
   std::span<const double> features = {};
 };
+
+// The series a run feature fills (RunFeature::series: the chaos indicators, the particles'
+// positions), which the writer copies from the values the run hands it with each frame.
+struct ByFeature {};
+inline constexpr ByFeature kByFeature{};
 
 // How one frame of a series is computed: from what the run hands the writer (`of_run`, on the
 // run's thread as the frame arrives) or from the state alone (`of_state`, when its block is
@@ -61,8 +65,10 @@ struct FrameFill {
   using OfState = void (*)(const StateFrame& in, void* out);
   constexpr FrameFill(OfRun f) : of_run(f) {}      // NOLINT: implicit, so that a table row names the function
   constexpr FrameFill(OfState f) : of_state(f) {}  // NOLINT: idem
+  constexpr FrameFill(ByFeature) : by_feature(true) {}  // NOLINT: idem
   OfRun of_run = nullptr;
   OfState of_state = nullptr;
+  bool by_feature = false;
 };
 
 // One frame read back from a file: the exact state (γ and R, not the derived v and q), U, and
@@ -74,11 +80,16 @@ struct RecordedFrame {
   std::int64_t interpolated = 0;
   double wall_seconds = 0.0;
   std::vector<double> integrator;
-  Eigen::Matrix3Xd particles;  // the recorded particles' positions (particles.record; none without)
+  // The run features' checkpointed series (the particles' positions), by their names in the
+  // schema: each frame's numbers, row-major.
+  std::vector<std::pair<std::string, std::vector<double>>> series;
   // The tangent's state-transition matrix and sensitivities (run.stm, run.sensitivities; empty
   // without), and the run features' checkpointed fields (run/run_feature.hpp; empty without).
   Eigen::MatrixXd stm, sensitivity;
   std::vector<double> features;
+  // A feature's series read back (empty: the file has no such series).
+  std::span<const double> series_named(std::string_view name) const;
+  void set_series(std::string_view name, const double* values, std::size_t count);
 };
 
 // The shape of one frame of a series (the file's dataset is [frame] followed by it).
@@ -101,9 +112,9 @@ enum class Extent {
   kSecondaryVector,  // [3]     idem
   kTangent,          // [coordinate][coordinate]: the STM, State::tangent's first columns (run.stm)
   kSensitivity,      // [coordinate][parameter]: State::tangent's last columns (run.sensitivities)
-  kChaos,            // []: a chaos indicator (run.chaos)
+  kChaos,            // []: a chaos indicator (run.chaos; filled by its feature)
   kForceBalance,     // [force][7]: State::force_balance (the scene's `forces:`)
-  kParticleVector,   // [recorded particle][3]: the scene's first particles.record particles
+  kParticleVector,   // [recorded particle][3]: the scene's first particles.record particles (idem)
   kRunFeatures,      // [field]: the run features' checkpointed fields (present when they have any)
 };
 
@@ -112,9 +123,10 @@ struct FrameLayout {
   std::size_t bodies = 0, rigid = 0, width = 0;  // width: Integrator::checkpoint()'s size
   std::size_t stm_columns = 0;          // State::tangent's columns of the STM (0: run.stm off)
   std::size_t sensitivity_columns = 0;  // its last columns (run.sensitivities)
-  bool chaos = false;                   // the chaos indicators (run.chaos)
   std::size_t forces = 0;               // forces beyond the potential (State::force_balance's columns)
-  std::size_t particles = 0;            // massless particles recorded at every frame (particles.record)
+  // The series the run features fill (FrameFill::by_feature), by name, with their frame shapes;
+  // a series of the schema filled by a feature is present when one declares it.
+  std::vector<FeatureSeries> feature_series;
   std::size_t features = 0;             // the run features' checkpointed fields (run/run_feature.hpp)
   bool binary = false, primary_rigid = false, secondary_rigid = false;
 };
@@ -140,7 +152,8 @@ struct FrameQuantity {
   // Writes one frame into `out` (double numbers, or int64 for kStepCount and kWork); every
   // number of it, since the frame's memory is not cleared first.
   FrameFill fill;
-  // The checkpointed series: puts one frame read back into the run's frame (nullptr otherwise).
+  // The checkpointed series: puts one frame read back into the run's frame (nullptr otherwise;
+  // a series filled by a feature is put into RecordedFrame::series by its name).
   void (*restore)(const void* values, std::size_t width, RecordedFrame& frame);
 };
 
@@ -154,10 +167,14 @@ inline constexpr const char* kChecksumPath = "/checkpoint/checksum";
 bool present(const FrameQuantity& q, const FrameLayout& layout);
 std::vector<std::size_t> frame_shape(const FrameQuantity& q, const FrameLayout& layout);
 // The layout of a scene whose integrator's checkpoint has `width` numbers and whose states carry
-// a tangent of `stm_columns` + (δ of the chaos indicators) + `sensitivity_columns` columns.
+// a tangent of `stm_columns` + (the features' columns) + `sensitivity_columns` columns.
 FrameLayout layout_of(const System& system, std::size_t width, std::size_t stm_columns = 0,
-                      std::size_t sensitivity_columns = 0, bool chaos = false, std::size_t forces = 0,
-                      std::size_t particles = 0, std::size_t features = 0);
+                      std::size_t sensitivity_columns = 0, std::size_t forces = 0,
+                      std::vector<FeatureSeries> feature_series = {}, std::size_t features = 0);
+// The declared series filled by a feature, if `layout` has it (null otherwise).
+const FeatureSeries* feature_series(const FrameQuantity& q, const FrameLayout& layout);
+// How many dimensions a frame of the series has (the brackets of describe_extent, less [frame]).
+std::size_t frame_rank(Extent e);
 bool rigid_only(const FrameQuantity& q);  // written only when the scene has rigid bodies
 bool optional(const FrameQuantity& q);    // written only for an integrator with variables of its own
 bool binary_only(const FrameQuantity& q); // written only for a two-body-like scene (binary_pair.hpp)

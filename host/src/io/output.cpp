@@ -144,22 +144,31 @@ void H5Writer::Impl::write_particles(const ParticleCheckpoint& particles, std::i
 
 void H5Writer::write_frame(const State& state, const Diagnostics& d, const WorkCounters& work,
                            double wall_seconds, std::int64_t interpolated_frames,
-                           const std::vector<double>& integrator_checkpoint, const ChaosValues& chaos,
-                           const Eigen::Matrix3Xd* particles, std::span<const double> features) {
+                           const std::vector<double>& integrator_checkpoint, std::span<const double> series,
+                           std::span<const double> features) {
   Impl& m = *impl_;
   if (m.options.checkpoint_width > 0 && integrator_checkpoint.size() != m.options.checkpoint_width)
     throw OutputError("the integrator's checkpoint changed its size during the run");
   if (features.size() != m.layout.features)
     throw OutputError("the frame holds " + std::to_string(features.size()) + " fields of the run features, not the " +
                       std::to_string(m.layout.features) + " the file was made for");
+  std::size_t series_size = 0;
+  for (const auto& s : m.options.feature_series) series_size += s.size();
+  if (series.size() != series_size)
+    throw OutputError("the frame holds " + std::to_string(series.size()) + " numbers of the run features' series, not the " +
+                      std::to_string(series_size) + " the file was made for");
   const io::FrameInput in{state, d, work, interpolated_frames, wall_seconds, integrator_checkpoint,
-                          m.layout.stm_columns, m.layout.sensitivity_columns, chaos, particles, features};
-  if (m.layout.particles > 0 && (!particles || static_cast<std::size_t>(particles->cols()) != m.layout.particles))
-    throw OutputError("the frame does not hold the recorded particles' positions");
+                          m.layout.stm_columns, m.layout.sensitivity_columns, features};
   // The run's own numbers, copied in place; the quantities of the state alone and the checksums
   // are computed when the block is written (Impl::complete_block), off the run's thread.
-  for (auto& column : m.columns)
-    if (const auto fill = column.quantity->fill.of_run) fill(in, column.series->append_frame());
+  for (auto& column : m.columns) {
+    if (const auto fill = column.quantity->fill.of_run) {
+      fill(in, column.series->append_frame());
+    } else if (column.feature_offset >= 0) {
+      const auto values = series.subspan(static_cast<std::size_t>(column.feature_offset), column.series->frame_size);
+      std::copy(values.begin(), values.end(), static_cast<double*>(static_cast<void*>(column.series->append_frame())));
+    }
+  }
   ++m.buffered;
   m.last_frame_t = state.t;
   const double since = std::chrono::duration<double>(Clock::now() - m.last_flush).count();

@@ -48,6 +48,7 @@ struct H5Writer::Impl {
   struct Column {
     const io::FrameQuantity* quantity;
     std::unique_ptr<Series> series;
+    std::ptrdiff_t feature_offset = -1;  // a series a feature fills: its numbers' start among the features'
   };
   std::vector<Column> columns;
   std::vector<const Column*> checkpointed;  // by /checkpoint/checksum column (null: absent)
@@ -124,7 +125,8 @@ struct H5Writer::Impl {
         if (!checkpointed[k]) continue;
         const Series& s = *checkpointed[k]->series;
         sums[i * width + k] = io::checksum64(s.handed_frame(i), s.frame_size * sizeof(std::uint64_t), first + i);
-        checkpointed[k]->quantity->restore(s.handed_frame(i), s.frame_size, read_back);
+        if (const auto restore = checkpointed[k]->quantity->restore)  // (a feature's series: not the state's)
+          restore(s.handed_frame(i), s.frame_size, read_back);
       }
       const io::StateFrame in{*system, primary, secondary, read_back.state, largest_moment_axes};
       for (const Target& t : of_state) t.fill(in, t.out + i * t.frame_size);

@@ -66,8 +66,14 @@ void H5Writer::create_layout(const Scene& scene) {
   // writes more grows them (in doubling steps, each flushed at once).
   double frame_bytes = 8.0 * static_cast<double>(io::checkpointed_series().size());  // the checksums
   m.layout = io::layout_of(sys, options.checkpoint_width, options.stm_columns, options.sensitivity_names.size(),
-                           options.chaos, options.force_names.size(), options.recorded_particles,
-                           options.feature_fields.size());
+                           options.force_names.size(), options.feature_series, options.feature_fields.size());
+  for (const auto& declared : options.feature_series) {  // each a row of the schema that a feature fills
+    const auto schema = io::frame_schema();
+    if (std::none_of(schema.begin(), schema.end(),
+                     [&](const io::FrameQuantity& q) { return q.fill.by_feature && declared.name == q.name; }))
+      throw std::logic_error("a run feature's series '" + declared.name +
+                             "' is not a row of the frame schema filled by a feature (io/frame_schema.cpp)");
+  }
   for (const auto& q : io::frame_schema()) {
     if (!io::present(q, m.layout)) continue;
     double bytes = 8.0;
@@ -289,7 +295,15 @@ void H5Writer::create_series(const Scene& scene) {
       for (const auto& f : m.options.feature_fields) fields += (fields.empty() ? "" : "\n") + f;
       string_attribute(series->dataset, "fields", fields);
     }
-    m.columns.push_back({&q, std::move(series)});
+    std::ptrdiff_t feature_offset = -1;  // where its numbers are among the features' (write_frame)
+    if (q.fill.by_feature) {
+      feature_offset = 0;
+      for (const auto& declared : m.options.feature_series) {
+        if (declared.name == q.name) break;
+        feature_offset += static_cast<std::ptrdiff_t>(declared.size());
+      }
+    }
+    m.columns.push_back({&q, std::move(series), feature_offset});
     if (q.checksum_column >= 0) m.checkpointed[static_cast<std::size_t>(q.checksum_column)] = &m.columns.back();
   }
   const io::H5Handle checkpoint(H5Gopen2(m.file, "checkpoint", H5P_DEFAULT));

@@ -146,10 +146,14 @@ RunRecord::RunRecord(const fs::path& path) : file_(path) {
       damaged(p + " has " + std::to_string(dims[0]) + " frames, /frames_complete says " + std::to_string(frames) +
               " (a run that ended writes exactly that many)");
     const std::size_t axis = dims.size() > 1 ? dims[1] : 0;
-    FrameLayout layout{axis, axis, axis, true, true, true};
+    FrameLayout layout;
+    layout.bodies = layout.rigid = layout.width = axis;
     layout.forces = axis;
-    layout.particles = axis;
     layout.features = axis;
+    if (q->fill.by_feature) {  // its shape is its feature's: here, of the rank its extent has
+      if (dims.size() != frame_rank(q->extent) + 1) damaged(p + " is not " + describe_extent(q->extent));
+      layout.feature_series.push_back({q->name, std::vector<std::size_t>(dims.begin() + 1, dims.end())});
+    }
     if (q->extent == Extent::kTangent || q->extent == Extent::kSensitivity) {  // [coordinate][column]: 6 per body
       layout.bodies = bodies;                                                  // and rigid body (read before)
       layout.rigid = rigid;
@@ -363,7 +367,11 @@ bool RunRecord::read(std::size_t first, std::size_t count,
             damaged("frame " + std::to_string(k) + " of " + col.quantity->path + " does not match its checksum in " +
                     kChecksumPath);
         }
-        if (col.dataset.valid()) col.quantity->restore(values, col.width, frame);
+        if (!col.dataset.valid()) continue;
+        if (col.quantity->fill.by_feature)
+          frame.set_series(col.quantity->name, static_cast<const double*>(static_cast<const void*>(values)), col.width);
+        else
+          col.quantity->restore(values, col.width, frame);
       }
       visit(k, frame);
     }

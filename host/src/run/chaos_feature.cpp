@@ -45,6 +45,17 @@ void ChaosFeature::summarize(RunSummary& summary) const {
   summary.chaos_values = values();
 }
 
+void ChaosFeature::record(const State&, std::span<double> out) const {
+  out[0] = indicators_->values().megno;
+  out[1] = indicators_->values().fli;
+}
+
+void ChaosFeature::recorded(const io::RecordedFrame&, std::span<const double> fields, std::span<double> out) const {
+  const ChaosValues v = values_of(fields);
+  out[0] = v.megno;
+  out[1] = v.fli;
+}
+
 ChaosValues ChaosFeature::values_of(std::span<const double> fields) {
   return fields.size() >= ChaosIndicators::kCheckpointSize ? ChaosIndicators::values_of(fields.data()) : ChaosValues{};
 }

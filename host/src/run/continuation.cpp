@@ -26,26 +26,6 @@ namespace noether {
 
 namespace {
 
-// A run with particles continues only from their checkpoint at its last frame (written with each
-// block of frames whose last frame is a step's end, H5Writer::checkpoint_particles).
-void refuse_without_particles(const io::RunRecord& run, const std::filesystem::path& file, std::size_t last,
-                              double t_last) {
-  std::ostringstream why;
-  why.precision(17);
-  why << file.string() << ": continuing a run with massless particles needs them where they stood at its last frame "
-      << last << " (t = " << t_last << "), ";
-  if (!run.particles)
-    why << "and the file holds none (written by a noether before they were kept, or killed before its first block)";
-  else if (run.particles->frame != static_cast<std::int64_t>(last) || run.particles->t != t_last)
-    why << "and the file holds them at frame " << run.particles->frame << " (t = " << run.particles->t
-        << ") — the last frame falls between an adaptive integrator's steps, or the run was killed while they were "
-           "written";
-  else
-    return;
-  why << "; run it again whole, or give the particles a fixed-step integrator";
-  throw Error(why.str());
-}
-
 // Frames [0, last] of a recorded run replayed into the simulation's statistics (and copied
 // into its output file, if it has one), a block at a time. False when interrupted.
 bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
@@ -65,12 +45,16 @@ bool replay(const io::RunRecord& run, Simulation::Impl& m, std::size_t last,
     const Diagnostics d = m.observer->account(f.state, forces);
     if (!m.writer) return;
     // The frame as it was written: its tangent's STM and sensitivities (the features' columns
-    // are their fields'), the chaos indicators its fields hold.
+    // are their fields'), the features' series as they were.
     State state = f.state;
     state.tangent = m.recorded_tangent(f, run.file());
-    m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator,
-                          m.chaos ? detail::ChaosFeature::values_of(m.chaos_fields(f.features)) : ChaosValues{},
-                          f.particles.cols() > 0 ? &f.particles : nullptr, f.features);
+    std::vector<double> series;
+    try {
+      series = m.recorded_series(f);
+    } catch (const Error& e) {
+      throw Error(run.file().string() + ": " + e.what());
+    }
+    m.writer->write_frame(state, d, f.work, f.wall_seconds, f.interpolated, f.integrator, series, f.features);
   }, interrupt);
 }
 
@@ -131,7 +115,6 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
   const double t_last = at_last.state.t, t_origin = origin_of(run);
-  if (!scene.particles.empty()) refuse_without_particles(run, file, last, t_last);
   if (!(scene.run.t_end > t_last)) {
     std::ostringstream why;
     why.precision(10);
@@ -147,6 +130,7 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   rebuilt.output = no_output;
   auto sim = std::unique_ptr<Simulation>(new Simulation(std::move(scene), registry, rebuilt));
   Impl& m = *sim->impl_;
+  for (const auto& f : m.features) f->continue_from(run, last, t_last);  // (or refused: nothing written)
   m.new_segment();
   m.t_origin = t_origin;
   const Scene& sc = m.scene;
@@ -168,10 +152,9 @@ std::unique_ptr<Simulation> Simulation::resume(const std::filesystem::path& file
   m.summary.interpolated_frames = at_last.interpolated;
   m.steps_before = steps_to(m, t_last);
   m.restore(at_last, file);
-  if (m.particles) {  // where they stood at the last frame, which the new file holds from now on
-    m.particles->restore(*run.particles, t_last);
-    m.writer->write_particle_checkpoint(*run.particles, static_cast<std::int64_t>(last));
-    m.checkpoint_particles();
+  for (const auto& f : m.features) {  // what they keep beside their fields, in the new file from now on
+    f->save_into(*m.writer, static_cast<std::int64_t>(last));
+    f->keep_with(*m.writer);
   }
   m.options = std::move(options);
   m.options.output = file;
@@ -194,13 +177,7 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Impl& m = *impl_;
   if (m.scene.text.empty())
     throw Error("save: this simulation's scene has no text to save (it was not read from YAML)");
-  if (m.particles && m.particles->time() != m.state.t) {
-    std::ostringstream why;
-    why.precision(17);
-    why << "save: the particles stand at t = " << m.particles->time() << ", the bodies at " << m.state.t
-        << " (between the integrator's steps); save where a call to integrate() ended";
-    throw Error(why.str());
-  }
+  for (const auto& f : m.features) f->refuse_save(m.state);
   // The file is built under a hidden name and published once complete (io/safe_publish.hpp):
   // a kill while saving leaves the previous checkpoint; a link, or the simulation's own output
   // file, is refused.
@@ -214,17 +191,14 @@ void Simulation::save(const std::filesystem::path& path) const {
   const Forces forces = m.forces_at(m.state);  // U at the state saved (the frame's potential energy)
   const WorkCounters work = m.work();
   const double wall = m.wall_now();
-  Eigen::Matrix3Xd recorded;  // the first `record` particles, as every frame holds them
-  if (m.particles) m.particles->recorded_positions(m.state, recorded);
   writer.write_frame(m.state, diagnose(m.scene.system, m.state, forces.U), work, wall, m.summary.interpolated_frames,
-                     m.integrator->checkpoint(), m.chaos ? m.chaos->values() : ChaosValues{},
-                     m.particles ? &recorded : nullptr, m.feature_values(m.state));
+                     m.integrator->checkpoint(), m.series_values(m.state), m.feature_values(m.state));
   writer.flush();
   // The summary's checkpointed rows (run/summary_schema.cpp) and the statistics' running values.
   detail::SavedSummary saved = detail::save_summary(m.summary);
   m.observer->save(saved, !m.scene.forces.empty());  // the forces' balance is the state's; their largest exchange is not (33.3)
   for (const auto& f : m.features) f->save_running(saved);
-  if (m.particles) writer.write_particle_checkpoint(m.particles->checkpoint(), 0);
+  for (const auto& f : m.features) f->save_into(writer, 0);
   writer.write_pair_models(m.pair_models());  // with a tolerance exceeded so far, which load keeps
   writer.write_summary_values(saved.numbers, saved.texts);
   writer.publish();
@@ -252,10 +226,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   const std::size_t last = static_cast<std::size_t>(run.frames - 1);
   io::RecordedFrame at_last;
   run.read(last, 1, [&at_last](std::size_t, const io::RecordedFrame& f) { at_last = f; });
-  if (!scene.particles.empty()) {  // the particles where they stood at that frame
-    refuse_without_particles(run, path, last, at_last.state.t);
+  // The particles made where the file has them at that frame (not at the scene's start, where
+  // the bodies no longer are); the features check what they keep below.
+  if (!scene.particles.empty() && run.particles && run.particles->t == at_last.state.t)
     scene.particles.restored = std::make_shared<const ParticleCheckpoint>(*run.particles);
-  }
   const bool with_output = options.output.has_value();
   // A new file's summary starts at the loaded state: what the forces put in, with it (as set_state).
   if (with_output && !scene.forces.empty()) at_last.state.force_balance.setZero();
@@ -268,6 +242,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   auto sim = std::make_unique<Simulation>(std::move(scene), registry, unwritten, std::move(potential));
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
+  for (const auto& f : m.features) f->continue_from(run, last, at_last.state.t);
   m.t_origin = origin_of(run);
   m.steps_before = steps_to(m, at_last.state.t);
   if (!with_output && run.saved()) {  // the saved summary, not the frame the constructor observed
@@ -292,7 +267,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   if (with_output) {  // the new file, its summary from here (frame 0, with the potential's forces)
     m.writer = std::make_unique<H5Writer>(*options.output, m.scene, m.output_options(false));
     m.writer->write_pair_models(m.summary.pair_models);
-    m.checkpoint_particles();
+    m.keep_features_with_writer();
     m.new_segment();
     m.observer->observe(m.state, m.forces_at(m.state), false);
   }

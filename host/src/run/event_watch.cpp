@@ -3,6 +3,8 @@
 
 #include <noether/surface_distance.hpp>
 
+#include "run/regula_falsi.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <sstream>
@@ -138,6 +140,39 @@ std::vector<Watch> watches(const System& system, const Events& events) {
     if (e->unbound) out.push_back(watch(K::kUnbound, e->body, e->about, 0.0));
   }
   return out;
+}
+
+void EventWatch::arm(const System& system, const State& start) {
+  for (auto& w : watch_) w.armed = w.gap(system, start) > 0;
+}
+
+std::optional<double> EventWatch::cut(const System& system, const Step& step) {
+  const State& reached = step.reached;
+  std::optional<double> first;
+  hit_ = nullptr;
+  for (auto& w : watch_) {
+    if (w.clear(reached)) {  // most steps of most pairs
+      w.armed = true;
+      continue;
+    }
+    const double g1 = w.gap(system, reached);
+    if (!w.armed) {
+      w.armed = g1 > 0;
+      continue;
+    }
+    if (g1 > 0) continue;
+    const double b = detail::illinois_root([&](double c) { return w.gap(system, step.at(c)); }, step.t_prev, step.t,
+                                           w.gap(system, step.previous), g1, 1e-14);
+    if (!first || b < *first) first = b, hit_ = &w;
+  }
+  return first;
+}
+
+void EventWatch::describe(const System& system, double t, StopInfo& stop) const {
+  stop.reason = hit_->describe(system, t);
+  stop.event = hit_->name();
+  stop.body_a = hit_->a;
+  stop.body_b = hit_->b;
 }
 
 }  // namespace noether

@@ -5,7 +5,9 @@
 #include <noether/stepping.hpp>
 
 #include <array>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,22 @@ struct Watch {
 
 // The watches of a run's events.
 std::vector<Watch> watches(const System& system, const Events& events);
+
+// The events as a cut of the stepping loop's steps: each watched pair's g, its crossing inside
+// a step located by the Illinois variant of regula falsi on the interpolated states (16.3); the
+// earliest crossing of any armed pair is the cut.
+class EventWatch final : public StepCut {
+ public:
+  EventWatch(const System& system, const Events& events) : watch_(watches(system, events)) {}
+  bool empty() const { return watch_.empty(); }
+  void arm(const System& system, const State& start) override;
+  std::optional<double> cut(const System& system, const Step& step) override;
+  void describe(const System& system, double t, StopInfo& stop) const override;
+
+ private:
+  std::vector<Watch> watch_;
+  const Watch* hit_ = nullptr;  // the pair of the last cut
+};
 
 // Whether a stop reason (StopInfo::reason) is an event's — "collision: …", "escape: …" — rather
 // than an interruption.

@@ -5,10 +5,13 @@
 // at the times it changes the state itself (impulses); its checkpointed fields (declared by name,
 // so that a continued or loaded run restores them with no code of its own:
 // /checkpoint/run_features), its running statistics in a saved simulation, and its part of the
-// summary. After REBOUND's field tables and its pre-/post-timestep hooks. One file per feature
+// summary; and its own series of the output file. After REBOUND's field tables and its
+// pre-/post-timestep hooks. One file per feature
 // (chaos_feature.cpp, particle_feature.cpp, …); run_features.cpp is the one list of them.
+#include <noether/output.hpp>
 #include <noether/simulation.hpp>
 #include <noether/state.hpp>
+#include <noether/stepping.hpp>
 
 #include <Eigen/Dense>
 
@@ -24,6 +27,7 @@ struct ParameterDerivatives;
 }  // namespace noether
 namespace noether::io {
 struct RecordedFrame;
+class RunRecord;
 }  // namespace noether::io
 
 namespace noether::detail {
@@ -62,6 +66,17 @@ class RunFeature {
   // Each frame the run observes (also the recorded frames a continued run replays);
   // `first_of_segment` at a segment's first. It may keep running statistics in `summary`.
   virtual void observe_frame(const State&, bool /*first_of_segment*/, RunSummary&) {}
+  // What cuts the steps the run takes where the feature says (the events: the stepping loop's
+  // StepCut), ending the run there; null: none.
+  virtual StepCut* step_cut() { return nullptr; }
+  // Its series of the output file: rows of the frame schema that a feature fills
+  // (io/frame_schema.cpp, kByFeature), each with the shape of its frame. Their numbers, in that
+  // order and row-major: `record`, at each frame the run writes (the frame's state); `recorded`,
+  // at a recorded frame a continued run copies, from its fields there (`fields`) or, by default,
+  // from the series read back (Error when the frame lacks one).
+  virtual std::vector<FeatureSeries> series() const { return {}; }
+  virtual void record(const State&, std::span<double> /*out*/) const {}
+  virtual void recorded(const io::RecordedFrame& frame, std::span<const double> fields, std::span<double> out) const;
   // A change the feature makes to the state at a time of its own (an impulse): the next such
   // time, if any; the change, made there (the run then starts its integrator again and
   // observes the frame after it); and how many it had made at a frame, from the frame's fields.
@@ -80,6 +95,18 @@ class RunFeature {
   virtual std::vector<std::string> fields() const { return {}; }
   virtual void save(Eigen::Ref<const Eigen::MatrixXd>, std::span<double>) const {}
   virtual void restore(std::span<const double>, Eigen::Ref<Eigen::MatrixXd>) {}
+  // What it keeps in the output file beside its fields, too large for every frame (the
+  // particles: /checkpoint/particles): kept with the blocks of a file the run writes from now on
+  // (`keep_with`, at each new file), written where the run stands as a file's frame `frame`
+  // (`save_into`: a saved simulation's, a continued run's new file; `refuse_save` first, Error
+  // when it cannot be), and read back where a continued or loaded run stood at
+  // its last frame (`continue_from`: Error naming what the file lacks). `finish`: its tables,
+  // written when the run ends (/test_particles).
+  virtual void keep_with(H5Writer&) {}
+  virtual void refuse_save(const State&) const {}
+  virtual void save_into(H5Writer&, std::int64_t /*frame*/) const {}
+  virtual void continue_from(const io::RunRecord&, std::size_t /*last*/, double /*t_last*/) {}
+  virtual void finish(H5Writer&, const Scene&) const {}
   // Its running statistics in a saved simulation (/checkpoint/summary), and back; restore
   // throws Error naming what the checkpoint lacks.
   virtual void save_running(SavedSummary&) const {}

@@ -3,6 +3,7 @@
 #include "run/run_features.hpp"
 
 #include "run/chaos_feature.hpp"
+#include "run/event_feature.hpp"
 #include "run/force_balance_feature.hpp"
 #include "run/binary_pair.hpp"
 #include "run/impulse_feature.hpp"
@@ -24,6 +25,8 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
     features.push_back(std::make_unique<ImpulseFeature>(sc.system, sc.impulses, sc.initial.t, c.integrator.fixed_step()));
   if (!sc.particles.empty())
     features.push_back(std::make_unique<ParticleFeature>(sc, c.integrator, c.initial, c.forcing, c.threads));
+  if (auto events = std::make_unique<EventFeature>(sc.system, sc.run); events->watches_any())
+    features.push_back(std::move(events));
   if (const auto pair = binary_pair(sc.system))
     features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
   if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));

@@ -121,7 +121,7 @@ Simulation::Simulation(Scene scene, PluginRegistry& registry, RunOptions options
   if (m.options.output) {
     m.writer = std::make_unique<H5Writer>(*m.options.output, sc, m.output_options(false));
     m.writer->write_pair_models(m.summary.pair_models);
-    m.checkpoint_particles();
+    m.keep_features_with_writer();
   }
   if (!start_failure.empty()) {
     m.finish_output("failed: " + start_failure);  // no frame: the initial state is not valid
@@ -178,8 +178,11 @@ StopInfo integrate_to(Simulation::Impl& m, double t_end) {
   // The loop stops on one flag: the caller's (a signal) or the wall-time budget's.
   volatile std::sig_atomic_t stop_flag = 0;
   bool budget_exhausted = false;
-  Schedule schedule{t_end, sc.run.output_every, Events{sc.run.close_approach, sc.run.collisions, sc.run.escape},
-                    {}, (options.interrupt || options.max_wall_seconds > 0.0) ? &stop_flag : nullptr};
+  // The events are a feature's cut of the steps (run/event_feature.hpp), not the schedule's.
+  Schedule schedule{t_end, sc.run.output_every, Events{0.0, false, {}}, {},
+                    (options.interrupt || options.max_wall_seconds > 0.0) ? &stop_flag : nullptr};
+  for (const auto& f : m.features)
+    if (StepCut* cut = f->step_cut()) schedule.cuts.push_back(cut);
   schedule.t_origin = m.t_origin;
   schedule.steps_before = m.steps_before;
   schedule.observe_start = false;

@@ -5,7 +5,6 @@
 #include <noether/particles.hpp>
 #include <noether/simulation.hpp>
 
-#include "run/chaos_feature.hpp"
 #include "run/particle_feature.hpp"
 #include "run/run_features.hpp"
 #include "run/sensitivity_feature.hpp"
@@ -44,24 +43,21 @@ struct Simulation::Impl {
   bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
   // The run features (run_features.cpp's list), in the order of their tangent columns: the
-  // tangent is [STM | chaos δ | sensitivities]. Two have frame rows of their own, which the
-  // output writes: the chaos indicators (run.chaos) and the particles' recorded positions; and
-  // the sensitivities' keys and parameters name the output's and the impulses' columns (null,
-  // empty without them).
+  // tangent is [STM | chaos δ | sensitivities]. The sensitivities' keys and parameters name the
+  // output's and the impulses' columns (null, empty without them).
   std::vector<std::unique_ptr<detail::RunFeature>> features;
   // Feature k's columns of the tangent are [column_begin[k], column_begin[k + 1]), its
-  // checkpointed fields [field_begin[k], field_begin[k + 1]) of a frame's (one entry more than
-  // features: the ends).
+  // checkpointed fields [field_begin[k], field_begin[k + 1]) of a frame's, the numbers of its
+  // series [series_begin[k], series_begin[k + 1]) of a frame's (one entry more than features:
+  // the ends).
   std::vector<Eigen::Index> column_begin{0};
-  std::vector<std::size_t> field_begin{0};
-  detail::ChaosFeature* chaos = nullptr;
+  std::vector<std::size_t> field_begin{0}, series_begin{0};
   // The keys of run.sensitivities (the tangent's last columns: ∂z/∂key), the parameters of the
   // dynamics among them (the last of those).
   std::vector<std::string> sensitivity_names;
   std::shared_ptr<const ParameterDerivatives> parameters;
   // The scene's massless particles (particles.hpp), which their feature carries.
   ParticleSwarm* particles = nullptr;
-  Eigen::Matrix3Xd recorded_particles;  // their first particles.record at the frame being written
 
   bool carries_tangent() const { return scene.run.carries_tangent(); }
   // The scene's run features, at the initial state (before the tangent is made: their columns
@@ -71,7 +67,9 @@ struct Simulation::Impl {
     for (const auto& f : features) {
       column_begin.push_back(column_begin.back() + f->tangent_columns());
       field_begin.push_back(field_begin.back() + f->fields().size());
-      if (auto* c = dynamic_cast<detail::ChaosFeature*>(f.get())) chaos = c;
+      std::size_t numbers = 0;
+      for (const FeatureSeries& s : f->series()) numbers += s.size();
+      series_begin.push_back(series_begin.back() + numbers);
       if (auto* p = dynamic_cast<detail::ParticleFeature*>(f.get())) particles = &p->swarm();
       if (auto* s = dynamic_cast<detail::SensitivityFeature*>(f.get())) {
         sensitivity_names = s->names();
@@ -94,13 +92,29 @@ struct Simulation::Impl {
   std::span<const double> fields_of(std::size_t k, std::span<const double> fields) const {
     return fields.subspan(field_begin[k], field_begin[k + 1] - field_begin[k]);
   }
-  // The chaos indicators' fields among a frame's (none: empty; so also for a frame that does not
-  // hold the features' fields, which restore_features refuses by name).
-  std::span<const double> chaos_fields(std::span<const double> fields) const {
-    if (fields.size() != field_begin.back()) return {};
+  // The features' series (the output file's rows they fill) and their numbers at a frame the
+  // run writes, or at a recorded frame a continued run copies (from its fields, when it holds
+  // them: a file from before they were kept does not, which restore_features refuses by name).
+  std::vector<FeatureSeries> feature_series() const {
+    std::vector<FeatureSeries> out;
+    for (const auto& f : features)
+      for (FeatureSeries& s : f->series()) out.push_back(std::move(s));
+    return out;
+  }
+  std::span<double> series_of(std::size_t k, std::vector<double>& numbers) const {
+    return std::span<double>(numbers).subspan(series_begin[k], series_begin[k + 1] - series_begin[k]);
+  }
+  std::vector<double> series_values(const State& at) const {
+    std::vector<double> out(series_begin.back());
+    for (std::size_t k = 0; k < features.size(); ++k) features[k]->record(at, series_of(k, out));
+    return out;
+  }
+  std::vector<double> recorded_series(const io::RecordedFrame& f) const {
+    std::vector<double> out(series_begin.back());
+    const bool fields = f.features.size() == field_begin.back();
     for (std::size_t k = 0; k < features.size(); ++k)
-      if (features[k].get() == chaos) return fields_of(k, fields);
-    return {};
+      features[k]->recorded(f, fields ? fields_of(k, f.features) : std::span<const double>{}, series_of(k, out));
+    return out;
   }
   // The features started where the run stands, their columns of V filled.
   void start_features(Eigen::MatrixXd& V) {
@@ -265,24 +279,20 @@ struct Simulation::Impl {
     base_work = at.work + WorkCounters{0, -evaluations, 0, 0};
     wall_seconds = at.wall_seconds;
   }
-  // The output's blocks carry the particles where they stand (H5Writer::checkpoint_particles),
-  // so that a continued run can restore them.
-  void checkpoint_particles() {
-    if (!particles || !writer) return;
-    writer->checkpoint_particles([this](double t) -> std::optional<ParticleCheckpoint> {
-      if (particles->time() != t) return std::nullopt;
-      return particles->checkpoint();
-    });
+  // A new output file of the run's: the features keep what they keep beside their fields with
+  // its blocks (the particles' checkpoint).
+  void keep_features_with_writer() {
+    if (!writer) return;
+    for (const auto& f : features) f->keep_with(*writer);
   }
   void make_observer() {
     observer = std::make_unique<detail::RunStatistics>(
         scene.system, summary,
         [this](const State& s, const Diagnostics& d) {
           if (!writer) return;
-          if (particles) particles->recorded_positions(s, recorded_particles);
           const std::vector<double> fields = features.empty() ? std::vector<double>{} : feature_values(s);
           writer->write_frame(s, d, work(), wall_now(), summary.interpolated_frames, integrator->checkpoint(),
-                              chaos ? chaos->values() : ChaosValues{}, particles ? &recorded_particles : nullptr, fields);
+                              series_values(s), fields);
         },
         [this](const State& s, bool first_of_segment) {
           for (const auto& f : features) f->observe_frame(s, first_of_segment, summary);
@@ -300,10 +310,9 @@ struct Simulation::Impl {
     }
     output.stm_columns = scene.run.stm ? static_cast<std::size_t>(State::tangent_rows(scene.system)) : 0;
     output.sensitivity_names = sensitivity_names;
-    output.chaos = scene.run.chaos;
     output.feature_fields = feature_fields();
+    output.feature_series = feature_series();
     for (const auto& f : summary.forces) output.force_names.push_back(f.name);
-    output.recorded_particles = scene.particles.empty() ? 0 : scene.particles.record;
     output.custom_potential = custom_potential;
     output.t_origin = t_origin;
     output.overwrite = continuation || options.overwrite;
@@ -319,7 +328,7 @@ struct Simulation::Impl {
     auto records = integrator->take_step_series();
     if (!records.empty()) writer->append_step_series(records);
     writer->write_pair_models(pair_models());
-    if (particles) writer->write_particles(*particles, scene);
+    for (const auto& f : features) f->finish(*writer, scene);
     const RunSummary judged = summary_now();  // the file's verdict is the summary's
     std::string reasons;
     for (const auto& r : judged.verdict.reasons) reasons += (reasons.empty() ? "" : "; ") + r;

@@ -4,7 +4,6 @@
 #include <noether/stepping.hpp>
 
 #include "run/event_watch.hpp"
-#include "run/regula_falsi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -150,17 +149,21 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
   };
   if (schedule.observe_start) observe();
 
-  std::vector<Watch> watch = watches(system, schedule.events);
+  // What may cut a step: the schedule's events, then its further cuts (ties: the first).
+  EventWatch events(system, schedule.events);
+  std::vector<StepCut*> cuts;
+  if (!events.empty()) cuts.push_back(&events);
+  cuts.insert(cuts.end(), schedule.cuts.begin(), schedule.cuts.end());
   // The states at the last step's start and end: two buffers whose roles swap after each step
   // (the pointers, not the contents).
   State ends[2], probe;
   State *previous = &ends[0], *reached = &ends[1];
-  if (!watch.empty()) {
+  if (!cuts.empty()) {
     *previous = state;
-    for (auto& w : watch) w.armed = w.gap(system, state) > 0;
+    for (StepCut* c : cuts) c->arm(system, state);
   }
   // The state at τ inside the last step: the method's dense output, else hermite_state.
-  auto positions_at = [&](double tau) -> const State& {
+  const std::function<const State&(double)> positions_at = [&](double tau) -> const State& {
     if (!integrator.interpolate(tau, probe)) hermite_state(system, *previous, *reached, tau, probe);
     return probe;
   };
@@ -193,35 +196,22 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
       }
     }
 
-    // Events: the earliest crossing of any armed pair inside (t_prev, t], by the Illinois
-    // variant of regula falsi on the interpolated positions (16.3).
-    if (!watch.empty() || schedule.after_step) {
+    // The cuts (events): the earliest inside (t_prev, t] of any (16.3).
+    if (!cuts.empty() || schedule.after_step) {
       integrator.current_state(*reached);
       reached->t = t;
     }
-    if (!watch.empty()) {
+    if (!cuts.empty()) {
       if (!reached->x.allFinite())  // not a collision: the method failed
         throw IntegrationError("the state became non-finite (NaN or infinite positions) in the step to t = " +
                                    std::to_string(t) + "; the last valid state is kept",
                                t_prev);
       double t_event = std::numeric_limits<double>::infinity();
-      const Watch* hit = nullptr;
-      for (auto& w : watch) {
-        if (w.clear(*reached)) {  // most steps of most pairs
-          w.armed = true;
-          continue;
-        }
-        const double g1 = w.gap(system, *reached);
-        if (!w.armed) {
-          w.armed = g1 > 0;
-          continue;
-        }
-        if (g1 > 0) continue;
-        const double b = detail::illinois_root([&](double c) { return w.gap(system, positions_at(c)); }, t_prev, t,
-                                               w.gap(system, *previous), g1, 1e-14);
+      StepCut* hit = nullptr;
+      const StepCut::Step taken{t_prev, t, *previous, *reached, positions_at};
+      for (StepCut* c : cuts)
         // A method that passed t_end (jm-hybrid, dense dopri5) reports no event beyond it.
-        if (b < t_event && b <= t_end) t_event = b, hit = &w;
-      }
+        if (const std::optional<double> b = c->cut(system, taken); b && *b < t_event && *b <= t_end) t_event = *b, hit = c;
       if (hit) {
         // Outputs before the event, then the state at the event itself.
         if (h <= 0)
@@ -243,11 +233,8 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         state.t = t_event;
         if (schedule.after_step) schedule.after_step(state);
         observe(interpolated);
-        stop.reason = hit->describe(system, t_event);
-        stop.event = hit->name();
+        hit->describe(system, t_event, stop);
         stop.t = t_event;
-        stop.body_a = hit->a;
-        stop.body_b = hit->b;
         return stop;
       }
     }
@@ -260,7 +247,7 @@ StopInfo advance(Integrator& integrator, const Potential& potential, const Syste
         schedule.after_step(*reached);
       }
     }
-    if (!watch.empty()) std::swap(previous, reached);
+    if (!cuts.empty()) std::swap(previous, reached);
 
     if (h > 0) {
       if (k % stride == 0 || k == n_steps) {
