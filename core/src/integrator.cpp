@@ -11,6 +11,7 @@ void Integrator::current_state(State& state) {
 }
 bool Integrator::interpolate(double, State&) { return false; }
 double Integrator::fixed_step() const { return 0.0; }
+int Integrator::order() const { return 0; }
 std::string Integrator::tangent_map_unavailable() const { return "this method has no tangent map"; }
 std::string Integrator::carry_parameters(std::shared_ptr<const ParameterDerivatives>) {
   return "this method cannot carry sensitivities to parameters of the dynamics";

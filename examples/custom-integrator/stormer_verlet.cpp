@@ -67,6 +67,7 @@ class StormerVerlet final : public noether::Integrator {
     forces = forces_;
   }
   double fixed_step() const override { return h_; }
+  int order() const override { return 2; }
   noether::PotentialEvaluator* potential_evaluator() override { return &evaluate_; }
 
  private:

@@ -70,6 +70,10 @@ class Integrator {
   // The fixed step h of a fixed-step method (the loop then requires whole numbers of steps
   // between outputs and reports t0 + k h exactly); 0 for methods that choose their steps.
   virtual double fixed_step() const;
+  // The method's order of convergence p (its global error ~ h^p), which the run's step-halving
+  // estimate of derived quantities' errors uses (Richardson: 2^p / (2^p − 1) times the change);
+  // 0 (the default): not declared.
+  virtual int order() const;
   // Empty when start() accepts a state that carries a tangent; else why not, in words (the
   // default: "this method has no tangent map").
   virtual std::string tangent_map_unavailable() const;

@@ -58,7 +58,7 @@
 // Everything declared below is part of noether-core's exported interface (plugin.hpp).
 #pragma GCC visibility push(default)
 
-#define NOETHER_PLUGIN_API_VERSION 15u
+#define NOETHER_PLUGIN_API_VERSION 16u
 
 namespace noether {
 

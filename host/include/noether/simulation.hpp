@@ -80,6 +80,20 @@ struct ResolutionCheck {
 // The wall time of a run up to which its step-halving check repeats it whole.
 inline constexpr double kWholeRunSeconds = 30.0;
 
+// The error a run estimates for a number it derives from its trajectory (a period; docs/
+// user-guide.md, "Verdict"): the run repeated at half the step, Q(h) − Q(h/2) times
+// 2^p / (2^p − 1) (Richardson, for the method's order p; an order the method does not declare:
+// times 2, the bound for any p ≥ 1).
+struct DerivedError {
+  double error = std::numeric_limits<double>::quiet_NaN();         // |Q(h) − Q*| estimated; NaN: not
+  double at_half_step = std::numeric_limits<double>::quiet_NaN();  // Q(h/2)
+  double step = 0.0;  // h
+  int order = 0;      // p used (0: not declared: the factor 2)
+  std::string why_not;  // when it was not estimated, why (empty when it was, or nothing was derived)
+  bool estimated() const { return error == error; }
+  std::string method() const;  // "step halving, Richardson order 2"
+};
+
 // What a force beyond the potential put into the run (docs/forces.md), from t0 to the end: the
 // columns of State::force_balance (docs/equations.md eq. 33.3).
 struct ForceSummary {
@@ -131,6 +145,7 @@ struct RunSummary {
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
+  DerivedError mutual_period_error;  // set when a run finishes (Simulation::finish)
   // The scene's impulses applied so far (in this segment) and the energy they added: each moves
   // the references E0, P0, L0 by its jump, so the errors above are the integrator's alone.
   int impulses = 0;

@@ -243,6 +243,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& path, 
   Impl& m = *sim->impl_;
   RunSummary& s = m.summary;
   for (const auto& f : m.features) f->continue_from(run, last, at_last.state.t);
+  m.scene_trajectory = false;  // (its scene starts where the file stood)
   m.t_origin = origin_of(run);
   m.steps_before = steps_to(m, at_last.state.t);
   if (!with_output && run.saved()) {  // the saved summary, not the frame the constructor observed

@@ -8,6 +8,7 @@
 #include <noether/simulation.hpp>
 
 #include "run/event_watch.hpp"
+#include "run/half_step_run.hpp"
 #include "run/simulation_impl.hpp"
 
 #include <cmath>
@@ -27,19 +28,8 @@ Vec3 relative_position(const State& s, std::size_t body, std::size_t about) {
 
 // The scene run from t0 at step `step` to t_end (events on); the state and stop where it ended.
 std::pair<State, StopInfo> rerun(const Simulation::Impl& m, double step, double t_end) {
-  Scene probe = m.scene;
-  probe.run.t_end = t_end;
-  probe.run.stm = false;  // the positions are compared, not their derivatives
-  probe.run.sensitivities.clear();
-  probe.run.chaos = false;
-  probe.particles = {};  // the bodies' orbit is checked; particles add nothing to it
-  probe.run.output_every = t_end - probe.initial.t;
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", step);
-  probe.integrator.params.set("step", Params::scalar(text));
-  Simulation run(probe, *m.registry, RunOptions{}, m.custom_potential ? m.potential : nullptr);
-  const StopInfo stop = run.integrate(t_end);
-  return {run.state(), stop};
+  HalfStepRun run = rerun_scene(m, step, t_end, t_end - m.scene.initial.t);
+  return {std::move(run.end), run.stop};
 }
 
 }  // namespace

@@ -347,6 +347,7 @@ void Simulation::set_state(const State& s) {
   // are still to come).
   m.start_features_here();
   m.failure.clear();
+  m.scene_trajectory = false;
   m.t_origin = s.t;
   m.steps_before = 0;
   m.integrator_at_state = false;
@@ -359,7 +360,10 @@ RunSummary Simulation::summary() const { return impl_->summary_now(); }
 
 RunSummary Simulation::finish() {
   Impl& m = *impl_;
-  if (!m.finished && m.failure.empty()) m.summary.resolution = check_resolution(m, summary());
+  if (!m.finished && m.failure.empty()) {
+    m.summary.resolution = check_resolution(m, summary());
+    check_derived(m, summary(), m.summary);
+  }
   RunSummary s = summary();
   if (!m.finished && m.writer)
     m.finish_output(m.failure.empty() ? (s.stop_reason.empty() ? "completed" : "stopped: " + s.stop_reason)

@@ -40,6 +40,9 @@ struct Simulation::Impl {
   double wall_seconds = 0.0;           // wall time spent integrating (and of the run continued)
   Clock::time_point call_start = Clock::now();
   bool in_call = false, finished = false;
+  // The run is the scene's own trajectory from its initial state (no state set from outside, not
+  // loaded from a file): what the step-halving checks repeat.
+  bool scene_trajectory = true;
   bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
   // The run features (run_features.cpp's list), in the order of their tangent columns: the
@@ -342,5 +345,9 @@ struct Simulation::Impl {
 // The step-halving check of the smallest orbit, when the energy cannot certify it and the
 // integrator has a fixed step (resolution_check.cpp); `judged` is the summary so far.
 ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged);
+
+// The errors of the numbers the run derives from its trajectory (the mutual period), by the run
+// repeated at half the step (derived_check.cpp), from `judged`, the summary so far, into `out`.
+void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunSummary& out);
 
 }  // namespace noether

@@ -213,10 +213,29 @@ const SummaryRow kRows[] = {
        if (s.mutual_pair.empty()) return "";
        if (s.mutual_revolutions == 0)
          return summary_line(r.label, "not measured: " + s.mutual_pair + " made less than one revolution");
+       const DerivedError& e = s.mutual_period_error;
+       const std::string error = e.estimated() ? " ± " + printed("%.3g", e.error) + " " + s.time_unit + " (" + e.method() + ")"
+                                 : e.why_not.empty() ? ""
+                                                     : "; its error not estimated: " + e.why_not;
        return summary_line(r.label, printed("%.10g", s.mutual_period) + " " + s.time_unit + hours(s.mutual_period, s.time_unit) +
                                         " (" + s.mutual_pair + ", " + std::to_string(s.mutual_revolutions) + " revolution" +
-                                        (s.mutual_revolutions == 1 ? "" : "s") + " of the trajectory)");
+                                        (s.mutual_revolutions == 1 ? "" : "s") + " of the trajectory)" + error);
      }},
+    {.key = "mutual_period_error", .dimension = Dimension::kTime,
+     .doc = "the mutual period's estimated error, by the run repeated at half the step (docs/user-guide.md "
+            "\"Verdict\"; on its line)",
+     .number = [](S s) { return s.mutual_period_error.error; },
+     .has = [](S s) { return s.mutual_period_error.estimated(); }},
+    {.key = "mutual_period_at_half_step", .dimension = Dimension::kTime,
+     .doc = "the mutual period of the run repeated at half the step (on its line)",
+     .number = [](S s) { return s.mutual_period_error.at_half_step; },
+     .has = [](S s) { return s.mutual_period_error.estimated(); }},
+    {.key = "mutual_period_error_method", .kind = Kind::text,
+     .doc = "how the mutual period's error was estimated, or why it was not (on its line)",
+     .text = [](S s) {
+       return s.mutual_period_error.estimated() ? s.mutual_period_error.method() : s.mutual_period_error.why_not;
+     },
+     .has = [](S s) { return s.mutual_period_error.estimated() || !s.mutual_period_error.why_not.empty(); }},
     {.key = "mutual_pair", .kind = Kind::text, .doc = "the mutual orbit's bodies, \"a–b\" (on its line)",
      .text = [](S s) { return s.mutual_pair; }, .has = [](S s) { return !s.mutual_pair.empty(); }},
     {.key = "mutual_revolutions", .kind = Kind::integer, .doc = "the whole revolutions timed (on its line)",

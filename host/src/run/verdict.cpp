@@ -110,6 +110,21 @@ void judge(RunSummary& s, const Scene& scene) {
     moved(particles.position, " in flight", "their distance from the centre");
     moved(particles.landing_point, "' landing points", "the body's radius");
   }
+  // The numbers the run derives, against their errors estimated by the run at half the step
+  // (derived_check.cpp): the step that would meet the tolerance, h (tolerance / error)^(1/p) —
+  // with p = 1 when the method does not declare its order, a step small enough for any p ≥ 1.
+  if (const DerivedError& e = s.mutual_period_error;
+      e.estimated() && e.error > limit.period * std::abs(s.mutual_period)) {
+    const double fraction = e.error / std::abs(s.mutual_period);
+    const double step = e.step * std::pow(limit.period / fraction, 1.0 / std::max(1, e.order));
+    std::snprintf(why, sizeof why,
+                  "the mutual period of %s is not resolved: its estimated error %.3g %s is %.2e of it > %.0e (%s); a "
+                  "step of about %.3g %s or less meets it if the error is the step's (on a chaotic orbit none does: "
+                  "run.chaos tells)",
+                  s.mutual_pair.c_str(), e.error, s.time_unit.c_str(), fraction, limit.period, e.method().c_str(), step,
+                  s.time_unit.c_str());
+    v.reasons.push_back(why);
+  }
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
   if (s.min_gap < -1e-6 * s.min_gap_reach) {

@@ -211,6 +211,8 @@ constexpr SceneKey kTrust[] = {
      .doc = "a small body's relative position error at half the step over one orbit, and the checked particles'"},
     {.key = "particle_fates", .type = T::number, .otherwise = "0.05",
      .doc = "the fraction of the checked particles whose fate changes at half their step"},
+    {.key = "period", .type = T::number, .otherwise = "1e-3",
+     .doc = "a mutual orbit period's estimated error (the run repeated at half the step) over the period"},
 };
 
 constexpr SceneKey kParticles[] = {

@@ -129,6 +129,7 @@ class JmHybrid final : public noether::Integrator {
   }
 
   double time() const override { return t_; }
+  int order() const override { return 2; }  // (the Verlet map in the Jacobi–Maupertuis time)
 
   void current(noether::State& state, noether::Forces& forces) override {
     state = noether::State::zeros(system_);

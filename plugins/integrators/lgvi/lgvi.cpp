@@ -104,6 +104,7 @@ class Lgvi final : public noether::Integrator {
     if (data.size() == flow + clock) clock_.restore(state.t, h_, data.data() + flow, "lgvi");
   }
   double fixed_step() const override { return h_; }
+  int order() const override { return order_; }
   // Every form carries the tangent map of its steps (the relative forms: the inertial map's, §21);
   // with forces, the kicks' derivatives (33.6)–(33.7) join it, and for parameters the forces' own
   // dependence on them (33.9).

@@ -155,6 +155,7 @@ class Rk final : public noether::Integrator {
 
   double time() const override { return t_; }
   double fixed_step() const override { return method_ == "rk4" ? step_ : 0.0; }
+  int order() const override { return method_ == "rk4" ? 4 : method_ == "dopri5" ? 5 : 8; }
   // rk4's clock (step_clock.hpp): a run continued from a step's end steps through the
   // uninterrupted run's times to the bit. The adaptive methods keep nothing beyond the State.
   std::vector<double> checkpoint() const override {

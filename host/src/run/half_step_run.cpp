@@ -1,0 +1,43 @@
+// The scene run again at another step (half_step_run.hpp).
+#include "run/half_step_run.hpp"
+
+#include <noether/error.hpp>
+
+#include "run/simulation_impl.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace noether {
+
+HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, double output_every) {
+  Scene probe = m.scene;
+  probe.run.t_end = t_end;
+  probe.run.stm = false;  // the bodies' trajectory is compared, not its derivatives
+  probe.run.sensitivities.clear();
+  probe.run.chaos = false;
+  probe.particles = {};  // the bodies' orbit is checked; particles add nothing to it
+  probe.run.output_every = output_every;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", step);
+  probe.integrator.params.set("step", Params::scalar(text));
+  Simulation run(probe, *m.registry, RunOptions{}, m.custom_potential ? m.potential : nullptr);
+  HalfStepRun out;
+  out.stop = run.integrate(t_end);
+  out.end = run.state();
+  out.summary = run.summary();
+  return out;
+}
+
+std::optional<HalfStepRun> run_at_half_step(const Simulation::Impl& m, const RunSummary& judged) {
+  const double h = m.integrator->fixed_step(), t0 = m.scene.initial.t;
+  const bool event = !judged.stop_reason.empty();
+  const double end = t0 + std::ceil((m.state.t - t0) / h - 1e-9) * h + (event ? h : 0.0);
+  try {
+    return rerun_scene(m, h / 2, end, m.scene.run.output_every);
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace noether

@@ -1,0 +1,103 @@
+// The errors of the numbers a run derives (run/derived_check.cpp; docs/user-guide.md, "Errors
+// of the numbers a run derives"): the Didymos scene's mutual period at steps of 1200, 600, 300
+// and 30 s, each error estimated by the run at half the step within a factor 2 of its true
+// error (against the period at 7.5 s), and the verdict failing where run.trust.period says;
+// the order a method declares used; the reasons it is not estimated said.
+#include "test_support.hpp"
+
+#include <noether/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace noether;
+
+namespace {
+
+PluginRegistry& registry() {
+  static PluginRegistry r = test::bundled_plugins();
+  return r;
+}
+
+RunSummary didymos(double step, const std::vector<std::string>& more = {}) {
+  std::vector<std::string> overrides{"integrator.step=" + std::to_string(step),
+                                     "run.output_every=" + std::to_string(step >= 30 ? step : 30.0)};
+  overrides.insert(overrides.end(), more.begin(), more.end());
+  return run_scene(load_scene(test::source_path("examples/didymos.yaml"), overrides), registry(), {});
+}
+
+bool names_the_period(const RunSummary& s) {
+  for (const auto& r : s.verdict.reasons)
+    if (r.find("the mutual period of didymos–dimorphos is not resolved") != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST(DerivedCheck, TheDidymosPeriodsEstimatedErrorIsWithinAFactorTwoOfItsTrueError) {
+  const double reference = didymos(7.5).mutual_period;
+  double suggested = 0.0;
+  for (const double h : {1200.0, 600.0, 300.0, 30.0}) {
+    SCOPED_TRACE(h);
+    const RunSummary s = didymos(h);
+    const DerivedError& e = s.mutual_period_error;
+    ASSERT_TRUE(e.estimated()) << e.why_not;
+    EXPECT_EQ(e.order, 2);
+    EXPECT_EQ(e.step, h);
+    const double truth = std::abs(s.mutual_period - reference);
+    EXPECT_GT(e.error, truth / 2);
+    EXPECT_LT(e.error, truth * 2);
+    // 1e-3 of the period: 1200 s (7.4 min off) and 600 s (1.9 min) fail, 300 s and 30 s pass.
+    EXPECT_EQ(names_the_period(s), h >= 600.0);
+    EXPECT_EQ(s.verdict.trustworthy, h < 600.0);
+    if (h == 1200.0) {
+      const std::string& why = s.verdict.reasons.front();
+      suggested = std::stod(why.substr(why.find("a step of about ") + 16));
+    }
+  }
+  // The step the 1200 s run's verdict names lies between the one that failed and the one that
+  // passed.
+  EXPECT_GT(suggested, 300.0);
+  EXPECT_LT(suggested, 600.0);
+}
+
+TEST(DerivedCheck, TheMethodsOwnOrderIsUsed) {
+  const double reference = didymos(7.5).mutual_period;
+  const RunSummary s = didymos(600.0, {"integrator.order=4"});  // (1200 s: a substep too long for the spin)
+  const DerivedError& e = s.mutual_period_error;
+  ASSERT_TRUE(e.estimated()) << e.why_not;
+  EXPECT_EQ(e.order, 4);
+  EXPECT_NE(e.method().find("Richardson order 4"), std::string::npos);
+  // 16/15 of the change: the fourth-order run's error, within a factor 2.
+  EXPECT_NEAR(e.error, 16.0 / 15.0 * std::abs(s.mutual_period - e.at_half_step), 1e-9 * e.error);
+  const double truth = std::abs(s.mutual_period - reference);
+  EXPECT_GT(e.error, truth / 2);
+  EXPECT_LT(e.error, truth * 2);
+  // The summary's JSON and text carry the same estimate.
+  EXPECT_NE(format_summary_json(s).find("\"mutual_period_error_method\": \"" + e.method() + "\""), std::string::npos);
+  EXPECT_NE(format_summary(s).find("± " + std::to_string(e.error).substr(0, 3)), std::string::npos) << format_summary(s);
+}
+
+TEST(DerivedCheck, WhenItIsNotEstimatedTheSummarySaysWhy) {
+  // A method that chooses its own steps.
+  const RunSummary adaptive = didymos(30.0, {"integrator={plugin: rk, method: dopri5, rtol: 1e-10, atol: 1e-10}"});
+  EXPECT_FALSE(adaptive.mutual_period_error.estimated());
+  EXPECT_NE(adaptive.mutual_period_error.why_not.find("chooses its own steps"), std::string::npos);
+  EXPECT_NE(format_summary(adaptive).find("its error not estimated: integrator 'rk' chooses its own steps"),
+            std::string::npos);
+  // A state set from outside: the run is no longer the scene's from t0.
+  const Scene scene = load_scene(test::source_path("examples/didymos.yaml"), {"integrator.step=600", "run.output_every=600"});
+  Simulation sim(scene, registry(), {});
+  sim.integrate(600.0);
+  sim.set_state(sim.state());
+  sim.integrate(scene.run.t_end);
+  const RunSummary set = sim.finish();
+  EXPECT_FALSE(set.mutual_period_error.estimated());
+  EXPECT_NE(set.mutual_period_error.why_not.find("a state was set"), std::string::npos);
+  // Less than a revolution: nothing derived, nothing said.
+  const RunSummary short_run = didymos(30.0, {"run.t_end=3600"});
+  EXPECT_EQ(short_run.mutual_revolutions, 0);
+  EXPECT_TRUE(short_run.mutual_period_error.why_not.empty());
+  EXPECT_FALSE(short_run.mutual_period_error.estimated());
+}
