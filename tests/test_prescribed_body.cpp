@@ -573,3 +573,23 @@ run: {t_end: 1, output_every: 1}
     EXPECT_NE(std::string(e.what()).find("with lgvi or rk"), std::string::npos) << e.what();
   }
 }
+
+// A conic that starts at its own center is no conic: the scene's key is named, with where it is
+// (it was KeplerOrbit's bare "r0 ≠ 0", with no file, line or key); so is one beyond 1e150,
+// where distances overflow.
+TEST(PrescribedBody, APositionAtItsCenterIsAnErrorAtItsKey) {
+  for (const char* position : {"[0, 0, 0]", "[1.0e300, 0, 0]"}) {
+    SCOPED_TRACE(position);
+    try {
+      const Scene scene = load_scene(test::source_path("examples/kw4-earth-flyby.yaml"),
+                                     {std::string("forces.0.position=") + position});
+      Simulation sim(scene, registry());
+      ADD_FAILURE() << "accepted";
+    } catch (const SceneError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("forces.0.position"), std::string::npos) << what;
+      EXPECT_NE(what.find("prescribed-body: 'position'"), std::string::npos) << what;
+      EXPECT_EQ(what.find("KeplerOrbit"), std::string::npos) << what;
+    }
+  }
+}

@@ -11,7 +11,22 @@ namespace {
 Vec3 vector_param(const Params& p, const char* key, const std::string& plugin) {
   const std::vector<double> v = p.at(key).as_doubles();
   if (v.size() != 3) throw SceneError(p.at(key).here() + plugin + ": '" + key + "' must be [x, y, z]");
-  return {v[0], v[1], v[2]};
+  const Vec3 out(v[0], v[1], v[2]);
+  if (!out.allFinite()) throw SceneError(p.at(key).here() + plugin + ": '" + key + "' must be finite");
+  if (std::string(key) == "position" && out.cwiseAbs().maxCoeff() > kLargestCoordinate)
+    throw SceneError(p.at(key).here() + plugin + ": 'position' is beyond 1e150, where distances overflow a double; give "
+                     "the scene units that keep its numbers far from 1e±300 (docs/user-guide.md \"Units\")");
+  return out;
+}
+
+// The conic's relative position, which must leave its center (a Kepler conic through r = 0 is
+// not one: KeplerOrbit refuses it).
+Vec3 position_param(const Params& p, const std::string& plugin) {
+  const Vec3 r = vector_param(p, "position", plugin);
+  if (!(r.norm() > 0))
+    throw SceneError(p.at("position").here() + plugin + ": 'position' is [0, 0, 0], its center itself; give where it "
+                     "stands relative to `center` at `epoch` (a conic cannot start at its focus)");
+  return r;
 }
 
 // −1 the barycentre, −2 the origin, else a body's index.
@@ -47,7 +62,7 @@ double mu_of(const System& system, const Params& p, double mass, Eigen::Index ce
 
 PrescribedConic::PrescribedConic(const System& system, const Params& p, double mass, const std::string& plugin)
     : center_(center_of(system, p, plugin)),
-      orbit_(vector_param(p, "position", plugin), vector_param(p, "velocity", plugin),
+      orbit_(position_param(p, plugin), vector_param(p, "velocity", plugin),
              mu_of(system, p, mass, center_, plugin), p.has("epoch") ? p.at("epoch").as_double() : 0.0) {
   for (const auto& b : system.bodies()) {
     masses_.push_back(b.mass);

@@ -50,6 +50,7 @@ SUMMARY = "Bodies under mutual gravity: the full body problem and point masses"
 # distribution "h5py._debian_h5py_serial", so a required "h5py" would send pip to an index even
 # where h5py imports; noether.read says so clearly when h5py is missing.
 REQUIRES = ["numpy"]
+LICENSE = "BSD-3-Clause"  # SPDX; the text: LICENSE (README.md, "Licence")
 EXTRAS = {"output": ["h5py"], "plots": ["h5py", "matplotlib"]}
 PYTHON_DIR = "lib/python3/dist-packages/noether"  # where CMake installs the package (python/CMakeLists.txt)
 
@@ -80,7 +81,7 @@ def _dist_info():
 
 def _metadata():
     lines = ["Metadata-Version: 2.1", f"Name: {NAME}", f"Version: {_version()}", f"Summary: {SUMMARY}",
-             "Requires-Python: >=3.9"]
+             f"License: {LICENSE}", "Classifier: License :: OSI Approved :: BSD License", "Requires-Python: >=3.9"]
     lines += [f"Requires-Dist: {r}" for r in REQUIRES]
     for extra, reqs in EXTRAS.items():
         lines.append(f"Provides-Extra: {extra}")
@@ -192,7 +193,8 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
                 content = path.read_bytes()
                 _add(zf, name, content, stat.S_IMODE(path.stat().st_mode))
                 records.append(_record_line(name, content))
-            for name, content in (("METADATA", _metadata()), ("WHEEL", _wheel_file())):
+            for name, content in (("METADATA", _metadata()), ("WHEEL", _wheel_file()),
+                                  ("LICENSE", (SOURCE / "LICENSE").read_text())):
                 arcname = f"{_dist_info()}/{name}"
                 _add(zf, arcname, content.encode())
                 records.append(_record_line(arcname, content.encode()))

@@ -10,6 +10,8 @@ build=$1 src=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
+# The licence is installed with it (README.md, "Licence").
+grep -q "^BSD 3-Clause License$" "$work/prefix/share/doc/noether/LICENSE"
 start=$(date +%s.%N)
 cmake -S "$src/examples/custom-potential" -B "$work/build" -G Ninja \
       -DCMAKE_PREFIX_PATH="$work/prefix" > "$work/configure.log"

@@ -329,3 +329,27 @@ def test_reading_without_h5py_says_what_is_missing(tmp_path):
     assert p.returncode == 1
     assert "noether.OutputError" in p.stderr or "OutputError" in p.stderr, p.stderr
     assert "needs h5py, which" in p.stderr and "python3-h5py" in p.stderr, p.stderr
+
+
+def test_a_body_that_does_not_rotate_has_no_nutation_angle(source, tmp_path):
+    """Eq. 17.11 measures Π from the axis of largest moment: without Π there is nothing to
+    measure. The file says NaN (its description says why), the summary 'not rotating'; a body
+    that rotates gets an angle in [0, 90]."""
+    out = tmp_path / "alone.h5"
+    sim = noether.Simulation(source / "examples/dumbbells.yaml", output=out,
+                             set=["bodies.beta=~", "run.t_end=1", "bodies.alpha.angular_velocity=[0, 0, 0]"])
+    sim.integrate(sim.run["t_end"])
+    summary = sim.finish()
+    assert "spin state alpha              not rotating" in sim.summary_text()
+    nutation = summary["spin_states"][0]["max_nutation"]
+    assert nutation is None or np.isnan(nutation)
+    run = noether.read(out)
+    assert np.isnan(run["nutation_angles"]).all()
+    described = {s["name"]: s for s in noether.output_series()}["nutation_angles"]["description"]
+    assert "NaN while the body does not rotate" in described
+    sim = noether.Simulation(source / "examples/dumbbells.yaml", output=tmp_path / "spinning.h5",
+                             set=["bodies.beta=~", "run.t_end=1"])
+    sim.integrate(sim.run["t_end"])
+    sim.finish()
+    angles = noether.read(tmp_path / "spinning.h5")["nutation_angles"]
+    assert ((angles >= 0) & (angles <= 90)).all()

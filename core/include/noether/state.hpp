@@ -13,6 +13,12 @@
 
 namespace noether {
 
+// The largest coordinate a position may have: beyond it the square of a distance between two
+// positions can overflow a double (|x_a − x_b|² ≤ 12 max|x|² < 1.8e308 needs max|x| < 3.9e153),
+// and separations, potentials and every derived number with them become infinite or zero.
+// Scenes, particles and prescribed bodies beyond it are refused (docs/reliability.md, "Input").
+inline constexpr double kLargestCoordinate = 1e150;
+
 struct State {
   double t = 0.0;
   Eigen::Matrix3Xd x;      // x_i, inertial positions

@@ -191,7 +191,8 @@ const FrameQuantity kFrameSchema[] = {
      -1, of_state::secondary_euler_angles, nullptr},
     {"nutation_angles", "/observables/nutation_angle/value", E::kRigidScalar, D::kDegrees, kH5md,
      "the angle between each rigid body's angular momentum and its principal axis of largest moment (eq. 17.11), "
-     "in [0, 90]: 0 for rotation about that axis (the relaxed state), larger for a tumbling or precessing body",
+     "in [0, 90]: 0 for rotation about that axis (the relaxed state), larger for a tumbling or precessing body; NaN "
+     "while the body does not rotate (Π = 0: no angular momentum to measure it from)",
      -1, of_state::nutation_angles, nullptr},
     {"stm", "/derivatives/stm/value", E::kTangent, D::kMixed, kH5md,
      "the state-transition matrix of the run's own map, ∂z(t)/∂z(t0) (run.stm, docs/derivatives.md): rows and "

@@ -94,6 +94,10 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
   // A particle that starts inside a body is refused (where it stands it would land at once).
   const Placement at = place(bodies);
   for (Eigen::Index i = 0; i < n && !settings_.restored; ++i) {
+    if (!(x_.col(i).cwiseAbs().maxCoeff() <= kLargestCoordinate))  // (NaN too)
+      throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
+                       "beyond 1e150 or at a position that is not a number (a semi-major axis of 1e300?), where its "
+                       "distances overflow a double; start it nearer");
     if (const std::string where = inside(x_.col(i), at); !where.empty())
       throw SceneError("particle " + std::to_string(i) + " (from 0: particles.states, then file, orbits, ejecta) starts "
                        "inside " + where + "; start it outside");

@@ -60,6 +60,16 @@ class RunStatistics final : public Observer {
           << " (the integrator diverged: a smaller step or tolerance?)";
       throw IntegrationError(msg.str(), state.t);
     }
+    // Positions beyond kLargestCoordinate: their distances' squares overflow (separations of inf,
+    // potentials of 0: a summary over them said "trustworthy").
+    if (state.x.size() > 0 && state.x.cwiseAbs().maxCoeff() > kLargestCoordinate) {
+      std::ostringstream msg;
+      msg << "a position is beyond " << kLargestCoordinate << " at t = " << state.t
+          << " (its distances' squares overflow a double: give the scene units that keep its numbers far from 1e±300, "
+             "docs/user-guide.md \"Units\")";
+      if (s_.frames == 0) throw SceneError("the initial state: " + msg.str());  // refused before any step
+      throw IntegrationError(msg.str(), state.t);
+    }
     // Finite state, infinite momenta: products that overflow a double (a body 1e300 away). A
     // summary over them would say "error 0"; no such run is trustworthy.
     if (!d.linear_momentum.allFinite() || !d.angular_momentum.allFinite()) {
