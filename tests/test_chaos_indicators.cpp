@@ -17,6 +17,7 @@
 #include <vector>
 
 using namespace noether;
+using test::registry;
 
 namespace {
 
@@ -24,11 +25,6 @@ namespace {
 Scene kepler(std::vector<std::string> overrides = {}) {
   overrides.insert(overrides.begin(), {"run.t_end=1000", "run.output_every=100", "run.chaos=true"});
   return test::kepler_scene(overrides);
-}
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
 }
 
 ChaosValues run_chaos(const Scene& scene) {

@@ -12,13 +12,9 @@
 #include <cmath>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 RunSummary didymos(double step, const std::vector<std::string>& more = {}) {
   std::vector<std::string> overrides{"integrator.step=" + std::to_string(step),

@@ -10,13 +10,9 @@
 #include <gtest/gtest.h>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 // The tidal spin-down with a dissipative tide only (no static bulge): W < 0 grows.
 Scene tidal_scene() { return test::tidal_scene({"forces.0.static_bulge=false", "run.t_end=20"}); }

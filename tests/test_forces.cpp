@@ -15,13 +15,9 @@
 #include <sstream>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 using test::tidal_scene;
 

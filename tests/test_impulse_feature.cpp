@@ -18,13 +18,9 @@
 #include <unistd.h>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 // The Kepler orbit with two impulses on the planet — inertial at t = 1.25, in the RTN frame of its
 // orbit at t = 1.5 — carrying the STM, the chaos indicators and sensitivities to the first Δv and

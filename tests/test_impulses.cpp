@@ -16,13 +16,9 @@
 #include <sstream>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 const std::string kImpulse = "impulses=[{body: planet, time: 1.25, delta_v: [0.01, -0.02, 0.005]}]";
 

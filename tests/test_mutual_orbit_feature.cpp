@@ -13,13 +13,9 @@
 #include <unistd.h>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 // The Kepler orbit of test::kepler_scene timed over 30 time units (about 4.7 revolutions).
 Scene kepler(std::vector<std::string> overrides = {}) {

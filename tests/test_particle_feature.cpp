@@ -17,13 +17,9 @@
 #include <unistd.h>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 // A spinning ellipsoid of 2000 kg/m³ and three particles about it.
 Scene rock(const std::string& integrator = "{plugin: lgvi, step: 10}", const std::string& step = "") {

@@ -18,15 +18,7 @@
 #include <sstream>
 
 using namespace noether;
-
-namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
-
-}  // namespace
+using test::registry;
 
 // The conic by Lagrange's f and g in the universal anomaly (35.1)–(35.3) against the same two
 // bodies integrated by rkf78 at rtol 1e-13: an ellipse (e ≈ 0.6) over 3 periods and a hyperbola

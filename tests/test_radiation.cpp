@@ -15,13 +15,9 @@
 #include <sstream>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 constexpr double kAu = 1.495978707e11, kSunMu = 1.32712440018e20, kG = 6.674e-11;
 

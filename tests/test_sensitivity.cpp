@@ -16,6 +16,7 @@
 #include <map>
 
 using namespace noether;
+using test::registry;
 
 namespace {
 
@@ -38,11 +39,6 @@ potential: {plugin: point-mass}
 integrator: {plugin: lgvi, step: 0.001}
 run: {t_end: 3, output_every: 1}
 )";
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 std::string number(double v) {
   char text[32];

@@ -13,13 +13,9 @@
 #include <gtest/gtest.h>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 Scene scene_with(const std::string& integrator) {
   return test::dumbbell_scene(

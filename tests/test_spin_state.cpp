@@ -13,13 +13,9 @@
 #include <numbers>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 RunSummary run(const Scene& scene) {
   Simulation sim(scene, registry());

@@ -12,13 +12,9 @@
 #include <cstring>
 
 using namespace noether;
+using test::registry;
 
 namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
 
 // The tumbling moon's frames every 0.05 up to t = 10.
 std::vector<State> frames_of(const Scene& scene) {

@@ -15,15 +15,7 @@
 #include <limits>
 
 using namespace noether;
-
-namespace {
-
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
-
-}  // namespace
+using test::registry;
 
 TEST(StmFeature, StartsAtTheIdentityOrTheGivenMatrixAndRefusesOneThatDoesNotFit) {
   const Scene scene = test::dumbbell_scene();

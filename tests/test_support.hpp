@@ -40,6 +40,11 @@ inline std::string scene_error(const std::string& text, const std::vector<std::s
 }
 
 inline PluginRegistry bundled_plugins() { return PluginRegistry({NOETHER_TEST_PLUGIN_DIR}); }
+// One registry of the bundled plugins for a whole test binary (made on first use).
+inline PluginRegistry& registry() {
+  static PluginRegistry r = bundled_plugins();
+  return r;
+}
 
 // An integrator's configuration from YAML text, as a scene's `integrator:` gives one.
 inline PluginConfig plugin_config(const std::string& yaml) {

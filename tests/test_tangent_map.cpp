@@ -10,15 +10,11 @@
 #include <cmath>
 
 using namespace noether;
+using test::registry;
 
 namespace {
 
 // A Kepler orbit, e = 0.6, of a light body about a heavy one (point masses).
-PluginRegistry& registry() {
-  static PluginRegistry r = test::bundled_plugins();
-  return r;
-}
-
 // The scene run to its t_end from its initial state moved by `dz` (coordinates 21.1).
 State run_from(const Scene& scene, const Eigen::VectorXd& dz) {
   Scene s = scene;

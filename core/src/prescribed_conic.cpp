@@ -13,16 +13,16 @@ Vec3 vector_param(const Params& p, const char* key, const std::string& plugin) {
   if (v.size() != 3) throw SceneError(p.at(key).here() + plugin + ": '" + key + "' must be [x, y, z]");
   const Vec3 out(v[0], v[1], v[2]);
   if (!out.allFinite()) throw SceneError(p.at(key).here() + plugin + ": '" + key + "' must be finite");
-  if (std::string(key) == "position" && out.cwiseAbs().maxCoeff() > kLargestCoordinate)
-    throw SceneError(p.at(key).here() + plugin + ": 'position' is beyond 1e150, where distances overflow a double; give "
-                     "the scene units that keep its numbers far from 1e±300 (docs/user-guide.md \"Units\")");
   return out;
 }
 
 // The conic's relative position, which must leave its center (a Kepler conic through r = 0 is
-// not one: KeplerOrbit refuses it).
+// not one: KeplerOrbit refuses it) and stay within kLargestCoordinate.
 Vec3 position_param(const Params& p, const std::string& plugin) {
   const Vec3 r = vector_param(p, "position", plugin);
+  if (r.cwiseAbs().maxCoeff() > kLargestCoordinate)
+    throw SceneError(p.at("position").here() + plugin + ": 'position' is beyond 1e150, where distances overflow a "
+                     "double; give the scene units that keep its numbers far from 1e±300 (docs/user-guide.md \"Units\")");
   if (!(r.norm() > 0))
     throw SceneError(p.at("position").here() + plugin + ": 'position' is [0, 0, 0], its center itself; give where it "
                      "stands relative to `center` at `epoch` (a conic cannot start at its focus)");

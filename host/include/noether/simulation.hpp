@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <string>
@@ -90,7 +91,7 @@ struct DerivedError {
   double step = 0.0;  // h
   int order = 0;      // p used (0: not declared: the factor 2)
   std::string why_not;  // when it was not estimated, why (empty when it was, or nothing was derived)
-  bool estimated() const { return error == error; }
+  bool estimated() const { return !std::isnan(error); }
   std::string method() const;  // "step halving, Richardson order 2"
 };
 

@@ -56,7 +56,7 @@ DerivedError estimate(double at_h, double at_half, double h, int order) {
 
 }  // namespace
 
-void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunSummary& out) {
+void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step, RunSummary& out) {
   out.mutual_period_error = {};
   if (judged.mutual_revolutions < 1) return;  // nothing derived to check
   DerivedError& period = out.mutual_period_error;
@@ -65,7 +65,7 @@ void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunSumma
     return;
   }
   const double h = m.integrator->fixed_step();
-  const std::optional<HalfStepRun> half = run_at_half_step(m, judged);
+  const HalfStepRun* half = half_step.get();
   if (!half) {
     period.why_not = "the run at half the step failed";
     return;

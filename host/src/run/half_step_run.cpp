@@ -29,15 +29,19 @@ HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, do
   return out;
 }
 
-std::optional<HalfStepRun> run_at_half_step(const Simulation::Impl& m, const RunSummary& judged) {
-  const double h = m.integrator->fixed_step(), t0 = m.scene.initial.t;
-  const bool event = !judged.stop_reason.empty();
-  const double end = t0 + std::ceil((m.state.t - t0) / h - 1e-9) * h + (event ? h : 0.0);
-  try {
-    return rerun_scene(m, h / 2, end, m.scene.run.output_every);
-  } catch (const Error&) {
-    return std::nullopt;
+const HalfStepRun* RunAtHalfStep::get() {
+  if (!tried_) {
+    tried_ = true;
+    const double h = m_.integrator->fixed_step(), t0 = m_.scene.initial.t;
+    const bool event = !judged_.stop_reason.empty();
+    const double end = t0 + std::ceil((m_.state.t - t0) / h - 1e-9) * h + (event ? h : 0.0);
+    try {
+      run_ = rerun_scene(m_, h / 2, end, m_.scene.run.output_every);
+    } catch (const Error&) {
+      run_.reset();
+    }
   }
+  return run_ ? &*run_ : nullptr;
 }
 
 }  // namespace noether

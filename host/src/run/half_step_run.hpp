@@ -19,7 +19,19 @@ HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, do
 
 // The run repeated at half its step to where it ended (on its step grid: past an event by one
 // step, so that the half-step run meets it too), its frames as often as the run's (what derived
-// numbers are measured from); none when that run fails.
-std::optional<HalfStepRun> run_at_half_step(const Simulation::Impl& m, const RunSummary& judged);
+// numbers are measured from), made once for every check that asks (the resolution check's
+// whole run, the derived numbers') when the run finishes.
+class RunAtHalfStep {
+ public:
+  RunAtHalfStep(const Simulation::Impl& m, const RunSummary& judged) : m_(m), judged_(judged) {}
+  // The run; null when it failed (an Error at the halved step).
+  const HalfStepRun* get();
+
+ private:
+  const Simulation::Impl& m_;
+  const RunSummary& judged_;
+  bool tried_ = false;
+  std::optional<HalfStepRun> run_;
+};
 
 }  // namespace noether

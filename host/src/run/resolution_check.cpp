@@ -34,7 +34,7 @@ std::pair<State, StopInfo> rerun(const Simulation::Impl& m, double step, double 
 
 }  // namespace
 
-ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged) {
+ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step) {
   ResolutionCheck check;
   const Scene& scene = m.scene;
   const double h = m.integrator->fixed_step();
@@ -59,31 +59,29 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
   // difference at its end is measured, not extrapolated, which matters for chaotic motion
   // (a spacecraft near a binary), where one orbit's difference says little about the run's.
   if (judged.wall_seconds <= kWholeRunSeconds) {
-    // The end on the step grid: t_end, or the first step after the event.
-    const double end = initial.t + std::ceil(run_length / h - 1e-9) * h;
-    try {
-      const auto [half, stop] = rerun(m, h / 2, event ? end + h : end);
-      check.done = check.whole_run = true;
-      check.window = run_length;
-      const bool same_end = event ? is_event(stop.reason) && judged.stop_reason.rfind(stop.event + ":", 0) == 0 &&
-                                        std::abs(stop.t - m.state.t) <= 0.01 * std::max(run_length, 1e-300)
-                                  : stop.reason.empty();
-      if (!same_end) {
-        std::ostringstream why;
-        why.precision(10);
-        if (stop.reason.empty())
-          why << "at h/2 the run reaches t = " << half.t << " without the event";
-        else
-          why << "at h/2 the run stops otherwise: " << stop.reason;
-        check.ends_differently = why.str();
-        check.per_window = check.over_run = std::numeric_limits<double>::infinity();
-        return check;
-      }
-      const Vec3 r = relative_position(m.state, b, a);
-      check.per_window = check.over_run = (r - relative_position(half, b, a)).norm() / r.norm();
-    } catch (const Error&) {  // the halved step failed: the energy's verdict stands
-      check = ResolutionCheck{};
+    // To the end on the step grid: t_end, or the first step after the event (RunAtHalfStep).
+    const HalfStepRun* run = half_step.get();
+    if (!run) return ResolutionCheck{};  // the halved step failed: the energy's verdict stands
+    const State& half = run->end;
+    const StopInfo& stop = run->stop;
+    check.done = check.whole_run = true;
+    check.window = run_length;
+    const bool same_end = event ? is_event(stop.reason) && judged.stop_reason.rfind(stop.event + ":", 0) == 0 &&
+                                      std::abs(stop.t - m.state.t) <= 0.01 * std::max(run_length, 1e-300)
+                                : stop.reason.empty();
+    if (!same_end) {
+      std::ostringstream why;
+      why.precision(10);
+      if (stop.reason.empty())
+        why << "at h/2 the run reaches t = " << half.t << " without the event";
+      else
+        why << "at h/2 the run stops otherwise: " << stop.reason;
+      check.ends_differently = why.str();
+      check.per_window = check.over_run = std::numeric_limits<double>::infinity();
+      return check;
     }
+    const Vec3 r = relative_position(m.state, b, a);
+    check.per_window = check.over_run = (r - relative_position(half, b, a)).norm() / r.norm();
     return check;
   }
 

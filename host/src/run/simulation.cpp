@@ -6,6 +6,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "run/half_step_run.hpp"
 #include "run/simulation_impl.hpp"
 
 #include <algorithm>
@@ -360,9 +361,11 @@ RunSummary Simulation::summary() const { return impl_->summary_now(); }
 
 RunSummary Simulation::finish() {
   Impl& m = *impl_;
-  if (!m.finished && m.failure.empty()) {
-    m.summary.resolution = check_resolution(m, summary());
-    check_derived(m, summary(), m.summary);
+  if (!m.finished && m.failure.empty()) {  // the step-halving checks, on one run at half the step
+    const RunSummary judged = summary();
+    RunAtHalfStep half_step(m, judged);
+    m.summary.resolution = check_resolution(m, judged, half_step);
+    check_derived(m, judged, half_step, m.summary);
   }
   RunSummary s = summary();
   if (!m.finished && m.writer)

@@ -344,10 +344,12 @@ struct Simulation::Impl {
 
 // The step-halving check of the smallest orbit, when the energy cannot certify it and the
 // integrator has a fixed step (resolution_check.cpp); `judged` is the summary so far.
-ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged);
+// `half_step`: the run repeated at half its step, made at most once for both checks.
+class RunAtHalfStep;
+ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step);
 
 // The errors of the numbers the run derives from its trajectory (the mutual period), by the run
 // repeated at half the step (derived_check.cpp), from `judged`, the summary so far, into `out`.
-void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunSummary& out);
+void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step, RunSummary& out);
 
 }  // namespace noether
