@@ -58,6 +58,38 @@ TEST(DerivedCheck, TheDidymosPeriodsEstimatedErrorIsWithinAFactorTwoOfItsTrueErr
   EXPECT_LT(suggested, 600.0);
 }
 
+// DART's period change in one run (examples/didymos-dart.yaml): ΔP's error estimated within a
+// factor 2 of its true error (against ΔP at 3.75 s) at 600, 300, 120 and 30 s — it is some
+// 60 times smaller than either period's, whose errors ΔP's difference cancels —; at 600 s the
+// verdict names ΔP (run.trust.period_change 1e-3 of it), at 300 s it passes.
+TEST(DerivedCheck, TheDartPeriodChangesEstimatedErrorIsWithinAFactorTwoOfItsTrueError) {
+  auto dart = [](double step) {
+    return run_scene(load_scene(test::source_path("examples/didymos-dart.yaml"),
+                                {"integrator.step=" + std::to_string(step), "run.output_every=600"}),
+                     registry(), {});
+  };
+  const RunSummary reference = dart(3.75);
+  ASSERT_EQ(reference.period_changes.size(), 1u);
+  const double dP = reference.period_changes[0].change();
+  EXPECT_NEAR(dP / 60, -23.83, 0.01);  // minutes, for a Δv of −2 mm/s
+  for (const double h : {600.0, 300.0, 120.0, 30.0}) {
+    SCOPED_TRACE(h);
+    const RunSummary s = dart(h);
+    ASSERT_EQ(s.period_changes.size(), 1u);
+    const PeriodChange& c = s.period_changes[0];
+    EXPECT_EQ(c.t, 86400.0);
+    ASSERT_TRUE(c.change_error.estimated()) << c.change_error.why_not;
+    const double truth = std::abs(c.change() - dP);
+    EXPECT_GT(c.change_error.error, truth / 2);
+    EXPECT_LT(c.change_error.error, truth * 2);
+    EXPECT_LT(c.change_error.error, c.before_error.error / 30);
+    bool names_dP = false;
+    for (const auto& r : s.verdict.reasons) names_dP |= r.find("the period change ΔP of didymos–dimorphos at t = 86400 s") != std::string::npos;
+    EXPECT_EQ(names_dP, h >= 600.0);
+    EXPECT_EQ(s.verdict.trustworthy, h < 600.0);
+  }
+}
+
 TEST(DerivedCheck, TheMethodsOwnOrderIsUsed) {
   const double reference = didymos(7.5).mutual_period;
   const RunSummary s = didymos(600.0, {"integrator.order=4"});  // (1200 s: a substep too long for the spin)

@@ -8,7 +8,8 @@
      equal to an uninterrupted one: no sample lost, none run twice (resume runs only the samples
      without an outcome).
   3. A sample whose integrator fails is recorded as failed with its message; the others run; exit 3.
-  (and --trajectories K writes the first K samples' full output files).
+  (and --trajectories K writes the first K samples' full output files; each sample records the
+  mutual period and its error that `noether run` prints).
   4. Bad distributions and unknown keys are refused (exit 2) before any sample runs: no file.
   5. A damaged outcome (a flipped byte) is refused by sample, the file unchanged; an outcome
      whose checksum was never written (a kill between the two) runs again and ends identical.
@@ -109,6 +110,24 @@ if p.returncode != 0 or not (trust == 0).all() or not (outcome == 0).all() \
         or not all(m.startswith("untrustworthy: relative energy error") for m in message) \
         or "4 UNTRUSTWORTHY samples" not in p.stderr:
     failures.append(f"untrustworthy samples: exit {p.returncode}, trustworthy {trust}, {message[:1]}, {p.stderr!r}")
+
+# 1d. Each sample records the mutual period its summary prints (from the trajectory, with its
+# error), not only the osculating one: bit for bit `noether run`'s.
+didymos = os.path.join(src, "examples", "didymos.yaml")
+p = subprocess.run([noether, "ensemble", didymos, "--vary", "bodies.dimorphos.velocity.1=list(0.1741158386581219)",
+                    "--samples", "1", "--set", "run.t_end=86400", "-o", "period.h5"], capture_output=True, text=True)
+r = subprocess.run([noether, "run", didymos, "--set", "run.t_end=86400", "--summary", "json", "-o", "period-run.h5"],
+                   capture_output=True, text=True)
+if p.returncode != 0 or r.returncode != 0:
+    failures.append(f"the period ensemble: exit {p.returncode}, {r.returncode}: {p.stderr[-300:]} {r.stderr[-300:]}")
+else:
+    import json
+    summary = json.loads(r.stdout)
+    with h5py.File("period.h5") as f:
+        recorded = (f["summary/mutual_period"][0], f["summary/mutual_period_error"][0], f["orbit/period"][0])
+    if recorded[:2] != (summary["mutual_period"], summary["mutual_period_error"]) or recorded[2] == recorded[0]:
+        failures.append(f"the ensemble's mutual period {recorded} against the run's {summary['mutual_period']} "
+                        f"± {summary['mutual_period_error']}")
 
 # 1b. Across processes: `mpirun -n 2` (oversubscribed where there are fewer cores) gives the same file.
 mpirun = "/usr/bin/mpirun"

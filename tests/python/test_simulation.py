@@ -429,3 +429,20 @@ def test_threads_give_the_same_run_bit_for_bit(monkeypatch):
     for bad in (0, -1, 1.5, True, "2"):
         with pytest.raises(noether.SceneError, match="threads must be a positive whole number"):
             noether.Simulation(_ellipsoid_lattice(2), threads=bad)
+
+
+def test_dart_in_python_gives_the_period_change_the_command_prints(source, noether_exe, tmp_path):
+    # ΔP in one run (docs/user-guide.md "Verdict"): Python's finish() carries the same period
+    # changes, with their errors, as the command's JSON — the impulse applied in a call of its own.
+    scene = str(source / "examples/didymos-dart.yaml")
+    sim = noether.Simulation(scene)
+    sim.integrate(86400)
+    sim.integrate(259200)
+    got = sim.finish()["period_changes"]
+    cli = json.loads(subprocess.run([noether_exe, "run", scene, "--no-progress", "--summary", "json", "-o",
+                                     str(tmp_path / "dart.h5")], check=True, capture_output=True, text=True).stdout)
+    assert len(got) == 1 and got[0]["t"] == 86400
+    assert -23.9 < got[0]["change"] / 60 < -23.8
+    assert 0 < got[0]["change_error"] < got[0]["before_error"] / 30
+    assert got[0]["error_method"] == "the run repeated at half the step, Richardson order 2"
+    assert got == cli["period_changes"]

@@ -36,6 +36,10 @@ struct TrustThresholds {
   // 1e-3, 43 s of Didymos' 11.9 h, well inside the ±1 min to which DART's ΔP of −33 min was
   // measured (docs/user-guide.md, "Verdict").
   double period = 1e-3;
+  // An impulse's period change ΔP: its estimated error over |ΔP| (PeriodChange::change_error):
+  // 1e-3, half the 2.2e-3 to which DART's was measured (Scheirich et al. 2024: −33.240 ± 0.072
+  // min).
+  double period_change = 1e-3;
 };
 
 struct RunSettings {

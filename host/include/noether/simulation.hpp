@@ -95,6 +95,20 @@ struct DerivedError {
   std::string method() const;  // "step halving, Richardson order 2"
 };
 
+// The mutual period before and after a jump of the run (an impulse; docs/user-guide.md
+// "Impulses"), each timed as RunSummary::mutual_period is over the stretch between jumps — the
+// run's start or the jump before to this one, this one to the next or the end —, and their
+// difference ΔP, each with its error (the run repeated at half the step; ΔP's own change, in
+// which the errors the two periods share cancel).
+struct PeriodChange {
+  double t = 0.0;  // the jump
+  double before = std::numeric_limits<double>::quiet_NaN(), after = std::numeric_limits<double>::quiet_NaN();
+  int revolutions_before = 0, revolutions_after = 0;
+  DerivedError before_error, after_error, change_error;
+  bool measured() const { return revolutions_before > 0 && revolutions_after > 0; }
+  double change() const { return after - before; }  // ΔP (NaN unless measured)
+};
+
 // What a force beyond the potential put into the run (docs/forces.md), from t0 to the end: the
 // columns of State::force_balance (docs/equations.md eq. 33.3).
 struct ForceSummary {
@@ -142,11 +156,13 @@ struct RunSummary {
   // Two-body-like scenes (two bodies hold 99 % of the mass): the period of their mutual orbit
   // measured from the trajectory — the time of the last whole revolution of their relative
   // position (in the plane of its t0 angular momentum, crossings interpolated between output
-  // frames) divided by the revolutions. NaN before one revolution.
+  // frames by a cubic Hermite in the angle and its rate) divided by the revolutions. NaN before
+  // one revolution.
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
   DerivedError mutual_period_error;  // set when a run finishes (Simulation::finish)
+  std::vector<PeriodChange> period_changes;  // one per jump of the mutual orbit (its errors: at finish)
   // The scene's impulses applied so far (in this segment) and the energy they added: each moves
   // the references E0, P0, L0 by its jump, so the errors above are the integrator's alone.
   int impulses = 0;

@@ -18,7 +18,9 @@ MutualOrbitFeature::MutualOrbitFeature(const System& system, std::size_t a, std:
 void MutualOrbitFeature::start_at(const State& state) {
   timing_ = false;
   e1_ = e2_ = Vec3::Zero();
-  t0_ = t_prev_ = angle_prev_ = swept_ = 0.0;
+  t0_ = t_prev_ = state.t;
+  angle_prev_ = swept_ = 0.0;
+  rate_prev_ = std::numeric_limits<double>::quiet_NaN();
   revolutions_ = 0;
   period_ = std::numeric_limits<double>::quiet_NaN();
   const Vec3 r = relative(state), v = state.p.col(b_) / system_.body(static_cast<std::size_t>(b_)).mass -
@@ -28,42 +30,81 @@ void MutualOrbitFeature::start_at(const State& state) {
   timing_ = true;
   e1_ = r.normalized();
   e2_ = h.cross(r).normalized();
-  t0_ = t_prev_ = state.t;
+  rate_prev_ = rate(state);
 }
+
+void MutualOrbitFeature::after_jump(const State& after) {
+  // A second jump at the same instant (two impulses at one time) is part of the first.
+  if (after.t != t0_) ended_.push_back({t0_, timing_ ? revolutions_ : 0, timing_ ? period_ : std::numeric_limits<double>::quiet_NaN()});
+  start_at(after);
+}
+
+double MutualOrbitFeature::rate(const State& state) const {
+  const Vec3 r = relative(state), v = state.p.col(b_) / system_.body(static_cast<std::size_t>(b_)).mass -
+                                      state.p.col(a_) / system_.body(static_cast<std::size_t>(a_)).mass;
+  const double x = r.dot(e1_), y = r.dot(e2_);
+  return (x * v.dot(e2_) - y * v.dot(e1_)) / (x * x + y * y);  // d/dt atan2(y, x)
+}
+
+namespace {
+
+// When the angle swept reaches `turn` between two frames, from its values s0 < turn <= s1 and
+// rates w0, w1 there: the cubic Hermite interpolant's crossing, by bisection (its error O(Δt⁴);
+// a linear one's, O(Δt²), is 0.3 s a crossing of Dimorphos' orbit after DART at 600 s frames).
+// Without the rates (a checkpoint from before they were kept): the linear one.
+double crossing(double t0, double s0, double w0, double t1, double s1, double w1, double turn) {
+  const double dt = t1 - t0;
+  if (!std::isfinite(w0) || !std::isfinite(w1)) return t0 + (turn - s0) / (s1 - s0) * dt;
+  auto H = [&](double u) {  // the Hermite basis h00, h10, h01, h11 at u ∈ [0, 1]
+    const double u2 = u * u, u3 = u2 * u;
+    return (2 * u3 - 3 * u2 + 1) * s0 + (u3 - 2 * u2 + u) * dt * w0 + (-2 * u3 + 3 * u2) * s1 + (u3 - u2) * dt * w1;
+  };
+  double lo = 0.0, hi = 1.0;  // H(lo) < turn <= H(hi)
+  for (int k = 0; k < 60 && hi - lo > 1e-16; ++k) (H(0.5 * (lo + hi)) < turn ? lo : hi) = 0.5 * (lo + hi);
+  return t0 + hi * dt;
+}
+
+}  // namespace
 
 void MutualOrbitFeature::track(const State& state) {
   if (!timing_ || state.t <= t_prev_) return;
   const Vec3 r = relative(state);
-  const double angle = std::atan2(r.dot(e2_), r.dot(e1_));
+  const double angle = std::atan2(r.dot(e2_), r.dot(e1_)), w = rate(state);
   double step = angle - angle_prev_;
   step -= 2 * std::numbers::pi * std::round(step / (2 * std::numbers::pi));  // to (−π, π]
   const double before = swept_, after = before + step;
   for (double turn = 2 * std::numbers::pi * (revolutions_ + 1); after >= turn && after > before;
        turn += 2 * std::numbers::pi) {
-    const double t_turn = t_prev_ + (turn - before) / (after - before) * (state.t - t_prev_);
+    const double t_turn = crossing(t_prev_, before, rate_prev_, state.t, after, w, turn);
     ++revolutions_;
     period_ = (t_turn - t0_) / revolutions_;
   }
   swept_ = after;
   angle_prev_ = angle;
+  rate_prev_ = w;
   t_prev_ = state.t;
 }
 
 void MutualOrbitFeature::observe_frame(const State& state, bool first_of_segment, RunSummary&) {
-  if (first_of_segment) start_at(state);
+  if (first_of_segment) ended_.clear(), start_at(state);
   track(state);
 }
 
 void MutualOrbitFeature::save_running(SavedSummary& out) const {
   out.numbers.push_back({"mutual_orbit",
                          {timing_ ? 1.0 : 0.0, e1_.x(), e1_.y(), e1_.z(), e2_.x(), e2_.y(), e2_.z(), t0_, t_prev_,
-                          angle_prev_, swept_, static_cast<double>(revolutions_), period_}});
+                          angle_prev_, swept_, static_cast<double>(revolutions_), period_, rate_prev_}});
+  if (ended_.empty()) return;  // (HDF5 refuses an attribute of no numbers)
+  std::vector<double> ended;
+  for (const Stretch& s : ended_) ended.insert(ended.end(), {s.t0, static_cast<double>(s.revolutions), s.period});
+  out.numbers.push_back({"mutual_orbit.ended", std::move(ended)});
 }
 
 void MutualOrbitFeature::restore_running(const SavedSummary& in) {
   const std::vector<double>* v = in.number("mutual_orbit");
   if (!v) return;  // an older checkpoint: timed from the loaded state
-  if (v->size() != 13) throw Error("its mutual orbit's running values are not 13 numbers");
+  // 13 numbers: a checkpoint from before the angular rate was kept (the next crossing linear).
+  if (v->size() != 14 && v->size() != 13) throw Error("its mutual orbit's running values are not 14 numbers");
   const std::vector<double>& n = *v;
   timing_ = n[0] != 0.0;
   e1_ = Vec3(n[1], n[2], n[3]);
@@ -71,6 +112,13 @@ void MutualOrbitFeature::restore_running(const SavedSummary& in) {
   t0_ = n[7], t_prev_ = n[8], angle_prev_ = n[9], swept_ = n[10];
   revolutions_ = static_cast<int>(n[11]);
   period_ = n[12];
+  rate_prev_ = n.size() > 13 ? n[13] : std::numeric_limits<double>::quiet_NaN();
+  ended_.clear();
+  const std::vector<double>* ended = in.number("mutual_orbit.ended");
+  if (!ended) return;  // no jump yet, or a checkpoint from before the stretches were kept
+  if (ended->size() % 3 != 0) throw Error("its mutual orbit's ended stretches are not triples of numbers");
+  for (std::size_t k = 0; k < ended->size(); k += 3)
+    ended_.push_back({(*ended)[k], static_cast<int>((*ended)[k + 1]), (*ended)[k + 2]});
 }
 
 void MutualOrbitFeature::summarize(RunSummary& summary) const {
@@ -79,6 +127,22 @@ void MutualOrbitFeature::summarize(RunSummary& summary) const {
                                 : std::string();
   summary.mutual_period = period_;
   summary.mutual_revolutions = revolutions_;
+  // Each jump: the stretch it ended, and the one it began (the next jump's, or the current one);
+  // the errors a finished run estimated for it (derived_check.cpp) kept.
+  const std::vector<PeriodChange> estimated = std::move(summary.period_changes);
+  summary.period_changes.clear();
+  for (std::size_t k = 0; k < ended_.size(); ++k) {
+    PeriodChange c;
+    for (const PeriodChange& e : estimated)
+      if (e.t == (k + 1 == ended_.size() ? t0_ : ended_[k + 1].t0))
+        c.before_error = e.before_error, c.after_error = e.after_error, c.change_error = e.change_error;
+    const bool last = k + 1 == ended_.size();
+    c.t = last ? t0_ : ended_[k + 1].t0;
+    c.before = ended_[k].period, c.revolutions_before = ended_[k].revolutions;
+    c.after = last ? (timing_ ? period_ : std::numeric_limits<double>::quiet_NaN()) : ended_[k + 1].period;
+    c.revolutions_after = last ? (timing_ ? revolutions_ : 0) : ended_[k + 1].revolutions;
+    summary.period_changes.push_back(c);
+  }
 }
 
 }  // namespace noether::detail

@@ -2,12 +2,16 @@
 // The mutual orbit of a two-body-like scene as a run feature (RunSummary::mutual_period;
 // docs/user-guide.md, "Summary reference"): the angle the secondary sweeps about the primary in
 // the orbit's plane at the segment's start, unwrapped frame by frame, each whole revolution's
-// time interpolated linearly, the period the last whole revolution's time over the revolutions.
-// An impulse (any feature's jump) times the orbit afresh from the state after it. Its running
-// values are kept in a saved simulation, so a loaded run's period is the uninterrupted run's.
+// time interpolated between frames (cubic Hermite, from the angle and its rate), the period
+// the last whole revolution's time over the revolutions.
+// An impulse (any feature's jump) times the orbit afresh from the state after it; the stretches
+// it ends are kept, so the summary has the period before and after each jump (its
+// period_changes: ΔP in one run). Jumps at one instant are one. Its running values are kept in
+// a saved simulation, so a loaded run's periods are the uninterrupted run's.
 #include "run/run_feature.hpp"
 
 #include <limits>
+#include <vector>
 
 namespace noether::detail {
 
@@ -18,7 +22,7 @@ class MutualOrbitFeature final : public RunFeature {
   std::string_view name() const override { return "mutual_orbit"; }
   void start(const State&, Eigen::Ref<Eigen::MatrixXd>) override {}
   void observe_frame(const State& state, bool first_of_segment, RunSummary&) override;
-  void after_jump(const State& after) override { start_at(after); }
+  void after_jump(const State& after) override;
   void save_running(SavedSummary& out) const override;
   void restore_running(const SavedSummary& in) override;
   void summarize(RunSummary& summary) const override;
@@ -27,12 +31,22 @@ class MutualOrbitFeature final : public RunFeature {
   void start_at(const State& state);  // the orbit's plane and the clock from here
   void track(const State& state);     // the angle swept since, whole revolutions timed
   Vec3 relative(const State& state) const { return state.x.col(b_) - state.x.col(a_); }
+  double rate(const State& state) const;  // the angle's rate of change in the plane
+
+  // A stretch of the orbit between jumps, timed: where it began, its whole revolutions, period.
+  struct Stretch {
+    double t0;
+    int revolutions;
+    double period;
+  };
 
   const System& system_;
+  std::vector<Stretch> ended_;  // the stretches jumps ended, in order (the current one is below)
   Eigen::Index a_, b_;
   bool timing_ = false;  // false: a radial fall, no orbit to time
   Vec3 e1_ = Vec3::Zero(), e2_ = Vec3::Zero();  // the plane at the start: r0 and its prograde normal
   double t0_ = 0.0, t_prev_ = 0.0, angle_prev_ = 0.0, swept_ = 0.0;
+  double rate_prev_ = std::numeric_limits<double>::quiet_NaN();  // the angle's rate at t_prev_
   int revolutions_ = 0;
   double period_ = std::numeric_limits<double>::quiet_NaN();
 };

@@ -205,7 +205,7 @@ const SummaryRow kRows[] = {
     {.key = "particles", .kind = Kind::structure, .label = "particles",
      .doc = "the massless particles: count, in flight, escaped, landed per body, the step-halving check (null: none)",
      .has = [](S s) { return s.particles.count > 0; }, .json = particles_json, .line = particles_lines},
-    {.key = "mutual_period", .dimension = Dimension::kTime, .label = "mutual orbit period",
+    {.key = "mutual_period", .dimension = Dimension::kTime, .uses = kEnsemble, .label = "mutual orbit period",
      .doc = "a two-body-like scene's mutual orbit period from the trajectory: the last whole revolution's time / "
             "the revolutions",
      .number = [](S s) { return s.mutual_period; }, .has = [](S s) { return s.mutual_revolutions > 0; },
@@ -221,7 +221,7 @@ const SummaryRow kRows[] = {
                                         " (" + s.mutual_pair + ", " + std::to_string(s.mutual_revolutions) + " revolution" +
                                         (s.mutual_revolutions == 1 ? "" : "s") + " of the trajectory)" + error);
      }},
-    {.key = "mutual_period_error", .dimension = Dimension::kTime,
+    {.key = "mutual_period_error", .dimension = Dimension::kTime, .uses = kEnsemble,
      .doc = "the mutual period's estimated error, by the run repeated at half the step (docs/user-guide.md "
             "\"Verdict\"; on its line)",
      .number = [](S s) { return s.mutual_period_error.error; },
@@ -240,6 +240,13 @@ const SummaryRow kRows[] = {
      .text = [](S s) { return s.mutual_pair; }, .has = [](S s) { return !s.mutual_pair.empty(); }},
     {.key = "mutual_revolutions", .kind = Kind::integer, .doc = "the whole revolutions timed (on its line)",
      .number = [](S s) { return double(s.mutual_revolutions); }},
+    {.key = "period_changes", .kind = Kind::structure, .label = "period change",
+     .doc = "per impulse (jumps at one instant are one) of a two-body-like scene: the mutual period timed before "
+            "and after it (`before`, `after`, from the jump before or the start, to the next or the end; "
+            "`revolutions_before`, `revolutions_after`), `change` = after − before (ΔP), each one's error by the run "
+            "repeated at half the step (`before_error`, `after_error`, `change_error`: ΔP's own change; "
+            "`error_method`: how, or why not); docs/user-guide.md \"Impulses\"",
+     .json = period_changes_json, .line = period_changes_lines},
     {.key = "spin_states", .kind = Kind::structure, .label = "spin state",
      .doc = "per rigid body: libration about its binary's line of centres, or its turns, and nutation "
             "(docs/user-guide.md \"Spin state\")",

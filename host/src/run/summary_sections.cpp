@@ -13,6 +13,11 @@ std::string vector(const Vec3& v) {
   return "[" + json_number(v.x()) + ", " + json_number(v.y()) + ", " + json_number(v.z()) + "]";
 }
 std::string flag(bool value) { return value ? "true" : "false"; }
+std::string printed(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
 }  // namespace
 
 std::string forces_json(const RunSummary& s) {
@@ -72,6 +77,53 @@ std::string particles_lines(const SummaryRow& row, const RunSummary& s) {
                   c.checked, c.fates_differ, c.position, c.landing_point, c.landing_time,
                   summary_time_unit(s).c_str());
     out += summary_line("particles at half the step", text);
+  }
+  return out;
+}
+
+namespace {
+std::string error_json(const DerivedError& e) { return json_number(e.error); }
+// How the errors were estimated, or why not ("" when nothing was asked).
+std::string error_method(const PeriodChange& c) {
+  const DerivedError& e = c.change_error;
+  return e.estimated() ? e.method() : e.why_not;
+}
+}  // namespace
+
+std::string period_changes_json(const RunSummary& s) {  // docs/user-guide.md, "Impulses"
+  std::string out = "[";
+  for (const PeriodChange& c : s.period_changes)
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"t\": " + json_number(c.t) + ", \"before\": " +
+           json_number(c.before) + ", \"revolutions_before\": " + std::to_string(c.revolutions_before) +
+           ", \"after\": " + json_number(c.after) + ", \"revolutions_after\": " + std::to_string(c.revolutions_after) +
+           ", \"change\": " + json_number(c.change()) + ", \"before_error\": " + error_json(c.before_error) +
+           ", \"after_error\": " + error_json(c.after_error) + ", \"change_error\": " + error_json(c.change_error) +
+           ", \"error_method\": " + (error_method(c).empty() ? "null" : json_string(error_method(c))) + "}";
+  return out + "]";
+}
+
+std::string period_changes_lines(const SummaryRow& row, const RunSummary& s) {
+  std::string out;
+  const char* unit = s.time_unit.c_str();
+  char text[512];
+  for (const PeriodChange& c : s.period_changes) {
+    std::snprintf(text, sizeof text, "%s at t = %.6g %s", std::string(row.label).c_str(), c.t, unit);
+    const std::string label = text;
+    if (!c.measured()) {
+      std::snprintf(text, sizeof text,
+                    "not measured: %d whole revolution%s timed before it, %d after (a longer stretch on each side?)",
+                    c.revolutions_before, c.revolutions_before == 1 ? "" : "s", c.revolutions_after);
+      out += summary_line(label, text);
+      continue;
+    }
+    auto error = [&](const DerivedError& e) { return e.estimated() ? " ± " + printed("%.3g", e.error) : std::string(); };
+    const std::string minutes = s.time_unit == "s" ? printed(" = %+.6g min", c.change() / 60.0) : "";
+    std::snprintf(text, sizeof text, "%.10g%s %s (%d rev.) → %.10g%s %s (%d rev.): ΔP = %+.6g%s %s%s", c.before,
+                  error(c.before_error).c_str(), unit, c.revolutions_before, c.after, error(c.after_error).c_str(), unit,
+                  c.revolutions_after, c.change(), error(c.change_error).c_str(), unit, minutes.c_str());
+    out += summary_line(label, text);
+    if (const DerivedError& e = c.change_error; !e.estimated() && !e.why_not.empty())
+      out += summary_line("", "its errors not estimated: " + e.why_not);
   }
   return out;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The run summary's structured rows (run/summary_schema.cpp): each one's JSON value and its text
-// lines — forces, particles, spin states, chaos indicators, the judged orbits and their
+// lines — forces, particles, the period changes, spin states, chaos indicators, the judged orbits and their
 // step-halving check, the pair models, the verdict.
 #include "run/summary_schema.hpp"
 
@@ -12,6 +12,8 @@ std::string forces_json(const RunSummary& s);
 std::string forces_lines(const SummaryRow& row, const RunSummary& s);
 std::string particles_json(const RunSummary& s);
 std::string particles_lines(const SummaryRow& row, const RunSummary& s);
+std::string period_changes_json(const RunSummary& s);
+std::string period_changes_lines(const SummaryRow& row, const RunSummary& s);
 std::string spin_states_json(const RunSummary& s);
 std::string spin_states_lines(const SummaryRow& row, const RunSummary& s);
 std::string chaos_json(const RunSummary& s);

@@ -213,6 +213,8 @@ constexpr SceneKey kTrust[] = {
      .doc = "the fraction of the checked particles whose fate changes at half their step"},
     {.key = "period", .type = T::number, .otherwise = "1e-3",
      .doc = "a mutual orbit period's estimated error (the run repeated at half the step) over the period"},
+    {.key = "period_change", .type = T::number, .otherwise = "1e-3",
+     .doc = "an impulse's period change ΔP: its estimated error over \\|ΔP\\|"},
 };
 
 constexpr SceneKey kParticles[] = {
