@@ -2,7 +2,8 @@
 // — and with the tangent they make jump (the STM, ∂z/∂Δv, a mass's column, the chaos
 // indicators' δ) — saved and loaded, or interrupted and resumed, anywhere: before an impulse,
 // between its two frames (the state before it at its time, and after), after it, ends bit for
-// bit where the uninterrupted run ends, and its summary moved its references by the same jumps.
+// bit where the uninterrupted run ends, and its summary moved its references by the same jumps;
+// an impulse that unbinds a bound pair is warned about with the numbers.
 #include "test_support.hpp"
 
 #include "run/impulse_feature.hpp"
@@ -12,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -44,6 +47,7 @@ void expect_same_summary(const RunSummary& a, const RunSummary& b, const std::st
   EXPECT_EQ(a.max_rel_linear_momentum_error, b.max_rel_linear_momentum_error) << what;
   EXPECT_EQ(a.max_rel_angular_momentum_error, b.max_rel_angular_momentum_error) << what;
   EXPECT_EQ(a.chaos_values.megno, b.chaos_values.megno) << what;
+  EXPECT_EQ(a.warnings, b.warnings) << what;
 }
 
 std::filesystem::path temporary(const std::string& name) {
@@ -190,5 +194,57 @@ TEST(ImpulseFeature, LoadedFromItsOutputFileAnywhereContinuesBitwise) {
     }
     return Simulation::load(file, registry());
   });
+  std::filesystem::remove(file);
+}
+
+// DART's Δv typed in m/s instead of mm/s (issue 63: "sends Dimorphos away unbound, and the summary
+// says trustworthy"): warned, with the speeds — the escape speed at the impulse against
+// sqrt(2 G (m1 + m2) / r) from the state just before it — and the unit slip named; the Δv in
+// mm/s is not warned about. A continuation (saved and loaded after the impulse, or resumed)
+// keeps the one warning.
+TEST(ImpulseFeature, AnImpulseThatUnbindsAPairIsWarnedWithTheNumbers) {
+  const auto dart = [](const std::string& dv) {
+    return load_scene(test::source_path("examples/didymos-dart.yaml"), {"impulses.0.delta_v.1=" + dv});
+  };
+  EXPECT_TRUE(run_scene(dart("-0.0027"), registry(), {}).warnings.empty());
+  const Scene slip = dart("-2.7");
+  Simulation sim(slip, registry());
+  sim.integrate(86400.0, false);  // just before the impulse
+  const State before = sim.state();
+  sim.integrate(259200.0);
+  const RunSummary s = sim.finish();
+  ASSERT_EQ(s.warnings.size(), 1u);
+  const System& sys = slip.system;
+  const double r = (before.x.col(1) - before.x.col(0)).norm();
+  const double escape = std::sqrt(2 * sys.G() * (sys.body(0).mass + sys.body(1).mass) / r);
+  char expected[96];
+  std::snprintf(expected, sizeof expected, "past the escape speed %.4g m/s at %.4g m", escape, r);
+  const std::string& w = s.warnings[0];
+  EXPECT_NE(w.find("impulses.0 (t = 86400 s) unbinds dimorphos from didymos: its |delta_v| of 2.7 m/s"),
+            std::string::npos) << w;
+  EXPECT_NE(w.find(expected), std::string::npos) << w << " / " << expected;
+  EXPECT_NE(w.find("a delta_v in mm/s typed as m/s?"), std::string::npos) << w;
+  EXPECT_NE(format_summary(s).find("warning                       impulses.0"), std::string::npos);
+  EXPECT_NE(format_summary_json(s).find("\"warnings\": [\"impulses.0 (t = 86400 s) unbinds"), std::string::npos);
+  // Saved after the impulse and loaded; interrupted there and resumed: the same one warning.
+  const auto file = temporary("unbound");
+  {
+    Simulation first(slip, registry());
+    first.integrate(90000.0);
+    first.save(file);
+  }
+  auto loaded = Simulation::load(file, registry());
+  loaded->integrate(259200.0);
+  EXPECT_EQ(loaded->finish().warnings, s.warnings);
+  RunOptions options;
+  options.output = file;
+  options.overwrite = true;
+  {
+    Simulation first(slip, registry(), options);
+    first.integrate(90000.0);
+  }
+  auto resumed = Simulation::resume(file, registry());
+  resumed->integrate(259200.0);
+  EXPECT_EQ(resumed->finish().warnings, s.warnings);
   std::filesystem::remove(file);
 }

@@ -192,6 +192,9 @@ struct RunSummary {
   double wall_seconds = 0.0;
   int threads = 1;  // threads inside each evaluation of the potential (RunOptions::threads)
   ParticleSummary particles;  // count 0: the scene has none
+  // What in the scene's input looks mistaken, with the numbers (an impulse that unbinds a bound
+  // pair): said, not judged — the run is what was asked for.
+  std::vector<std::string> warnings;
 };
 
 // The scene's forces beyond the potential (`forces:`), made by name: each named by its plugin and

@@ -11,6 +11,8 @@
 #include "run/run_feature.hpp"
 
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace noether::detail {
 
@@ -19,7 +21,9 @@ class ImpulseFeature final : public RunFeature {
   // The impulses of a run on `system` from t0; a fixed-step integrator (step h > 0) applies each
   // at a step of its grid, so those still to come must lie a whole number of steps after t0
   // (SceneError).
-  ImpulseFeature(const System& system, const std::vector<Impulse>& impulses, double t0, double h);
+  // `velocity_unit` names the scene's unit of velocity ("m/s") in its warnings ("": none declared).
+  ImpulseFeature(const System& system, const std::vector<Impulse>& impulses, double t0, double h,
+                 std::string velocity_unit = "");
   std::string_view name() const override { return "impulses"; }
   // At t0 none is applied; from a new segment (Simulation::set_state), those after its time are
   // still to come.
@@ -31,6 +35,13 @@ class ImpulseFeature final : public RunFeature {
   // The next impulse applied where the run stands, at its time (24.1–24.7).
   void jump(StateJump& at) override;
   std::size_t jumps_in(std::span<const double> fields) const override { return applied_in(fields); }
+  // An impulse that turned a bound pair (the body and the one it is given about) unbound is
+  // warned about, with the speeds (a Δv in mm/s typed as m/s sends Dimorphos away): at once on
+  // stderr, and in the summary's warnings.
+  void after_jump(const State& before, const State& after) override;
+  void save_running(SavedSummary& out) const override;
+  void restore_running(const SavedSummary& in) override;
+  void summarize(RunSummary& summary) const override;
 
   // The scene's index of the next impulse to apply, if any is left.
   std::optional<std::size_t> next() const;
@@ -43,6 +54,8 @@ class ImpulseFeature final : public RunFeature {
   const std::vector<Impulse>& impulses_;
   std::vector<std::size_t> order_;  // the scene's impulses by time (equal times: the scene's order)
   std::size_t applied_ = 0;         // order_'s first `applied_` have been applied
+  std::string velocity_unit_;
+  std::vector<std::string> warnings_;  // one per impulse that unbound its pair
 };
 
 }  // namespace noether::detail

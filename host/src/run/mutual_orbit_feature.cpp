@@ -33,7 +33,7 @@ void MutualOrbitFeature::start_at(const State& state) {
   rate_prev_ = rate(state);
 }
 
-void MutualOrbitFeature::after_jump(const State& after) {
+void MutualOrbitFeature::after_jump(const State&, const State& after) {
   // A second jump at the same instant (two impulses at one time) is part of the first.
   if (after.t != t0_) ended_.push_back({t0_, timing_ ? revolutions_ : 0, timing_ ? period_ : std::numeric_limits<double>::quiet_NaN()});
   start_at(after);

@@ -22,7 +22,7 @@ class MutualOrbitFeature final : public RunFeature {
   std::string_view name() const override { return "mutual_orbit"; }
   void start(const State&, Eigen::Ref<Eigen::MatrixXd>) override {}
   void observe_frame(const State& state, bool first_of_segment, RunSummary&) override;
-  void after_jump(const State& after) override;
+  void after_jump(const State& before, const State& after) override;
   void save_running(SavedSummary& out) const override;
   void restore_running(const SavedSummary& in) override;
   void summarize(RunSummary& summary) const override;

@@ -83,9 +83,10 @@ class RunFeature {
   virtual std::optional<double> next_jump() const { return std::nullopt; }
   virtual void jump(StateJump&) {}
   virtual std::size_t jumps_in(std::span<const double> /*fields*/) const { return 0; }
-  // After any feature's jump, at the state after it (also one a continued run's replayed frames
-  // show): what the feature measures from a segment's start starts again there (the mutual orbit).
-  virtual void after_jump(const State&) {}
+  // After any feature's jump, from the state before it to the state after (also one a continued
+  // run's replayed frames show): what the feature measures from a segment's start starts again
+  // there (the mutual orbit); what the jump did is judged (an impulse that unbinds a pair).
+  virtual void after_jump(const State& /*before*/, const State& /*after*/) {}
   // Its tangent columns as a recorded frame holds them in series of their own (the STM's,
   // the sensitivities'; Error when the frame does not hold them); features whose columns are
   // among their fields leave them (restore puts them back).

@@ -185,7 +185,7 @@ struct Simulation::Impl {
   // measure afresh from `after`.
   void jumped(const State& before, const State& after, double U) {
     observer->impulse(before, after, U);
-    for (const auto& f : features) f->after_jump(after);
+    for (const auto& f : features) f->after_jump(before, after);
   }
   // How many jumps (impulses) a recorded frame says the features had made.
   // (A frame without the features' fields — a file from before they were kept — holds none.)

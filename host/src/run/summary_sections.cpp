@@ -241,6 +241,18 @@ std::string pair_models_json(const RunSummary& s) {
   return out + "]";
 }
 
+std::string warnings_json(const RunSummary& s) {
+  std::string out = "[";
+  for (const std::string& w : s.warnings) out += std::string(out.size() > 1 ? ", " : "") + json_string(w);
+  return out + "]";
+}
+
+std::string warnings_lines(const SummaryRow& row, const RunSummary& s) {
+  std::string out;
+  for (const std::string& w : s.warnings) out += summary_line(row.label, w);
+  return out;
+}
+
 std::string verdict_json(const RunSummary& s) {
   std::string reasons = "[";
   for (const auto& r : s.verdict.reasons) reasons += std::string(reasons.size() > 1 ? ", " : "") + json_string(r);

@@ -23,6 +23,8 @@ std::string orbits_lines(const SummaryRow& row, const RunSummary& s);
 std::string resolution_json(const RunSummary& s);
 std::string resolution_lines(const SummaryRow& row, const RunSummary& s);
 std::string pair_models_json(const RunSummary& s);
+std::string warnings_json(const RunSummary& s);
+std::string warnings_lines(const SummaryRow& row, const RunSummary& s);
 std::string verdict_json(const RunSummary& s);
 std::string verdict_lines(const SummaryRow& row, const RunSummary& s);
 
