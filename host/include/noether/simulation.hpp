@@ -57,17 +57,24 @@ struct OrbitScale {
   std::string body, about;
   double energy_scale = 0.0;
   double relative_energy_error = 0.0;  // max |E − E0| / energy_scale (filled by judge)
-  // The smallest orbit, when the energy certifies the run but not this orbit (filled by judge):
-  // the step-halving check decides.
+  double relative_roundoff = 0.0;      // RunSummary::energy_roundoff / energy_scale (filled by judge)
+  // The smallest orbit, when the energy certifies the run but not this orbit — its error, or the
+  // round-off floor below which the energy sees nothing, is too large a part of the orbit's
+  // energy (filled by judge): the resolution check decides.
   bool uncertified = false;
 };
 
-// The step-halving check of an orbit the energy cannot certify (run when a fixed-step run
-// finishes): the scene integrated over one period of that orbit at h and at h/2, and how far the
-// orbit's relative position moved, as a fraction of the pair's separation.
+// The resolution check of an orbit the energy cannot certify (run when a run finishes): the
+// scene integrated again — a fixed-step method's over one period of that orbit at h and at h/2,
+// or whole at h/2; an adaptive method's whole at a tenfold tighter tolerance (a tenfold looser
+// one, an upper bound, where tighter would ask for less than 1e-14) — and how far the orbit's
+// relative position moved, as a fraction of the pair's separation.
 struct ResolutionCheck {
   bool done = false;
   std::string body, about;
+  // How the run was repeated ("at half the step", "at a tenfold tighter tolerance", …), the change made
+  // ("halving the step", …), and what lowers the difference ("a smaller step", …).
+  std::string how = "at half the step", change = "halving the step", remedy = "a smaller step";
   // A run that took at most kWholeRunSeconds is repeated whole at h/2 (whole_run); a longer one
   // over one period of the orbit at h and h/2, extrapolated linearly.
   bool whole_run = false;
@@ -142,6 +149,10 @@ struct RunSummary {
   // max |E − E0| / energy_scale: |E0|, or the initial kinetic energy T0 when |E0| < 10⁻³ T0
   double max_rel_energy_error = 0.0;
   std::string energy_scale = "|E0|";
+  // What round-off allows |E − E0| to reach (filled by judge): ε (T0 + |U0|) (1 + √steps), the
+  // double's ε times the sum of the energy's terms, its rounding at each step adding up as a
+  // random walk. An error at this floor is not the integrator's: no step or tolerance lowers it.
+  double energy_roundoff = 0.0;
   // What the scene conserves, read off the forces at t0: Σ f_i = 0 (no external force) and
   // Σ x_i × f_i + Σ R_k M_k = 0 (no external torque about the origin).
   bool conserves_linear_momentum = true, conserves_angular_momentum = true;

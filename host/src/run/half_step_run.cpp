@@ -11,6 +11,14 @@
 namespace noether {
 
 HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, double output_every) {
+  Params integrator = m.scene.integrator.params;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", step);
+  integrator.set("step", Params::scalar(text));
+  return rerun_scene(m, integrator, t_end, output_every);
+}
+
+HalfStepRun rerun_scene(const Simulation::Impl& m, const Params& integrator, double t_end, double output_every) {
   Scene probe = m.scene;
   probe.run.t_end = t_end;
   probe.run.stm = false;  // the bodies' trajectory is compared, not its derivatives
@@ -18,9 +26,7 @@ HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, do
   probe.run.chaos = false;
   probe.particles = {};  // the bodies' orbit is checked; particles add nothing to it
   probe.run.output_every = output_every;
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", step);
-  probe.integrator.params.set("step", Params::scalar(text));
+  probe.integrator.params = integrator;
   Simulation run(probe, *m.registry, RunOptions{}, m.custom_potential ? m.potential : nullptr);
   HalfStepRun out;
   out.stop = run.integrate(t_end);

@@ -16,6 +16,8 @@ struct HalfStepRun {
 
 // The scene from t0 at step `step` to `t_end`, a frame every `output_every`.
 HalfStepRun rerun_scene(const Simulation::Impl& m, double step, double t_end, double output_every);
+// The same with the integrator's parameters `integrator` (a tighter tolerance).
+HalfStepRun rerun_scene(const Simulation::Impl& m, const Params& integrator, double t_end, double output_every);
 
 // The run repeated at half its step to where it ended (on its step grid: past an event by one
 // step, so that the half-step run meets it too), its frames as often as the run's (what derived

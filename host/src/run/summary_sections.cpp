@@ -193,7 +193,8 @@ std::string orbits_json(const RunSummary& s) {
   for (const auto& o : s.orbits)
     out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(o.body) + ", \"about\": " +
            json_string(o.about) + ", \"energy_scale\": " + json_number(o.energy_scale) +
-           ", \"relative_energy_error\": " + json_number(o.relative_energy_error) + "}";
+           ", \"relative_energy_error\": " + json_number(o.relative_energy_error) +
+           ", \"relative_roundoff\": " + json_number(o.relative_roundoff) + "}";
   return out + "]";
 }
 
@@ -202,8 +203,8 @@ std::string orbits_lines(const SummaryRow& row, const RunSummary& s) {
   if (s.orbits.empty()) return "";
   const OrbitScale& o = s.orbits.front();
   char text[512];
-  std::snprintf(text, sizeof text, "%s about %s: two-body energy %.4g, |E - E0| %.2e of it", o.body.c_str(),
-                o.about.c_str(), o.energy_scale, o.relative_energy_error);
+  std::snprintf(text, sizeof text, "%s about %s: two-body energy %.4g, |E - E0| %.2e of it (round-off floor %.2e)",
+                o.body.c_str(), o.about.c_str(), o.energy_scale, o.relative_energy_error, o.relative_roundoff);
   return summary_line(row.label, text);
 }
 
@@ -211,7 +212,7 @@ std::string resolution_json(const RunSummary& s) {
   const ResolutionCheck& c = s.resolution;
   return "{\"body\": " + json_string(c.body) + ", \"about\": " + json_string(c.about) + ", \"window\": " +
          json_number(c.window) + ", \"per_window\": " + json_number(c.per_window) + ", \"over_run\": " +
-         json_number(c.over_run) + ", \"whole_run\": " + flag(c.whole_run) +
+         json_number(c.over_run) + ", \"whole_run\": " + flag(c.whole_run) + ", \"how\": " + json_string(c.how) +
          ", \"ends_differently\": " + (c.ends_differently.empty() ? std::string("null") : json_string(c.ends_differently)) +
          "}";
 }
@@ -221,11 +222,11 @@ std::string resolution_lines(const SummaryRow& row, const RunSummary& s) {
   if (s.orbits.empty() || !c.done) return "";
   char text[512];
   if (!c.ends_differently.empty())
-    std::snprintf(text, sizeof text, "%s about %s: the whole run at h/2 ends otherwise: %s", c.body.c_str(),
-                  c.about.c_str(), c.ends_differently.c_str());
+    std::snprintf(text, sizeof text, "%s about %s: the whole run %s ends otherwise: %s", c.body.c_str(),
+                  c.about.c_str(), c.how.c_str(), c.ends_differently.c_str());
   else if (c.whole_run)
-    std::snprintf(text, sizeof text, "%s about %s moves by %.2e of its radius over the whole run (repeated at h/2)",
-                  c.body.c_str(), c.about.c_str(), c.over_run);
+    std::snprintf(text, sizeof text, "%s about %s moves by %.2e of its radius over the whole run (repeated %s)",
+                  c.body.c_str(), c.about.c_str(), c.over_run, c.how.c_str());
   else
     std::snprintf(text, sizeof text, "%s about %s moves by %.2e of its radius in %.6g, %.2e over the run",
                   c.body.c_str(), c.about.c_str(), c.per_window, c.window, c.over_run);

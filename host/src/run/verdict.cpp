@@ -2,7 +2,9 @@
 #include <noether/simulation.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace noether {
@@ -16,35 +18,49 @@ void judge(RunSummary& s, const Scene& scene) {
   s.max_rel_energy_error = scale > 0 ? s.max_abs_energy_error / scale : s.max_abs_energy_error;
   Verdict& v = s.verdict;
   v = {};
-  char why[512];
+  char why[768];
+  // The round-off floor of |E − E0| (RunSummary::energy_roundoff): a sum of terms of very
+  // different size (a spacecraft's 0.03 J beside a primary's 9e10 J of spin) cannot be known
+  // better than ε times their sum, and each step's rounding of the state adds to it.
+  const double terms = T0 + std::abs(s.initial.potential);
+  s.energy_roundoff = std::numeric_limits<double>::epsilon() * terms *
+                      (1.0 + std::sqrt(static_cast<double>(std::max<std::int64_t>(s.work.steps, 0))));
+  const bool at_roundoff = s.max_abs_energy_error <= s.energy_roundoff;
   if (s.max_rel_energy_error > limit.energy) {
-    std::snprintf(why, sizeof why, "relative energy error %.2e (of %s) > %.0e", s.max_rel_energy_error,
-                  s.energy_scale.c_str(), limit.energy);
+    std::snprintf(why, sizeof why, "relative energy error %.2e (of %s) > %.0e%s", s.max_rel_energy_error,
+                  s.energy_scale.c_str(), limit.energy,
+                  at_roundoff ? ", but at the round-off floor of the energy's terms: run.trust.energy asks for more "
+                                "than double precision gives (no step or tolerance lowers it)"
+                              : "");
     v.reasons.push_back(why);
   }
   // Each orbit on its own scale (a small body's motion is lost in E0): the run's energy error,
   // which includes that orbit's, as a fraction of the orbit's two-body energy. When that cannot
   // certify the smallest orbit, the step-halving check decides, if it ran (fixed-step methods).
+  // An orbit whose energy is below the floor's 1/limit cannot be certified by the energy even when
+  // its error happens to be small: the resolution check decides.
   for (auto& orbit : s.orbits) {
     orbit.relative_energy_error = orbit.energy_scale > 0 ? s.max_abs_energy_error / orbit.energy_scale : 0.0;
+    orbit.relative_roundoff = orbit.energy_scale > 0 ? s.energy_roundoff / orbit.energy_scale : 0.0;
     orbit.uncertified = false;
   }
   if (!s.orbits.empty()) {  // the smallest scale: the largest fraction
     OrbitScale& smallest = s.orbits.front();
     smallest.uncertified = s.max_rel_energy_error <= limit.energy && smallest.energy_scale < scale &&
-                           smallest.relative_energy_error > limit.energy;
+                           std::max(smallest.relative_energy_error, smallest.relative_roundoff) > limit.energy;
   }
   const ResolutionCheck& check = s.resolution;
   if (check.done) {
     if (!check.ends_differently.empty()) {
-      std::snprintf(why, sizeof why, "%s's orbit about %s is not resolved: halving the step changes how the run ends (%s)",
-                    check.body.c_str(), check.about.c_str(), check.ends_differently.c_str());
+      std::snprintf(why, sizeof why, "%s's orbit about %s is not resolved: %s changes how the run ends (%s)",
+                    check.body.c_str(), check.about.c_str(), check.change.c_str(), check.ends_differently.c_str());
       v.reasons.push_back(why);
     } else if (check.whole_run && check.over_run > limit.position) {
       std::snprintf(why, sizeof why,
-                    "%s's orbit about %s is not resolved: the run repeated at half the step ends %.2e of its radius "
-                    "away > %.0e (a smaller step?)",
-                    check.body.c_str(), check.about.c_str(), check.over_run, limit.position);
+                    "%s's orbit about %s is not resolved: the run repeated %s ends %.2e of its radius away > %.0e "
+                    "(%s?)",
+                    check.body.c_str(), check.about.c_str(), check.how.c_str(), check.over_run, limit.position,
+                    check.remedy.c_str());
       v.reasons.push_back(why);
     } else if (check.over_run > limit.position) {
       std::snprintf(why, sizeof why,
@@ -54,6 +70,18 @@ void judge(RunSummary& s, const Scene& scene) {
                     limit.position);
       v.reasons.push_back(why);
     }
+  } else if (!s.orbits.empty() && s.orbits.front().uncertified && s.orbits.front().relative_roundoff > limit.energy) {
+    const OrbitScale& orbit = s.orbits.front();
+    std::snprintf(why, sizeof why,
+                  "%s's orbit about %s is not certified: the round-off floor of the energy's terms (%.2e: their sum "
+                  "%.3e times the double's epsilon and 1 + sqrt(steps)) is %.2e of the orbit's two-body energy "
+                  "(%.3e) > %.0e, so the energy cannot see its errors; no step or tolerance changes that. A run of "
+                  "at most %.0f s is checked by repeating it when it finishes (at half the step; an adaptive method "
+                  "at a tenfold tighter tolerance), or carry %s as a massless particle (particles:), whose orbit is "
+                  "integrated and judged on its own",
+                  orbit.body.c_str(), orbit.about.c_str(), s.energy_roundoff, terms, orbit.relative_roundoff,
+                  orbit.energy_scale, limit.energy, kWholeRunSeconds, orbit.body.c_str());
+    v.reasons.push_back(why);
   } else if (!s.orbits.empty() && s.orbits.front().uncertified) {
     const OrbitScale& orbit = s.orbits.front();
     std::snprintf(why, sizeof why,
