@@ -57,6 +57,19 @@ TEST(MutualOrbitFeature, ItsPeriodHardlyDependsOnTheFrames) {
   EXPECT_NEAR(sparse.mutual_period, dense.mutual_period, 2e-5 * dense.mutual_period);
 }
 
+// Frames 2.5 time units apart on this 6.3-unit orbit (the angle turns by more than π between some
+// near periapsis, where the nearest branch loses a revolution): not measured, said, rather than
+// an aliased period; 0.25 apart is measured.
+TEST(MutualOrbitFeature, FramesTooFarApartAreNotMeasured) {
+  const RunSummary sparse = run_scene(kepler({"run.output_every=2.5"}), registry(), RunOptions{});
+  EXPECT_TRUE(sparse.mutual_undersampled);
+  EXPECT_EQ(sparse.mutual_revolutions, 0);
+  EXPECT_TRUE(std::isnan(sparse.mutual_period));
+  EXPECT_NE(format_summary(sparse).find("not measured: the frames are too far apart to follow the orbit of sun–planet"),
+            std::string::npos);
+  EXPECT_FALSE(run_scene(kepler({"run.output_every=0.25"}), registry(), RunOptions{}).mutual_undersampled);
+}
+
 // An impulse at t = 5 that shortens the orbit: the period is the new orbit's, timed from the
 // impulse, not a mixture with the old one.
 TEST(MutualOrbitFeature, AnImpulseTimesTheOrbitAfresh) {

@@ -172,6 +172,9 @@ struct RunSummary {
   std::string mutual_pair;  // "a–b" (empty: not two-body-like)
   double mutual_period = std::numeric_limits<double>::quiet_NaN();
   int mutual_revolutions = 0;
+  // The frames were too far apart to follow the orbit (more than a third of a turn): the period
+  // and the period changes are not measured (NaN, none) rather than aliased.
+  bool mutual_undersampled = false;
   DerivedError mutual_period_error;  // set when a run finishes (Simulation::finish)
   std::vector<PeriodChange> period_changes;  // one per jump of the mutual orbit (its errors: at finish)
   // The scene's impulses applied so far (in this segment) and the energy they added: each moves

@@ -72,6 +72,11 @@ void MutualOrbitFeature::track(const State& state) {
   const double angle = std::atan2(r.dot(e2_), r.dot(e1_)), w = rate(state);
   double step = angle - angle_prev_;
   step -= 2 * std::numbers::pi * std::round(step / (2 * std::numbers::pi));  // to (−π, π]
+  // The nearest branch is the angle swept only when frames are well under half a turn apart:
+  // more than a third of a turn, by the step or by the rates' trapezoid, and the period would
+  // alias (a revolution lost between frames) — it is not measured.
+  const double trapezoid = std::isfinite(rate_prev_) ? 0.5 * (rate_prev_ + w) * (state.t - t_prev_) : 0.0;
+  if (std::max(std::abs(step), std::abs(trapezoid)) > 2 * std::numbers::pi / 3) undersampled_ = true;
   const double before = swept_, after = before + step;
   for (double turn = 2 * std::numbers::pi * (revolutions_ + 1); after >= turn && after > before;
        turn += 2 * std::numbers::pi) {
@@ -86,14 +91,15 @@ void MutualOrbitFeature::track(const State& state) {
 }
 
 void MutualOrbitFeature::observe_frame(const State& state, bool first_of_segment, RunSummary&) {
-  if (first_of_segment) ended_.clear(), start_at(state);
+  if (first_of_segment) ended_.clear(), undersampled_ = false, start_at(state);
   track(state);
 }
 
 void MutualOrbitFeature::save_running(SavedSummary& out) const {
   out.numbers.push_back({"mutual_orbit",
                          {timing_ ? 1.0 : 0.0, e1_.x(), e1_.y(), e1_.z(), e2_.x(), e2_.y(), e2_.z(), t0_, t_prev_,
-                          angle_prev_, swept_, static_cast<double>(revolutions_), period_, rate_prev_}});
+                          angle_prev_, swept_, static_cast<double>(revolutions_), period_, rate_prev_,
+                          undersampled_ ? 1.0 : 0.0}});
   if (ended_.empty()) return;  // (HDF5 refuses an attribute of no numbers)
   std::vector<double> ended;
   for (const Stretch& s : ended_) ended.insert(ended.end(), {s.t0, static_cast<double>(s.revolutions), s.period});
@@ -103,8 +109,9 @@ void MutualOrbitFeature::save_running(SavedSummary& out) const {
 void MutualOrbitFeature::restore_running(const SavedSummary& in) {
   const std::vector<double>* v = in.number("mutual_orbit");
   if (!v) return;  // an older checkpoint: timed from the loaded state
-  // 13 numbers: a checkpoint from before the angular rate was kept (the next crossing linear).
-  if (v->size() != 14 && v->size() != 13) throw Error("its mutual orbit's running values are not 14 numbers");
+  // 13 numbers: a checkpoint from before the angular rate was kept (the next crossing linear);
+  // 14: from before the frames' spacing was judged.
+  if (v->size() < 13 || v->size() > 15) throw Error("its mutual orbit's running values are not 15 numbers");
   const std::vector<double>& n = *v;
   timing_ = n[0] != 0.0;
   e1_ = Vec3(n[1], n[2], n[3]);
@@ -113,6 +120,7 @@ void MutualOrbitFeature::restore_running(const SavedSummary& in) {
   revolutions_ = static_cast<int>(n[11]);
   period_ = n[12];
   rate_prev_ = n.size() > 13 ? n[13] : std::numeric_limits<double>::quiet_NaN();
+  undersampled_ = n.size() > 14 && n[14] != 0.0;
   ended_.clear();
   const std::vector<double>* ended = in.number("mutual_orbit.ended");
   if (!ended) return;  // no jump yet, or a checkpoint from before the stretches were kept
@@ -125,6 +133,13 @@ void MutualOrbitFeature::summarize(RunSummary& summary) const {
   summary.mutual_pair = timing_ ? system_.body(static_cast<std::size_t>(a_)).name + "–" +
                                       system_.body(static_cast<std::size_t>(b_)).name
                                 : std::string();
+  summary.mutual_undersampled = timing_ && undersampled_;
+  if (summary.mutual_undersampled) {  // nothing timed can be trusted (below, each stretch alike)
+    summary.mutual_period = std::numeric_limits<double>::quiet_NaN();
+    summary.mutual_revolutions = 0;
+    summary.period_changes.clear();
+    return;
+  }
   summary.mutual_period = period_;
   summary.mutual_revolutions = revolutions_;
   // Each jump: the stretch it ended, and the one it began (the next jump's, or the current one);

@@ -48,6 +48,7 @@ class MutualOrbitFeature final : public RunFeature {
   double t0_ = 0.0, t_prev_ = 0.0, angle_prev_ = 0.0, swept_ = 0.0;
   double rate_prev_ = std::numeric_limits<double>::quiet_NaN();  // the angle's rate at t_prev_
   int revolutions_ = 0;
+  bool undersampled_ = false;  // frames more than a third of a turn apart seen: not measured
   double period_ = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -215,6 +215,9 @@ const SummaryRow kRows[] = {
      .number = [](S s) { return s.mutual_period; }, .has = [](S s) { return s.mutual_revolutions > 0; },
      .line = [](const SummaryRow& r, S s) -> std::string {
        if (s.mutual_pair.empty()) return "";
+       if (s.mutual_undersampled)
+         return summary_line(r.label, "not measured: the frames are too far apart to follow the orbit of " +
+                                          s.mutual_pair + " (more than a third of a turn; lower run.output_every)");
        if (s.mutual_revolutions == 0)
          return summary_line(r.label, "not measured: " + s.mutual_pair + " made less than one revolution");
        const DerivedError& e = s.mutual_period_error;
@@ -244,6 +247,10 @@ const SummaryRow kRows[] = {
      .text = [](S s) { return s.mutual_pair; }, .has = [](S s) { return !s.mutual_pair.empty(); }},
     {.key = "mutual_revolutions", .kind = Kind::integer, .doc = "the whole revolutions timed (on its line)",
      .number = [](S s) { return double(s.mutual_revolutions); }},
+    {.key = "mutual_undersampled", .kind = Kind::flag,
+     .doc = "the frames were more than a third of a turn of the mutual orbit apart: its period is not measured "
+            "(on its line)",
+     .number = [](S s) { return s.mutual_undersampled ? 1.0 : 0.0; }},
     {.key = "period_changes", .kind = Kind::structure, .label = "period change",
      .doc = "per impulse (jumps at one instant are one) of a two-body-like scene: the mutual period timed before "
             "and after it (`before`, `after`, from the jump before or the start, to the next or the end; "
