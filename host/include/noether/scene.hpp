@@ -40,6 +40,10 @@ struct TrustThresholds {
   // 1e-3, half the 2.2e-3 to which DART's was measured (Scheirich et al. 2024: −33.240 ± 0.072
   // min).
   double period_change = 1e-3;
+  // A libration amplitude's estimated error over the amplitude (SpinState::libration_error):
+  // 0.1, twice the frames' own sampling of the extremes at ten frames a libration period
+  // (docs/user-guide.md, "Spin state").
+  double libration = 0.1;
 };
 
 struct RunSettings {

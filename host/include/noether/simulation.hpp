@@ -2,6 +2,7 @@
 // Simulation: one run of a scene — plugins made by name, the integrator driven to t_end,
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
 #include <noether/chaos_values.hpp>
+#include <noether/derived_error.hpp>
 #include <noether/spin_state.hpp>
 #include <noether/diagnostics.hpp>
 #include <noether/integrator.hpp>
@@ -88,19 +89,6 @@ struct ResolutionCheck {
 // The wall time of a run up to which its step-halving check repeats it whole.
 inline constexpr double kWholeRunSeconds = 30.0;
 
-// The error a run estimates for a number it derives from its trajectory (a period; docs/
-// user-guide.md, "Verdict"): the run repeated at half the step, Q(h) − Q(h/2) times
-// 2^p / (2^p − 1) (Richardson, for the method's order p; an order the method does not declare:
-// times 2, the bound for any p ≥ 1).
-struct DerivedError {
-  double error = std::numeric_limits<double>::quiet_NaN();         // |Q(h) − Q*| estimated; NaN: not
-  double at_half_step = std::numeric_limits<double>::quiet_NaN();  // Q(h/2)
-  double step = 0.0;  // h
-  int order = 0;      // p used (0: not declared: the factor 2)
-  std::string why_not;  // when it was not estimated, why (empty when it was, or nothing was derived)
-  bool estimated() const { return !std::isnan(error); }
-  std::string method() const;  // "step halving, Richardson order 2"
-};
 
 // The mutual period before and after a jump of the run (an impulse; docs/user-guide.md
 // "Impulses"), each timed as RunSummary::mutual_period is over the stretch between jumps — the

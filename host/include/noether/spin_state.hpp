@@ -3,6 +3,8 @@
 // docs/equations.md eqs. 17.10–17.12): its libration about the line of centres of its binary, and
 // how far its rotation is from a principal axis (tumbling). Each run's summary has one per rigid
 // body, from the output frames.
+#include <noether/derived_error.hpp>
+
 #include <limits>
 #include <string>
 
@@ -17,6 +19,9 @@ struct SpinState {
   // Half the range of the yaw ψ about the line of centres over the frames, unwrapped, degrees
   // (eq. 17.12): the libration amplitude; above 90 the body circulates.
   double libration_amplitude = kNaN;
+  // Its error from the integrator, by the run repeated at half the step (when a run finishes;
+  // not the frames' sampling of the extremes, the same in both runs).
+  DerivedError libration_error;
   double turns = kNaN;                     // net turns of the long axis relative to the line of centres
   double max_pitch = kNaN, max_roll = kNaN;  // max |θ|, max |φ| of eq. 17.10, degrees
   // The frames were too far apart to follow the yaw (the body turned by ≥ 90° relative to the

@@ -46,6 +46,11 @@ std::string why_not_repeated(const Simulation::Impl& m, const RunSummary& judged
   return "";
 }
 
+// A body that librates about its binary's line of centres, followed by the frames.
+bool librates(const SpinState& s) {
+  return !s.other.empty() && !s.undersampled && std::isfinite(s.libration_amplitude) && s.libration_amplitude <= 90.0;
+}
+
 // Q(h), Q(h/2) and the method's order: the error of Q(h) (DerivedError).
 DerivedError estimate(double at_h, double at_half, double h, int order) {
   DerivedError e;
@@ -61,16 +66,21 @@ DerivedError estimate(double at_h, double at_half, double h, int order) {
 
 void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step, RunSummary& out) {
   out.mutual_period_error = {};
-  out.period_changes = judged.period_changes;  // their errors below (the feature keeps them)
+  out.period_changes = judged.period_changes;  // their errors below (the features keep them)
   for (PeriodChange& c : out.period_changes) c.before_error = c.after_error = c.change_error = {};
+  out.spin_states = judged.spin_states;
+  for (SpinState& spin : out.spin_states) spin.libration_error = {};
   const bool changes = std::any_of(judged.period_changes.begin(), judged.period_changes.end(),
                                    [](const PeriodChange& c) { return c.measured(); });
-  if (judged.mutual_revolutions < 1 && !changes) return;  // nothing derived to check
+  const bool librations = std::any_of(judged.spin_states.begin(), judged.spin_states.end(), librates);
+  if (judged.mutual_revolutions < 1 && !changes && !librations) return;  // nothing derived to check
   // Why no error is estimated: said on each number that asked.
   auto not_estimated = [&](const std::string& why) {
     if (judged.mutual_revolutions >= 1) out.mutual_period_error.why_not = why;
     for (PeriodChange& c : out.period_changes)
       if (c.measured()) c.change_error.why_not = why;
+    for (SpinState& spin : out.spin_states)
+      if (librates(spin)) spin.libration_error.why_not = why;
   };
   if (const std::string why = why_not_repeated(m, judged); !why.empty()) return not_estimated(why);
   const HalfStepRun* half = half_step.get();
@@ -99,6 +109,17 @@ void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHal
     c.before_error = estimate(c.before, there->before, h, p);
     c.after_error = estimate(c.after, there->after, h, p);
     c.change_error = estimate(c.change(), there->change(), h, p);
+  }
+  // Each librating body's amplitude against its amplitude at half the step.
+  for (SpinState& spin : out.spin_states) {
+    if (!librates(spin)) continue;
+    const SpinState* there = nullptr;
+    for (const SpinState& s : at_half.spin_states)
+      if (s.body == spin.body) there = &s;
+    if (!there || !librates(*there))
+      spin.libration_error.why_not = "at half the step it does not librate, or its frames cannot follow it";
+    else
+      spin.libration_error = estimate(spin.libration_amplitude, there->libration_amplitude, h, p);
   }
 }
 

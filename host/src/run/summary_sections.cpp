@@ -133,7 +133,8 @@ std::string spin_states_json(const RunSummary& s) {
   for (const SpinState& spin : s.spin_states)
     out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +
            ", \"other\": " + (spin.other.empty() ? "null" : json_string(spin.other)) +
-           ", \"libration_amplitude\": " + json_number(spin.libration_amplitude) + ", \"turns\": " +
+           ", \"libration_amplitude\": " + json_number(spin.libration_amplitude) +
+           ", \"libration_amplitude_error\": " + json_number(spin.libration_error.error) + ", \"turns\": " +
            json_number(spin.turns) + ", \"max_pitch\": " + json_number(spin.max_pitch) +
            ", \"max_roll\": " + json_number(spin.max_roll) + ", \"undersampled\": " + flag(spin.undersampled) +
            ", \"nutation\": " + json_number(spin.nutation) + ", \"max_nutation\": " + json_number(spin.max_nutation) + "}";
@@ -153,8 +154,10 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
                       spin.turns, spin.max_pitch, spin.max_roll);
         what = part;
       } else if (std::isfinite(spin.libration_amplitude)) {
-        std::snprintf(part, sizeof part, "librates +-%.4g deg about the line of centres (max pitch %.3g, roll %.3g deg)",
-                      spin.libration_amplitude, spin.max_pitch, spin.max_roll);
+        const std::string error =
+            spin.libration_error.estimated() ? " ± " + printed("%.3g", spin.libration_error.error) : std::string();
+        std::snprintf(part, sizeof part, "librates +-%.4g%s deg about the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.libration_amplitude, error.c_str(), spin.max_pitch, spin.max_roll);
         what = part;
       }
     }

@@ -142,7 +142,7 @@ void judge(RunSummary& s, const Scene& scene) {
   // (derived_check.cpp): the step that would meet the tolerance, h (tolerance / error)^(1/p) —
   // with p = 1 when the method does not declare its order, a step small enough for any p ≥ 1.
   auto unresolved = [&](const std::string& what, const DerivedError& e, double value, double tolerance,
-                        const char* key) {
+                        const char* key, const std::string& unit) {
     if (!e.estimated() || !(e.error > tolerance * std::abs(value))) return;
     const double fraction = e.error / std::abs(value);
     const double step = e.step * std::pow(tolerance / fraction, 1.0 / std::max(1, e.order));
@@ -150,21 +150,25 @@ void judge(RunSummary& s, const Scene& scene) {
                   "%s is not resolved: its estimated error %.3g %s is %.2e of it > %.0e (run.trust.%s; %s); a step of "
                   "about %.3g %s or less meets it if the error is the step's (on a chaotic orbit none does: run.chaos "
                   "tells)",
-                  what.c_str(), e.error, s.time_unit.c_str(), fraction, tolerance, key, e.method().c_str(), step,
+                  what.c_str(), e.error, unit.c_str(), fraction, tolerance, key, e.method().c_str(), step,
                   s.time_unit.c_str());
     v.reasons.push_back(why);
   };
-  unresolved("the mutual period of " + s.mutual_pair, s.mutual_period_error, s.mutual_period, limit.period, "period");
+  const std::string& T = s.time_unit;
+  unresolved("the mutual period of " + s.mutual_pair, s.mutual_period_error, s.mutual_period, limit.period, "period", T);
   // Each impulse: the period timed before it (those after are the next one's before, or the one
   // above), and ΔP on its own scale.
   for (const PeriodChange& c : s.period_changes) {
     char at[64];
     std::snprintf(at, sizeof at, "%.6g %s", c.t, s.time_unit.c_str());
     unresolved("the mutual period of " + s.mutual_pair + " before the impulse at t = " + at, c.before_error, c.before,
-               limit.period, "period");
+               limit.period, "period", T);
     unresolved("the period change ΔP of " + s.mutual_pair + " at t = " + at, c.change_error, c.change(),
-               limit.period_change, "period_change");
+               limit.period_change, "period_change", T);
   }
+  for (const SpinState& spin : s.spin_states)
+    unresolved("the libration amplitude of " + spin.body, spin.libration_error, spin.libration_amplitude,
+               limit.libration, "libration", "deg");
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
   if (s.min_gap < -1e-6 * s.min_gap_reach) {

@@ -25,7 +25,7 @@ TrustThresholds parse_trust(const Params& trust) {
   for (auto [key, value] : {std::pair<const char*, double*>{"energy", &t.energy}, {"momentum", &t.momentum},
                             {"orthogonality", &t.orthogonality}, {"position", &t.position},
                             {"particle_fates", &t.particle_fates}, {"period", &t.period},
-                            {"period_change", &t.period_change}}) {
+                            {"period_change", &t.period_change}, {"libration", &t.libration}}) {
     *value = keys.number(trust, key);
     if (!(*value > 0.0))
       throw SceneError(trust.at(key).here() + "'run.trust." + key + "' must be a positive number");

@@ -215,6 +215,8 @@ constexpr SceneKey kTrust[] = {
      .doc = "a mutual orbit period's estimated error (the run repeated at half the step) over the period"},
     {.key = "period_change", .type = T::number, .otherwise = "1e-3",
      .doc = "an impulse's period change ΔP: its estimated error over \\|ΔP\\|"},
+    {.key = "libration", .type = T::number, .otherwise = "0.1",
+     .doc = "a libration amplitude's estimated error (the run repeated at half the step) over the amplitude"},
 };
 
 constexpr SceneKey kParticles[] = {
