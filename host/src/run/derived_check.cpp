@@ -2,10 +2,12 @@
 // the energy and momenta cannot see a phase error, yet a period, a ΔP or a libration amplitude
 // is what users publish. The run is repeated whole at half the step and each number's change
 // turned into an estimate of its error at h by Richardson extrapolation: for a method of order
-// p, Q(h) − Q* ≈ (Q(h) − Q(h/2)) · 2^p / (2^p − 1): the mutual period, and the periods before
-// and after each impulse and their difference ΔP — ΔP from its own change, in which the errors
-// the two periods share cancel. For the Didymos scene the period's estimate at 1200 s is 442 s
-// against a true 443 s (tests/test_derived_check.cpp).
+// p, Q(h) − Q* ≈ (Q(h) − Q(h/2)) · 2^p / (2^p − 1): the mutual period, the periods before and
+// after each impulse and their difference ΔP — ΔP from its own change, in which the errors the
+// two periods share cancel —, and each libration amplitude. For the Didymos scene the period's
+// estimate at 1200 s is 443 s against a true 444 s (tests/test_derived_check.cpp). The errors
+// are kept beside the run (Simulation::Impl::derived) and put on every later summary's numbers,
+// which the features rebuild each time (with_derived_errors).
 #include <noether/error.hpp>
 #include <noether/simulation.hpp>
 
@@ -64,16 +66,12 @@ DerivedError estimate(double at_h, double at_half, double h, int order) {
 
 }  // namespace
 
-void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step, RunSummary& out) {
-  out.mutual_period_error = {};
-  out.period_changes = judged.period_changes;  // their errors below (the features keep them)
-  for (PeriodChange& c : out.period_changes) c.before_error = c.after_error = c.change_error = {};
-  out.spin_states = judged.spin_states;
-  for (SpinState& spin : out.spin_states) spin.libration_error = {};
+RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step) {
+  RunSummary out = judged;
   const bool changes = std::any_of(judged.period_changes.begin(), judged.period_changes.end(),
                                    [](const PeriodChange& c) { return c.measured(); });
   const bool librations = std::any_of(judged.spin_states.begin(), judged.spin_states.end(), librates);
-  if (judged.mutual_revolutions < 1 && !changes && !librations) return;  // nothing derived to check
+  if (judged.mutual_revolutions < 1 && !changes && !librations) return out;  // nothing derived to check
   // Why no error is estimated: said on each number that asked.
   auto not_estimated = [&](const std::string& why) {
     if (judged.mutual_revolutions >= 1) out.mutual_period_error.why_not = why;
@@ -82,9 +80,15 @@ void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHal
     for (SpinState& spin : out.spin_states)
       if (librates(spin)) spin.libration_error.why_not = why;
   };
-  if (const std::string why = why_not_repeated(m, judged); !why.empty()) return not_estimated(why);
+  if (const std::string why = why_not_repeated(m, judged); !why.empty()) {
+    not_estimated(why);
+    return out;
+  }
   const HalfStepRun* half = half_step.get();
-  if (!half) return not_estimated("the run at half the step failed");
+  if (!half) {
+    not_estimated("the run at half the step failed");
+    return out;
+  }
   const RunSummary& at_half = half->summary;
   const double h = m.integrator->fixed_step();
   const int p = m.integrator->order();
@@ -121,6 +125,17 @@ void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHal
     else
       spin.libration_error = estimate(spin.libration_amplitude, there->libration_amplitude, h, p);
   }
+  return out;
+}
+
+void with_derived_errors(const RunSummary& from, RunSummary& into) {
+  into.mutual_period_error = from.mutual_period_error;
+  for (PeriodChange& c : into.period_changes)
+    for (const PeriodChange& e : from.period_changes)
+      if (e.t == c.t) c.before_error = e.before_error, c.after_error = e.after_error, c.change_error = e.change_error;
+  for (SpinState& spin : into.spin_states)
+    for (const SpinState& e : from.spin_states)
+      if (e.body == spin.body) spin.libration_error = e.libration_error;
 }
 
 }  // namespace noether

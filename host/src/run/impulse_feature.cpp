@@ -18,8 +18,8 @@
 namespace noether::detail {
 
 ImpulseFeature::ImpulseFeature(const System& system, const std::vector<Impulse>& impulses, double t0, double h,
-                               std::string velocity_unit)
-    : system_(system), impulses_(impulses), order_(impulses.size()), velocity_unit_(std::move(velocity_unit)) {
+                               Units units)
+    : system_(system), impulses_(impulses), order_(impulses.size()), units_(std::move(units)) {
   for (std::size_t k = 0; k < order_.size(); ++k) order_[k] = k;
   std::stable_sort(order_.begin(), order_.end(),
                    [this](std::size_t a, std::size_t b) { return impulses_[a].time < impulses_[b].time; });
@@ -132,16 +132,10 @@ void ImpulseFeature::jump(StateJump& at) {
 
 namespace {
 
-// The two-body state of `body` about `around`: its distance, speed, and the escape speed there.
-struct TwoBody {
-  double r, v, escape;
-  bool bound() const { return v < escape; }
-};
-TwoBody two_body(const System& sys, const State& s, std::size_t body, std::size_t around) {
-  const auto b = static_cast<Eigen::Index>(body), c = static_cast<Eigen::Index>(around);
-  const double r = (s.x.col(b) - s.x.col(c)).norm();
-  const double v = (s.p.col(b) / sys.body(body).mass - s.p.col(c) / sys.body(around).mass).norm();
-  return {r, v, std::sqrt(2 * sys.G() * (sys.body(body).mass + sys.body(around).mass) / r)};
+// The speed at distance r from the impulse's `around` below which its body is bound to it:
+// √(2 G (m + m_around) / r).
+double escape_speed(const System& sys, const Impulse& impulse, double r) {
+  return std::sqrt(2 * sys.G() * (sys.body(impulse.body).mass + sys.body(impulse.around).mass) / r);
 }
 
 }  // namespace
@@ -152,31 +146,27 @@ void ImpulseFeature::after_jump(const State& before, const State& after) {
     const Impulse& impulse = impulses_[k];
     const auto b = static_cast<Eigen::Index>(impulse.body);
     if (impulse.time != after.t || before.p.col(b) == after.p.col(b)) continue;
-    const TwoBody was = two_body(system_, before, impulse.body, impulse.around),
-                  is = two_body(system_, after, impulse.body, impulse.around);
-    if (!was.bound() || is.bound()) return;
-    const double dv = impulse.delta_v.norm();
+    const RelativeOrbit was = relative_orbit(impulse, system_, before), is = relative_orbit(impulse, system_, after);
+    const double r = is.r.norm(), escape = escape_speed(system_, impulse, r);
+    if (!(was.v.norm() < escape) || is.v.norm() < escape) return;
     // Would the same Δv a thousand times smaller have kept the pair bound (a unit slip)?
-    const Vec3 scaled = (after.p.col(b) - before.p.col(b)) / 1000.0 + before.p.col(b);
-    State slip = before;
-    slip.p.col(b) = scaled;
-    // The scene's units of velocity, length and time, when it declares them ("m/s", "m", "s").
-    const std::size_t slash = velocity_unit_.find('/');
-    const std::string v_unit = velocity_unit_.empty() ? "" : " " + velocity_unit_,
-                      length = velocity_unit_.empty() ? "" : " " + velocity_unit_.substr(0, slash),
-                      time = velocity_unit_.empty() ? "" : " " + velocity_unit_.substr(slash + 1);
+    const bool slip = (was.v + (is.v - was.v) / 1000.0).norm() < escape;
+    const std::string velocity = units_.declared ? " " + units_.of_velocity() : "",
+                      length = units_.declared ? " " + units_.of_length() : "",
+                      time = units_.declared ? " " + units_.of_time() : "";
     const std::string& around = system_.body(impulse.around).name;
     char text[640];
     std::snprintf(text, sizeof text,
                   "impulses.%zu (t = %.10g%s) unbinds %s from %s: its |delta_v| of %.4g%s took the speed relative to "
                   "%s from %.4g to %.4g%s, past the escape speed %.4g%s at %.4g%s",
-                  k, impulse.time, time.c_str(), system_.body(impulse.body).name.c_str(), around.c_str(), dv,
-                  v_unit.c_str(), around.c_str(), was.v, is.v, v_unit.c_str(), is.escape, v_unit.c_str(), is.r,
-                  length.c_str());
+                  k, impulse.time, time.c_str(), system_.body(impulse.body).name.c_str(), around.c_str(),
+                  impulse.delta_v.norm(), velocity.c_str(), around.c_str(), was.v.norm(), is.v.norm(), velocity.c_str(),
+                  escape, velocity.c_str(), r, length.c_str());
     std::string warning = text;
-    if (two_body(system_, slip, impulse.body, impulse.around).bound())
-      warning += velocity_unit_ == "m/s" ? "; a thousandth of it would keep the pair bound: a delta_v in mm/s typed as m/s?"
-                                         : "; a thousandth of it would keep the pair bound: a delta_v in a unit 1000 times too large?";
+    if (slip)
+      warning += units_.declared && units_.of_velocity() == "m/s"
+                     ? "; a thousandth of it would keep the pair bound: a delta_v in mm/s typed as m/s?"
+                     : "; a thousandth of it would keep the pair bound: a delta_v in a unit 1000 times too large?";
     spdlog::warn("{}", warning);
     warnings_.push_back(std::move(warning));
     return;

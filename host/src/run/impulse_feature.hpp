@@ -21,9 +21,9 @@ class ImpulseFeature final : public RunFeature {
   // The impulses of a run on `system` from t0; a fixed-step integrator (step h > 0) applies each
   // at a step of its grid, so those still to come must lie a whole number of steps after t0
   // (SceneError).
-  // `velocity_unit` names the scene's unit of velocity ("m/s") in its warnings ("": none declared).
+  // `units`: the scene's, which its warnings name (when declared).
   ImpulseFeature(const System& system, const std::vector<Impulse>& impulses, double t0, double h,
-                 std::string velocity_unit = "");
+                 Units units = {});
   std::string_view name() const override { return "impulses"; }
   // At t0 none is applied; from a new segment (Simulation::set_state), those after its time are
   // still to come.
@@ -54,7 +54,7 @@ class ImpulseFeature final : public RunFeature {
   const std::vector<Impulse>& impulses_;
   std::vector<std::size_t> order_;  // the scene's impulses by time (equal times: the scene's order)
   std::size_t applied_ = 0;         // order_'s first `applied_` have been applied
-  std::string velocity_unit_;
+  Units units_;
   std::vector<std::string> warnings_;  // one per impulse that unbound its pair
 };
 

@@ -23,9 +23,7 @@ void MutualOrbitFeature::start_at(const State& state) {
   rate_prev_ = std::numeric_limits<double>::quiet_NaN();
   revolutions_ = 0;
   period_ = std::numeric_limits<double>::quiet_NaN();
-  const Vec3 r = relative(state), v = state.p.col(b_) / system_.body(static_cast<std::size_t>(b_)).mass -
-                                      state.p.col(a_) / system_.body(static_cast<std::size_t>(a_)).mass;
-  const Vec3 h = r.cross(v);
+  const Vec3 r = relative(state), h = r.cross(relative_velocity(state));
   if (!(h.norm() > 0)) return;  // a radial fall: no orbit to time
   timing_ = true;
   e1_ = r.normalized();
@@ -40,8 +38,7 @@ void MutualOrbitFeature::after_jump(const State&, const State& after) {
 }
 
 double MutualOrbitFeature::rate(const State& state) const {
-  const Vec3 r = relative(state), v = state.p.col(b_) / system_.body(static_cast<std::size_t>(b_)).mass -
-                                      state.p.col(a_) / system_.body(static_cast<std::size_t>(a_)).mass;
+  const Vec3 r = relative(state), v = relative_velocity(state);
   const double x = r.dot(e1_), y = r.dot(e2_);
   return (x * v.dot(e2_) - y * v.dot(e1_)) / (x * x + y * y);  // d/dt atan2(y, x)
 }
@@ -142,15 +139,10 @@ void MutualOrbitFeature::summarize(RunSummary& summary) const {
   }
   summary.mutual_period = period_;
   summary.mutual_revolutions = revolutions_;
-  // Each jump: the stretch it ended, and the one it began (the next jump's, or the current one);
-  // the errors a finished run estimated for it (derived_check.cpp) kept.
-  const std::vector<PeriodChange> estimated = std::move(summary.period_changes);
+  // Each jump: the stretch it ended, and the one it began (the next jump's, or the current one).
   summary.period_changes.clear();
   for (std::size_t k = 0; k < ended_.size(); ++k) {
     PeriodChange c;
-    for (const PeriodChange& e : estimated)
-      if (e.t == (k + 1 == ended_.size() ? t0_ : ended_[k + 1].t0))
-        c.before_error = e.before_error, c.after_error = e.after_error, c.change_error = e.change_error;
     const bool last = k + 1 == ended_.size();
     c.t = last ? t0_ : ended_[k + 1].t0;
     c.before = ended_[k].period, c.revolutions_before = ended_[k].revolutions;

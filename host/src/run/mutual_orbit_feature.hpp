@@ -31,6 +31,10 @@ class MutualOrbitFeature final : public RunFeature {
   void start_at(const State& state);  // the orbit's plane and the clock from here
   void track(const State& state);     // the angle swept since, whole revolutions timed
   Vec3 relative(const State& state) const { return state.x.col(b_) - state.x.col(a_); }
+  Vec3 relative_velocity(const State& state) const {
+    return state.p.col(b_) / system_.body(static_cast<std::size_t>(b_)).mass -
+           state.p.col(a_) / system_.body(static_cast<std::size_t>(a_)).mass;
+  }
   double rate(const State& state) const;  // the angle's rate of change in the plane
 
   // A stretch of the orbit between jumps, timed: where it began, its whole revolutions, period.

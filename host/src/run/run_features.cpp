@@ -22,8 +22,7 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
   if (sc.run.stm) features.push_back(std::make_unique<StmFeature>(State::tangent_rows(sc.system)));
   if (sc.run.chaos) features.push_back(std::make_unique<ChaosFeature>(sc.system));
   if (!sc.impulses.empty())
-    features.push_back(std::make_unique<ImpulseFeature>(sc.system, sc.impulses, sc.initial.t, c.integrator.fixed_step(),
-                                                          sc.units.declared ? sc.units.of_velocity() : ""));
+    features.push_back(std::make_unique<ImpulseFeature>(sc.system, sc.impulses, sc.initial.t, c.integrator.fixed_step(), sc.units));
   if (!sc.particles.empty())
     features.push_back(std::make_unique<ParticleFeature>(sc, c.integrator, c.initial, c.forcing, c.threads));
   if (auto events = std::make_unique<EventFeature>(sc.system, sc.run); events->watches_any())

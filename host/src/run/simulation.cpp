@@ -365,7 +365,7 @@ RunSummary Simulation::finish() {
     const RunSummary judged = summary();
     RunAtHalfStep half_step(m, judged);
     m.summary.resolution = check_resolution(m, judged, half_step);
-    check_derived(m, judged, half_step, m.summary);
+    m.derived = check_derived(m, judged, half_step);
   }
   RunSummary s = summary();
   if (!m.finished && m.writer)

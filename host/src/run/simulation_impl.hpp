@@ -20,6 +20,11 @@ namespace noether {
 using Clock = std::chrono::steady_clock;
 using detail::operator+;
 
+// The errors a finished run estimated for the numbers it derives (`from`: check_derived's
+// summary) put on the same numbers of `into` — the mutual period, each period change (by its
+// time), each libration (by its body) — however the features rebuilt them (derived_check.cpp).
+void with_derived_errors(const RunSummary& from, RunSummary& into);
+
 struct Simulation::Impl {
   Scene scene;
   PluginRegistry* registry = nullptr;  // what made the plugins (the resolution check makes more)
@@ -43,6 +48,9 @@ struct Simulation::Impl {
   // The run is the scene's own trajectory from its initial state (no state set from outside, not
   // loaded from a file): what the step-halving checks repeat.
   bool scene_trajectory = true;
+  // The finished run's summary with the errors of its derived numbers (check_derived), which
+  // every later summary carries (with_derived_errors).
+  std::optional<RunSummary> derived;
   bool custom_potential = false;  // the potential was given in code, not made from the scene
   std::string failure;  // the error that ended the run, if any
   // The run features (run_features.cpp's list), in the order of their tangent columns: the
@@ -226,6 +234,7 @@ struct Simulation::Impl {
     s.final_state = state;
     s.pair_models = pair_models();
     for (const auto& feature : features) feature->summarize(s);
+    if (derived) with_derived_errors(*derived, s);
     judge(s, scene);
     return s;
   }
@@ -348,8 +357,9 @@ struct Simulation::Impl {
 class RunAtHalfStep;
 ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step);
 
-// The errors of the numbers the run derives from its trajectory (the mutual period), by the run
-// repeated at half the step (derived_check.cpp), from `judged`, the summary so far, into `out`.
-void check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step, RunSummary& out);
+// The errors of the numbers the run derives from its trajectory (the mutual period, the period
+// changes, the libration amplitudes), by the run repeated at half the step (derived_check.cpp):
+// `judged`, the summary so far, with them.
+RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step);
 
 }  // namespace noether

@@ -18,12 +18,4 @@ void SpinStateFeature::restore_running(const SavedSummary& in) {
   if (const std::vector<double>* spin = in.number("spin_state")) tracker_.unpack(*spin);  // absent: an older file
 }
 
-void SpinStateFeature::summarize(RunSummary& summary) const {
-  std::vector<SpinState> states = tracker_.spin_states();
-  for (SpinState& state : states)
-    for (const SpinState& before : summary.spin_states)
-      if (before.body == state.body) state.libration_error = before.libration_error;
-  summary.spin_states = std::move(states);
-}
-
 }  // namespace noether::detail

@@ -15,9 +15,7 @@ class SpinStateFeature final : public RunFeature {
   void observe_frame(const State& state, bool first_of_segment, RunSummary&) override;
   void save_running(SavedSummary& out) const override;
   void restore_running(const SavedSummary& in) override;
-  // The states where the run stands, with the libration errors a finished run estimated
-  // (derived_check.cpp) kept.
-  void summarize(RunSummary& summary) const override;
+  void summarize(RunSummary& summary) const override { summary.spin_states = tracker_.spin_states(); }
 
  private:
   SpinStateTracker tracker_;
