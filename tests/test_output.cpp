@@ -416,3 +416,41 @@ TEST(Output, AFeaturesSeriesAreTheRowsItDeclaresFilledFromItsNumbers) {
     fs::remove(file);
   }
 }
+
+// A run that does not carry a series (the dumbbells carry no STM) writes 0 in that series'
+// column of /checkpoint/checksum. Damage there is the table's: the continuation says so, and
+// does not blame a series the file does not have (issue 63, item 6).
+TEST(Output, DamageInAnUnusedChecksumColumnIsTheTables) {
+  const fs::path file = temp_file("noether-unused-checksum");
+  auto registry = test::bundled_plugins();
+  RunOptions options;
+  options.output = file;
+  run_scene(test::dumbbell_scene({"run.t_end=0.1"}), registry, options);
+  {
+    const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    ASSERT_LT(H5Lexists(f, "/derivatives", H5P_DEFAULT), 1) << "the dumbbells should carry no derivatives";
+    const std::vector<hsize_t> shape = dims(f, "/checkpoint/checksum");
+    ASSERT_EQ(shape.size(), 2u);
+    std::vector<std::uint64_t> sums(shape[0] * shape[1]);
+    const hid_t d = H5Dopen2(f, "/checkpoint/checksum", H5P_DEFAULT);
+    H5Dread(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, sums.data());
+    std::size_t unused = shape[1];
+    for (std::size_t c = 0; c < shape[1] && unused == shape[1]; ++c)
+      if (sums[c] == 0 && sums[shape[1] + c] == 0) unused = c;
+    ASSERT_LT(unused, shape[1]) << "no column of /checkpoint/checksum is 0";
+    sums[3 * shape[1] + unused] = 1;  // frame 3
+    H5Dwrite(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, sums.data());
+    H5Dclose(d), H5Fclose(f);
+  }
+  try {
+    Simulation::resume(file, registry, RunOptions{}, 0.2);
+    ADD_FAILURE() << "a damaged checksum table was continued";
+  } catch (const OutputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("frame 3 of /checkpoint/checksum is damaged: its column"), std::string::npos) << what;
+    EXPECT_NE(what.find("a series this file does not hold"), std::string::npos) << what;
+    EXPECT_EQ(what.find("does not match its checksum"), std::string::npos) << what;
+  }
+  fs::remove(file);
+}

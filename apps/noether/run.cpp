@@ -8,6 +8,7 @@
 #include <noether/simulation.hpp>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <csignal>
@@ -117,6 +118,8 @@ int run(const std::string& scene_file, const std::string& output_given,
       resumed_at = sim->time();
     }
     const noether::Scene& scene = sim->scene();
+    if (resume.empty())  // the scene's input warnings, before the run (the summary repeats them)
+      for (const std::string& warning : scene.warnings) spdlog::warn("{}", warning);
     sim->integrate(scene.run.t_end);
     const auto summary = sim->finish();
     if (json) {

@@ -12,10 +12,12 @@ potentials and integrators are plugins chosen by name in the scene. Errors are
 noether.Error and its kinds (SceneError, PluginError, IntegrationError, OutputError), with the
 messages the command prints.
 """
+import functools
 import json
 import numbers
 import os
 import sys
+import warnings
 
 import numpy as _np
 
@@ -27,15 +29,128 @@ except ImportError as e:  # a compiled module for another interpreter (pyenv, a 
                       f"{sys.version.split()[0]}): it is built for Debian's /usr/bin/python3, which "
                       f"tools/install-deps.sh provisions; run with /usr/bin/python3 (README, \"Python\") [{e}]") from None
 from . import _noether
+
+
+class ArgumentError(Error, TypeError):
+    """An argument of the wrong type or kind — text where a number goes, complex values where real
+    ones go, a number where a path goes — raised by noether's functions and Simulation's methods
+    before anything runs or changes: a noether.Error, and a TypeError as Python's own checks are."""
+
+
+class InputWarning(UserWarning):
+    """A scene value that is allowed but looks like a slip (a spin faster than the body's breakup
+    rate, a step longer than the scene's shortest period, a density no rock has): the message
+    gives the numbers and the key. The same warnings are in summary()["warnings"]."""
+
+
+
+
+def _wrong_argument(name, e):
+    """The ArgumentError for what a conversion or the compiled module raised about an argument of
+    `name` (a function or method): the message's first line, and for pybind11's "incompatible
+    function arguments" the arguments the call takes."""
+    text = str(e)
+    if "incompatible function arguments" in text:
+        import re
+        takes = re.search(r"1\. \((?:self: [^,)]*(?:, )?)?(.*)\) ->", text)
+        text = "an argument of the wrong type" + (f" (it takes {takes.group(1)})" if takes else "")
+    elif "Unable to cast" in text:
+        text = "an argument of the wrong type"
+    error = ArgumentError(f"{name}: {text.splitlines()[0] if text else type(e).__name__}")
+    error._named = True
+    return error
+
+
+def _caller_stacklevel():
+    """warnings.warn's stacklevel of the first frame outside this package: the user's line."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    frame, level = sys._getframe(1), 1
+    while frame is not None and os.path.dirname(os.path.abspath(frame.f_code.co_filename)) == here:
+        frame, level = frame.f_back, level + 1
+    return level
+
+
+def _checked_arguments(fn):
+    """fn, raising ArgumentError (named after fn) for what Python's conversions (float("x"),
+    os.fspath(3)) and the compiled module's argument checks raise about an argument: a TypeError,
+    a ValueError, pybind11's bare "Unable to cast" RuntimeError. noether's own errors pass as they
+    are (a Python potential's exceptions reach here as noether.IntegrationError)."""
+    name = fn.__qualname__.replace(".__init__", "")
+
+    @functools.wraps(fn)
+    def checked(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except ArgumentError as e:  # one of the explicit checks: named after the outermost call
+            if getattr(e, "_named", False):
+                raise
+            named = ArgumentError(f"{name}: {e}")
+            named._named = True
+            raise named from None
+        except Error:
+            raise
+        except (TypeError, ValueError) as e:
+            raise _wrong_argument(name, e) from None
+        except RuntimeError as e:
+            if type(e) is RuntimeError and "Unable to cast" in str(e):
+                raise _wrong_argument(name, e) from None
+            raise
+    return checked
+
+
+def _real(name, value):
+    """value as a float, or ArgumentError: a real number (Python's or NumPy's; not a bool, not
+    complex, not text)."""
+    if isinstance(value, numbers.Real) and not isinstance(value, (bool, _np.bool_)):
+        return float(value)
+    if isinstance(value, numbers.Complex):
+        raise ArgumentError(f"{name}: {value!r} is complex; give a real number")
+    raise ArgumentError(f"{name}: expected a real number, not {type(value).__name__} {value!r:.60}")
+
+
+def _reals(name, value):
+    """value as an array of float64, or ArgumentError: real numbers only — complex values are
+    refused (NumPy would drop their imaginary parts with a warning), as are text, None and bools."""
+    try:
+        a = _np.asarray(value)
+    except (TypeError, ValueError) as e:  # ragged nested lists
+        raise ArgumentError(f"{name}: not an array of numbers ({e})") from None
+    if a.dtype.kind == "c":
+        raise ArgumentError(f"{name}: complex values; give real numbers (numpy.real(x) if the imaginary parts "
+                            "are zero by construction)")
+    if a.dtype.kind not in "iuf":
+        raise ArgumentError(f"{name}: expected an array of real numbers, not {a.dtype} ({value!r:.60})")
+    return _np.ascontiguousarray(a, dtype=_np.float64)
+
+
+def _file_path(name, value, optional=False):
+    """os.fspath(value) for a str or os.PathLike (None when optional), or ArgumentError."""
+    if value is None and optional:
+        return None
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    raise ArgumentError(f"{name}: expected a path (str or os.PathLike), not {type(value).__name__} {value!r:.60}")
+
 from .output import Output, read
 from .compare import Table, compare
 from .view import View, view
 
 __all__ = ["Simulation", "Output", "read", "output_series", "compare", "Table", "view", "View", "plugins", "observe", "fit", "stokes", "relative_equilibrium",
            "relative_periodic_orbit", "lyapunov_orbit", "Error",
-           "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
+           "ArgumentError", "InputWarning", "SceneError", "PluginError", "IntegrationError", "OutputError", "__version__"]
 
 
+def _checked_simulation_methods(cls):
+    """cls with each method and classmethod it defines wrapped by _checked_arguments."""
+    for key, value in list(vars(cls).items()):
+        if isinstance(value, classmethod):
+            setattr(cls, key, classmethod(_checked_arguments(value.__func__)))
+        elif callable(value) and (not key.startswith("_") or key == "__init__"):
+            setattr(cls, key, _checked_arguments(value))
+    return cls
+
+
+@_checked_arguments
 def observe(run, observable, times=None, line_of_sight=None, sunlight=None, tessellation=4):
     """An observable of a run's output file (docs/fitting.md): `observable` is
     "NAME:TARGET:CENTER" (position.x, position.y, position.z, sky.east, sky.north, range,
@@ -53,6 +168,7 @@ def observe(run, observable, times=None, line_of_sight=None, sunlight=None, tess
                             sun, int(tessellation))
 
 
+@_checked_arguments
 def stokes(scene, body, degree=8, radius=None, normalized=True, set=None):
     """`noether shape stokes` (docs/gravity-fields.md): the Stokes coefficients of a scene's body
     about its centre of mass in its body frame, from its shape (or its field, or its inertia), to
@@ -65,6 +181,7 @@ def stokes(scene, body, degree=8, radius=None, normalized=True, set=None):
                            bool(normalized), list(set or []))
 
 
+@_checked_arguments
 def fit(scene, observations, free, set=None, max_iterations=30, tolerance=1e-3):
     """`noether fit` (docs/fitting.md): the scene's keys `free` (a list, as --sensitivity takes
     them) estimated from an observation file by weighted least squares on the run's own
@@ -118,6 +235,7 @@ def _scene_text(scene):
         raise SceneError(f"<dict>: {e}") from None
 
 
+@_checked_arguments
 def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None, align=True, tolerance=1e-6):
     """The relative equilibrium nearest to a scene's state and its stability, as
     `noether orbit equilibrium` finds them (docs/relative-equilibria.md).
@@ -147,9 +265,10 @@ def relative_equilibrium(scene, set=(), fix="separation", value=None, pair=None,
     if isinstance(scene, (str, os.PathLike)):
         return _noether.relative_equilibrium(os.fspath(scene), "", "", overrides, fix, value, pair, align,
                                              float(tolerance))
-    raise TypeError("relative_equilibrium(scene): a path to a YAML scene, or a dict of its keys")
+    raise ArgumentError("scene: a path to a YAML scene, or a dict of its keys")
 
 
+@_checked_arguments
 def relative_periodic_orbit(scene, set=(), period=None, turns=0, tolerance=1e-6):
     """A relative periodic orbit of a scene's own integrator near its state, and its multipliers,
     as `noether orbit refine` and `orbit stability` find them for rigid bodies
@@ -176,9 +295,10 @@ def relative_periodic_orbit(scene, set=(), period=None, turns=0, tolerance=1e-6)
     if isinstance(scene, (str, os.PathLike)):
         return _noether.relative_periodic_orbit(os.fspath(scene), "", "", overrides, period, int(turns),
                                                 float(tolerance))
-    raise TypeError("relative_periodic_orbit(scene): a path to a YAML scene, or a dict of its keys")
+    raise ArgumentError("scene: a path to a YAML scene, or a dict of its keys")
 
 
+@_checked_arguments
 def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
     """The periodic orbit of a rigid body's libration at an amplitude (degrees), grown out of the
     libration mode of the relative equilibrium nearest to the scene's state, on the scene's own
@@ -198,7 +318,7 @@ def lyapunov_orbit(scene, body, degrees, set=(), tolerance=1e-6):
     if isinstance(scene, (str, os.PathLike)):
         return _noether.lyapunov_orbit(os.fspath(scene), "", "", overrides, str(body), float(degrees),
                                        float(tolerance))
-    raise TypeError("lyapunov_orbit(scene): a path to a YAML scene, or a dict of its keys")
+    raise ArgumentError("scene: a path to a YAML scene, or a dict of its keys")
 
 
 def _derivative_overrides(set, stm, sensitivities, chaos=False):
@@ -210,6 +330,7 @@ def _derivative_overrides(set, stm, sensitivities, chaos=False):
             + [f"run.sensitivities+={key}" for key in sensitivities] + (["run.chaos=true"] if chaos else []))
 
 
+@_checked_simulation_methods
 class Simulation:
     """A run held open: integrate to a time, read or set the state, integrate on.
 
@@ -249,8 +370,10 @@ class Simulation:
             self._sim = _Simulation.from_file(os.fspath(scene), overrides, _path(output), force, potential,
                                               _threads(threads))
         else:
-            raise TypeError("Simulation(scene): a path to a YAML scene, or a dict of its keys; "
-                            "for YAML text use Simulation.from_yaml(text)")
+            raise ArgumentError("scene: a path to a YAML scene, or a dict of its keys; "
+                                "for YAML text use Simulation.from_yaml(text)")
+        for warning in self._sim.scene_warnings:
+            warnings.warn(warning, InputWarning, stacklevel=_caller_stacklevel())
 
     @classmethod
     def from_yaml(cls, text, set=(), output=None, force=False, potential=None, name="<yaml>", stm=False,
@@ -267,14 +390,14 @@ class Simulation:
         integrators; an output file's frames are replayed into the summary). With output, frames
         go to a new file whose frame 0 is the loaded state. A simulation saved with a Python
         potential needs it again: potential=."""
-        return cls(_Simulation.load(os.fspath(path), _path(output), force, potential, _threads(threads)))
+        return cls(_Simulation.load(_file_path("path", path), _path(output), force, potential, _threads(threads)))
 
     @classmethod
     def resume(cls, path, t_end=None, threads=None):
         """Continues the run recorded in an output file (as `noether run --resume`): from its
         last complete frame, appending to the file; t_end extends it. integrate(sim.run["t_end"])
         then finish() completes it."""
-        return cls(_Simulation.resume(os.fspath(path), float("nan") if t_end is None else float(t_end),
+        return cls(_Simulation.resume(_file_path("path", path), float("nan") if t_end is None else _real("t_end", t_end),
                                       _threads(threads)))
 
     # Running ---------------------------------------------------------------------------------
@@ -282,9 +405,10 @@ class Simulation:
         """Integrates to time t (frames at the scene's output times and at t). Returns a dict:
         t reached, stopped (bool), reason and event ("collision", "close approach", …) when an
         event stopped it before t. t equal to the current time does nothing."""
+        t = _real("t", t)
         if t == self._sim.t:
             return {"t": self._sim.t, "stopped": False, "reason": "", "event": ""}
-        return self._sim.integrate(float(t))
+        return self._sim.integrate(t)
 
     def summary(self):
         """The run summary so far as a dict (the keys of `noether run --summary json`)."""
@@ -353,6 +477,8 @@ class Simulation:
         vector in the order of stm_coordinates; for a key whose components are carried
         ("impulses.0.delta_v": .0, .1, .2) a matrix of those columns, in order; KeyError for a key
         the run does not carry."""
+        if not isinstance(name, str):
+            raise ArgumentError(f"name: a key of sensitivity_names (str), not {type(name).__name__}")
         names = self._sim.sensitivity_names
         if name not in names:
             parts = [n for n in names if n.startswith(name + ".")]
@@ -375,31 +501,36 @@ class Simulation:
         """Saves the simulation where it stands to an output file with one frame (the scene, the
         exact state, the work, the summary's running values in /checkpoint/summary), for
         Simulation.load(), Simulation.resume() or noether.read()."""
-        self._sim.save(os.fspath(path))
+        self._sim.save(_file_path("path", path))
 
     def set_state(self, **parts):
         """Replaces parts of the state: t, positions, velocities, momenta, attitudes (rotation
         matrices), quaternions (w, x, y, z), angular_velocities (body frame), angular_momenta
-        (body frame Π = J Ω). Attitudes that are not rotations raise noether.Error."""
-        self._sim.set_state(**parts)
+        (body frame Π = J Ω), each an array of real numbers of the part's shape (t a real number).
+        What is refused raises noether.Error and changes nothing: attitudes that are not
+        rotations, non-finite values, two bodies at the same position, bodies inside each other
+        when the run stops at collisions (as the scene's initial state is refused), an array of
+        the wrong shape, and — as noether.ArgumentError — complex values or text."""
+        self._sim.set_state(**{key: _real(key, value) if key == "t" else _reals(key, value)
+                               for key, value in parts.items()})
 
     # The state (copies) -----------------------------------------------------------------------
-    t = property(lambda self: self._sim.t, lambda self, v: self._sim.set_state(t=v), doc="time")
-    positions = property(lambda self: self._sim.positions, lambda self, v: self._sim.set_state(positions=v),
+    t = property(lambda self: self._sim.t, lambda self, v: self.set_state(t=v), doc="time")
+    positions = property(lambda self: self._sim.positions, lambda self, v: self.set_state(positions=v),
                          doc="x_i, inertial frame, (n, 3)")
-    velocities = property(lambda self: self._sim.velocities, lambda self, v: self._sim.set_state(velocities=v),
+    velocities = property(lambda self: self._sim.velocities, lambda self, v: self.set_state(velocities=v),
                           doc="v_i = γ_i/m_i, inertial frame, (n, 3)")
-    momenta = property(lambda self: self._sim.momenta, lambda self, v: self._sim.set_state(momenta=v),
+    momenta = property(lambda self: self._sim.momenta, lambda self, v: self.set_state(momenta=v),
                        doc="γ_i = m_i v_i, inertial frame, (n, 3) (the state's own variable: exact)")
-    attitudes = property(lambda self: self._sim.attitudes, lambda self, v: self._sim.set_state(attitudes=v),
+    attitudes = property(lambda self: self._sim.attitudes, lambda self, v: self.set_state(attitudes=v),
                          doc="R_k, body to inertial frame, rigid bodies, (m, 3, 3)")
-    quaternions = property(lambda self: self._sim.quaternions, lambda self, v: self._sim.set_state(quaternions=v),
+    quaternions = property(lambda self: self._sim.quaternions, lambda self, v: self.set_state(quaternions=v),
                            doc="R_k as unit quaternions (w, x, y, z), (m, 4)")
     angular_velocities = property(lambda self: self._sim.angular_velocities,
-                                  lambda self, v: self._sim.set_state(angular_velocities=v),
+                                  lambda self, v: self.set_state(angular_velocities=v),
                                   doc="Ω_k = J_k⁻¹ Π_k, body frame, (m, 3)")
     angular_momenta = property(lambda self: self._sim.angular_momenta,
-                               lambda self, v: self._sim.set_state(angular_momenta=v),
+                               lambda self, v: self.set_state(angular_momenta=v),
                                doc="Π_k, body frame, (m, 3) (the state's own variable: exact)")
 
     # The scene ---------------------------------------------------------------------------------

@@ -302,6 +302,7 @@ class PySimulation {
   std::string finish() { return noether::format_summary_json(sim_->finish()); }
   void save(const std::filesystem::path& file) const { sim_->save(file); }
   std::string scene_as_run() const { return noether::scene_as_run(sim_->scene()); }
+  std::vector<std::string> scene_warnings() const { return sim_->scene().warnings; }
 
   std::vector<std::string> names() const {
     std::vector<std::string> out;
@@ -406,6 +407,7 @@ void noether::python::bind_simulation(py::module_& m) {
       .def("finish", &PySimulation::finish)
       .def("save", &PySimulation::save)
       .def("scene_as_run", &PySimulation::scene_as_run)
+      .def_property_readonly("scene_warnings", &PySimulation::scene_warnings)
       .def_property_readonly("names", &PySimulation::names)
       .def_property_readonly("rigid_names", &PySimulation::rigid_names)
       .def_property_readonly("masses", &PySimulation::masses)

@@ -74,6 +74,65 @@ def test_attitudes_that_are_not_rotations_raise(dumbbells):
     assert sim.attitudes.tobytes() == before.tobytes()  # nothing changed
 
 
+def test_set_state_refuses_what_the_scene_refuses(dumbbells, source):
+    # The command refuses a scene whose bodies start at one position, or inside each other when
+    # the run stops at collisions; set_state refuses the same states (issue 63, item 6), and
+    # changes nothing.
+    sim = noether.Simulation(dumbbells)
+    before = sim.positions
+    with pytest.raises(noether.Error, match="bodies 'alpha' and 'beta' start at the same position"):
+        sim.positions = np.zeros((2, 3))
+    assert sim.positions.tobytes() == before.tobytes()
+    fall = noether.Simulation(source / "examples/collision.yaml")  # spheres of radius 0.05
+    with pytest.raises(noether.Error, match=r"bodies 'left' and 'right' overlap at the start: 0\.02 inside"):
+        fall.positions = [[-0.04, 0, 0], [0.04, 0, 0]]
+    fall.positions = [[-0.06, 0, 0], [0.06, 0, 0]]  # apart: taken
+    assert fall.integrate(2.0)["event"] == "collision"
+
+
+def test_wrong_argument_types_are_argument_errors(dumbbells, tmp_path):
+    # What is not a number, an array of real numbers or a path raises noether.ArgumentError — a
+    # noether.Error and a TypeError — named after the call, and changes nothing; complex values
+    # are refused, not cast to real with their imaginary parts dropped (issue 63, item 6).
+    sim = noether.Simulation(dumbbells)
+    before = sim.positions
+    probes = [
+        (lambda: sim.set_state(positions=before * (1 + 1e-3j)), r"Simulation\.set_state: positions: complex values"),
+        (lambda: setattr(sim, "t", 1 + 2j), r"Simulation\.set_state: t: \(1\+2j\) is complex"),
+        (lambda: setattr(sim, "t", "abc"), r"t: expected a real number, not str 'abc'"),
+        (lambda: setattr(sim, "momenta", [["a", "b", "c"], [1, 2, 3]]), r"momenta: expected an array of real numbers"),
+        (lambda: sim.integrate("10"), r"Simulation\.integrate: t: expected a real number, not str"),
+        (lambda: sim.integrate(None), r"Simulation\.integrate: t: expected a real number, not NoneType"),
+        (lambda: sim.sensitivity(3), r"Simulation\.sensitivity: name: a key of sensitivity_names"),
+        (lambda: sim.save(3), r"Simulation\.save: path: expected a path"),
+        (lambda: noether.Simulation.load(None), r"Simulation\.load: path: expected a path"),
+        (lambda: noether.Simulation(42), r"^Simulation: scene: a path to a YAML scene"),
+        (lambda: noether.relative_equilibrium(42), r"^relative_equilibrium: scene: a path"),
+        (lambda: noether.stokes(tmp_path / "x.yaml", "a", degree="eight"), r"^stokes: "),
+    ]
+    for call, message in probes:
+        with pytest.raises(noether.ArgumentError, match=message) as raised:
+            call()
+        assert isinstance(raised.value, noether.Error) and isinstance(raised.value, TypeError)
+    assert sim.positions.tobytes() == before.tobytes() and sim.t == 0.0
+    sim.set_state(positions=before.astype(np.float32).astype(np.int64) + before)  # integers are numbers
+    sim.set_state(t=np.float32(0.5))
+
+
+def test_input_that_looks_like_a_unit_slip_is_warned(source):
+    # A density typed in g/cm³ where kg/m³ goes (issue 63, item 4): an InputWarning at the user's
+    # line with the numbers, and the same text in the summary's warnings; the run is unchanged.
+    with pytest.warns(noether.InputWarning, match=r"its density 2\.2 kg/m³ is outside the 50–25000 kg/m³.*"
+                      r"was it in g/cm³ \(2\.2e\+03 kg/m³\)\?") as caught:
+        sim = noether.Simulation(source / "examples/didymos.yaml",
+                                 set=["bodies.dimorphos.density=2.2", "run.t_end=60", "run.output_every=60"])
+    assert caught[0].filename == __file__
+    warnings = sim.summary()["warnings"]
+    assert len(warnings) == 1 and warnings[0] == str(caught[0].message)
+    sim.integrate(60)
+    assert sim.finish()["warnings"] == warnings
+
+
 def test_scene_errors_carry_file_and_line(tmp_path, source):
     bad = tmp_path / "bad.yaml"
     bad.write_text((source / "examples/dumbbells.yaml").read_text().replace("mass: 3", "mass: -3"))
@@ -83,7 +142,7 @@ def test_scene_errors_carry_file_and_line(tmp_path, source):
         noether.Simulation(source / "examples/dumbbells.yaml", set=["integrator.step=abc"])
     with pytest.raises(noether.PluginError, match="no-such-plugin"):
         noether.Simulation(source / "examples/dumbbells.yaml", set=["integrator={plugin: no-such-plugin}"])
-    with pytest.raises(TypeError):
+    with pytest.raises(noether.ArgumentError):
         noether.Simulation(42)
 
 

@@ -127,6 +127,10 @@ struct Scene {
   RunSettings run;
   std::vector<Impulse> impulses;  // in the scene's order (keys impulses.K.…), times after t0
   ParticleSettings particles;     // none unless the scene has `particles:`
+  // Values allowed but that look like slips (scene/input_warnings.hpp: a spin beyond breakup, a
+  // step longer than the shortest period, a density no body has), each with the numbers and its
+  // key's file:line. The run's summary carries them; `noether run` prints them as it starts.
+  std::vector<std::string> warnings;
 };
 
 // The scene as run (its resolved tree, after the overrides) as YAML text: load_scene on it

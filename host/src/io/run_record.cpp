@@ -364,8 +364,13 @@ bool RunRecord::read(std::size_t first, std::size_t count,
         if (sums_dataset.valid() && c < checksum_columns_) {
           const std::uint64_t expected = col.dataset.valid() ? checksum64(values, col.width * 8, k) : 0;
           if (sums[checksum_columns_ * j + c] != expected)
-            damaged("frame " + std::to_string(k) + " of " + col.quantity->path + " does not match its checksum in " +
-                    kChecksumPath);
+            damaged(col.dataset.valid()
+                        ? "frame " + std::to_string(k) + " of " + col.quantity->path + " does not match its checksum in " +
+                              kChecksumPath
+                        // A series this run does not write: its column is written 0, so the damage is the table's.
+                        : "frame " + std::to_string(k) + " of " + kChecksumPath + " is damaged: its column " +
+                              std::to_string(c) + " (" + col.quantity->path +
+                              ", a series this file does not hold) is not the 0 written there");
         }
         if (!col.dataset.valid()) continue;
         if (col.quantity->fill.by_feature)

@@ -6,6 +6,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "scene/start_apart.hpp"
 #include "run/half_step_run.hpp"
 #include "run/simulation_impl.hpp"
 
@@ -324,6 +325,8 @@ void Simulation::set_state(const State& s) {
                 std::to_string(nr) + " rigid bodies expected");
   if (!std::isfinite(s.t) || !s.x.allFinite() || !s.p.allFinite() || !s.Pi.allFinite())
     throw Error("set_state: the state has non-finite values");
+  if (const auto conflict = detail::start_conflict(sys, s, m.scene.run.collisions))
+    throw Error("set_state: " + conflict->what);
   for (std::size_t k = 0; k < s.R.size(); ++k) {
     const double orth = (Mat3::Identity() - s.R[k].transpose() * s.R[k]).norm();
     if (!s.R[k].allFinite() || orth > 1e-10 || !(s.R[k].determinant() > 0)) {

@@ -233,6 +233,7 @@ struct Simulation::Impl {
     s.wall_seconds = wall_now();
     s.final_state = state;
     s.pair_models = pair_models();
+    s.warnings = scene.warnings;  // the scene's input warnings, then the features' (an impulse's)
     for (const auto& feature : features) feature->summarize(s);
     if (derived) with_derived_errors(*derived, s);
     judge(s, scene);

@@ -321,8 +321,9 @@ const SummaryRow kRows[] = {
      .doc = "what a tolerance-driven potential chose per pair, its estimated error, and whether it was exceeded",
      .json = pair_models_json, .line = [](const SummaryRow&, S s) { return format_pair_models(s.pair_models); }},
     {.key = "warnings", .kind = Kind::structure, .label = "warning",
-     .doc = "what in the scene's input looks mistaken, with the numbers (an impulse that unbinds a bound pair: "
-            "docs/user-guide.md \"Impulses\"); the run is not judged by them",
+     .doc = "what in the scene's input looks mistaken, with the numbers (a spin past breakup, a step longer than "
+            "the shortest period, a density no body has: docs/user-guide.md \"Units\"; an impulse that unbinds a "
+            "bound pair: \"Impulses\"); the run is not judged by them",
      .json = warnings_json, .line = warnings_lines},
     {.key = "verdict", .kind = Kind::structure, .label = "verdict",
      .doc = "`trustworthy`, or one `UNTRUSTWORTHY: …` line per failed check (docs/user-guide.md \"Verdict\")",

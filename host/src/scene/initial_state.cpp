@@ -4,6 +4,7 @@
 #include "scene/scene_schema.hpp"
 #include "scene/scene_sections.hpp"
 #include "scene/scene_values.hpp"
+#include "scene/start_apart.hpp"
 
 #include <noether/error.hpp>
 #include <noether/euler_angles.hpp>
@@ -191,21 +192,8 @@ State initial_state(const Params& bodies, const System& sys, bool barycentric) {
       if (b.has("angular_momentum")) s.Pi.col(k) = vec3(b.at("angular_momentum"));
     }
   }
-  {  // coincident bodies: equal positions are neighbours in lexicographic order (O(N log N))
-    std::vector<std::size_t> order(sys.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    auto key = [&](std::size_t i) {
-      const auto c = s.x.col(static_cast<Eigen::Index>(i));
-      return std::array<double, 3>{c.x(), c.y(), c.z()};
-    };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
-    for (std::size_t k = 1; k < order.size(); ++k) {
-      const std::size_t i = std::min(order[k - 1], order[k]), j = std::max(order[k - 1], order[k]);
-      if (key(i) == key(j))
-        throw SceneError(bodies.items()[j].here() + "bodies '" + sys.body(i).name + "' and '" +
-                         sys.body(j).name + "' start at the same position");
-    }
-  }
+  if (const auto conflict = start_conflict(sys, s, false))
+    throw SceneError(bodies.items()[conflict->body].here() + conflict->what);
   return s;
 }
 

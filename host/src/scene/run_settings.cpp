@@ -4,6 +4,7 @@
 #include "scene/scene_sections.hpp"
 #include "scene/scene_values.hpp"
 
+#include "scene/start_apart.hpp"
 #include "run/event_watch.hpp"
 
 #include <noether/error.hpp>
@@ -58,25 +59,6 @@ Escape parse_escape(const Params& e, const System& system) {
   return out;
 }
 
-// A body inside another's shape: impossible, unless the scene turned contacts off (then the
-// verdict says so). O(N²) pairs: small scenes.
-void refuse_overlap(const System& sys, const State& initial, const Params& bodies) {
-  if (sys.size() > 64) return;
-  for (const Watch& w : watches(sys, Events{0.0, true, {}})) {
-    const double gap = w.samples ? w.gap(sys, initial) : 0.0;
-    if (gap < -1e-9 * w.threshold) {
-      const auto separation = (initial.x.col(static_cast<Eigen::Index>(w.a)) -
-                               initial.x.col(static_cast<Eigen::Index>(w.b))).norm();
-      std::ostringstream msg;
-      msg.precision(4);
-      msg << bodies.items()[w.b].here() << "bodies '" << sys.body(w.a).name << "' and '" << sys.body(w.b).name
-          << "' overlap at the start: " << -gap << " inside each other's surface (centres " << separation
-          << " apart); move them apart";
-      throw SceneError(msg.str());
-    }
-  }
-}
-
 }  // namespace
 
 RunSettings parse_run(const Params& run, const System& sys, const State& initial, const Params& bodies) {
@@ -112,7 +94,8 @@ RunSettings parse_run(const Params& run, const System& sys, const State& initial
   if (out.output_every <= 0.0 || out.output_every > out.t_end)
     throw SceneError(run.at("output_every").here() +
                      "'run.output_every' must be positive and at most run.t_end");
-  if (out.collisions) refuse_overlap(sys, initial, bodies);
+  if (const auto conflict = start_conflict(sys, initial, out.collisions))
+    throw SceneError(bodies.items()[conflict->body].here() + conflict->what);
   return out;
 }
 

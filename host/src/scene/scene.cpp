@@ -5,6 +5,7 @@
 #include <noether/force_model.hpp>
 #include <noether/scene.hpp>
 
+#include "scene/input_warnings.hpp"
 #include "scene/scene_schema.hpp"
 #include "scene/scene_sections.hpp"
 #include "scene/scene_yaml.hpp"
@@ -63,6 +64,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   if (root.has("particles")) scene.particles = parse_particles(root.at("particles"), scene.system, scene.initial, folder);
   scene.run = parse_run(root.at("run"), scene.system, scene.initial, root.at("bodies"));
   scene.root = std::move(root);
+  scene.warnings = input_warnings(scene);
   return scene;
 }
 
