@@ -24,7 +24,10 @@ int compare(const std::string& scene_file, const std::vector<std::string>& overr
   noether::PluginRegistry registry;
   const noether::CompareSpec spec =
       noether::make_compare_spec(scene, runs, models, reference_model, spec_file, repeats, max_wall_time);
-  const std::string stem = std::filesystem::path(scene_file).stem().string() + "-compare";
+  // The tables and plot share a name: -o's (out/table.csv → out/table.h5, out/table.png), else
+  // SCENE-compare in the working folder.
+  const std::string stem = csv.empty() ? std::filesystem::path(scene_file).stem().string() + "-compare"
+                                       : std::filesystem::path(csv).replace_extension().string();
   if (csv.empty()) csv = stem + ".csv";
   if (h5.empty()) h5 = stem + ".h5";
   if (png.empty()) png = stem + ".png";
@@ -80,8 +83,8 @@ void add_compare_command(CLI::App& app, Command& chosen) {
   cmd->add_option("--spec", o->spec_file, "compare file: {repeats, reference, runs: [...]}");
   cmd->add_option("--repeats", o->repeats, "repeats per run for the median wall time (default 3)");
   cmd->add_option("-o,--csv", o->csv, "CSV table (default SCENE-compare.csv)");
-  cmd->add_option("--h5", o->h5, "HDF5 table (default SCENE-compare.h5)");
-  cmd->add_option("--plot", o->png, "work–precision plot (default SCENE-compare.png)");
+  cmd->add_option("--h5", o->h5, "HDF5 table (default: -o's name with .h5, else SCENE-compare.h5)");
+  cmd->add_option("--plot", o->png, "work–precision plot (default: -o's name with .png, else SCENE-compare.png)");
   cmd->add_flag("--no-plot", o->no_plot, "do not draw the plot");
   cmd->add_flag("--force", o->force, "replace existing tables and plot");
   cmd->add_option("--max-wall-time", o->max_wall_time,

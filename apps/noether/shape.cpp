@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,20 +22,60 @@ namespace noether::app {
 namespace {
 
 struct StokesOptions {
-  std::string scene, body, output, format;
+  std::string scene, body, output, format, units, frame;
   std::vector<std::string> overrides;
   int degree = 8;
-  double radius = 0.0;
+  double radius = 0.0, density = 0.0;
   bool unnormalized = false, force = false;
 };
 
-int shape_stokes(const StokesOptions& o) {
-  const Scene scene = load_scene(o.scene, o.overrides);
+bool is_mesh_file(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".obj";
+}
+
+// A mesh file given instead of a scene: the scene of one homogeneous body of that shape, in SI
+// units (its `units` and `frame` as a scene's polyhedron takes them), named after the file.
+Scene mesh_scene(StokesOptions& o) {
+  const std::filesystem::path mesh(o.scene);
+  if (!(o.density > 0.0) || !std::isfinite(o.density))
+    throw SceneError(o.scene + ": a mesh alone needs --density (kg/m^3, the homogeneous body's; it gives the mass "
+                     "and GM, not the normalized coefficients)");
+  if (o.units.empty())
+    throw SceneError(o.scene + ": a mesh file does not say its units: give --units m or --units km");
+  if (o.body.empty()) o.body = mesh.stem().string();
+  char density[32];
+  std::snprintf(density, sizeof density, "%.17g", o.density);
+  // JSON strings are YAML: the file name and body name quoted whatever they hold.
+  auto quoted = [](const std::string& text) {
+    std::string out = "\"";
+    for (char c : text) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    return out + "\"";
+  };
+  const std::string text = "units: SI\nbodies:\n  - {name: " + quoted(o.body) + ", density: " + density +
+                           ", position: [0, 0, 0], shape: {polyhedron: {file: " + quoted(mesh.filename().string()) +
+                           ", units: " + quoted(o.units) + (o.frame.empty() ? "" : ", frame: " + quoted(o.frame)) +
+                           "}}}\npotential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 1}\n"
+                           "run: {t_end: 1, output_every: 1}\n";
+  return parse_scene(text, o.scene, o.overrides);
+}
+
+int shape_stokes(StokesOptions o) {
+  const bool mesh = is_mesh_file(o.scene);
+  if (!mesh && (o.density > 0.0 || !o.units.empty() || !o.frame.empty()))
+    throw SceneError("--density, --units and --frame go with a mesh file (.obj) given instead of a scene; a scene's "
+                     "body has its own");
+  if (!mesh && o.body.empty()) throw SceneError("--body: which body of " + o.scene + " (a scene names its bodies)");
+  const Scene scene = mesh ? mesh_scene(o) : load_scene(o.scene, o.overrides);
   const BodyStokes s = body_stokes(scene, o.body, o.degree, o.radius, !o.unnormalized);
   const StokesCoefficients& cs = s.coefficients;
-  const std::string format = !o.format.empty() ? o.format : o.output.empty() ? "table" : stokes_format_of(o.output);
+  // From -o's name: .gfc is ICGEM, .tab SHADR (read, not written), any other name a table.
+  const std::string named = o.output.empty() ? "" : stokes_format_of(o.output);
+  const std::string format = !o.format.empty() ? o.format : named.empty() ? "table" : named;
   if (format != "icgem" && format != "table")
-    throw SceneError("--format must be icgem (.gfc) or table, not '" + format + "'");
+    throw SceneError("--format must be icgem (.gfc) or table, not '" + format + "'" +
+                     (format == "shadr" ? " (noether reads SHADR .tab files but does not write them)" : ""));
   char line[256];
   std::vector<std::string> about;
   std::snprintf(line, sizeof line, "noether shape stokes: body '%s' of %s, from %s", o.body.c_str(), o.scene.c_str(),
@@ -82,8 +123,13 @@ void add_shape_command(CLI::App& app, Command& chosen) {
   auto* cmd = shape->add_subcommand(
       "stokes", "a body's Stokes coefficients from its shape (or field, or inertia) about its centre of mass, in its "
                 "body frame (docs/gravity-fields.md)");
-  cmd->add_option("scene", o->scene, "the scene (YAML)")->required();
-  cmd->add_option("--body", o->body, "the body's name")->required();
+  cmd->add_option("scene", o->scene, "the scene (YAML), or a mesh file (.obj) with --density and --units")->required();
+  cmd->add_option("--body", o->body, "the body's name (a scene's; for a mesh the file's name, as the output names it)");
+  cmd->add_option("--density", o->density, "a mesh's homogeneous density in kg/m^3 (its mass and GM)");
+  cmd->add_option("--units", o->units, "a mesh file's length unit: m or km (a file does not say)");
+  cmd->add_option("--frame", o->frame,
+                  "a mesh's body frame: principal (default: its principal axes about its centre of mass) or mesh (the "
+                  "file's axes, moved to the centre of mass: a published field's frame)");
   cmd->add_option("--degree", o->degree, "the highest degree")->capture_default_str();
   cmd->add_option("--radius", o->radius, "the reference radius, in the scene's length unit (default: the body's radius)");
   cmd->add_flag("--unnormalized", o->unnormalized, "unnormalized coefficients (default: fully normalized, geodesy's 4π)");
@@ -91,7 +137,7 @@ void add_shape_command(CLI::App& app, Command& chosen) {
   cmd->add_option("-o,--output", o->output, "the file to write (default: the table on standard output)");
   cmd->add_flag("--force", o->force, "replace an existing output file");
   cmd->add_option("--set", o->overrides, "override a scene value: key=value")->take_all();
-  cmd->callback([o, &chosen] { chosen = [o] { return shape_stokes(*o); }; });
+  cmd->callback([o, &chosen] { chosen = [o] { return shape_stokes(*o); }; });  // a copy: a mesh names its body
 }
 
 }  // namespace noether::app
