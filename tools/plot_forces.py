@@ -12,7 +12,7 @@ without forces: or without rigid bodies.
 import argparse
 import sys
 
-from plot_common import pyplot
+from plot_common import labelled, pyplot, save, unit_of
 
 plt, h5py, np = pyplot(__file__, "h5py", "numpy")
 
@@ -35,6 +35,8 @@ def main():
         names = [text(n) for n in f["particles/bodies/name"][:]]
         forces = text(f["parameters"].attrs["forces"]).split("\n")
         t = f["particles/bodies/position/time"][:]
+        t_unit = unit_of(f["particles/bodies/position/time"])
+        e_unit = unit_of(f["observables/energy/value"])
         balance = f["observables/force_balance/value"][:]  # [frame][force][7]
         E = f["observables/energy/value"][:]
         if "particles/bodies/angular_velocity" not in f:
@@ -42,7 +44,9 @@ def main():
             return 2
         rigid = [names[i] for i in f["particles/bodies/inertia"].attrs["body_index"]]
         omega = f["particles/bodies/angular_velocity/value"][:]  # [frame][rigid][3]
+        omega_unit = unit_of(f["particles/bodies/angular_velocity/value"])
         elements = f["observables/osculating_elements/value"][:] if "observables/osculating_elements" in f else None
+        a_unit = unit_of(f["observables/separation/value"]) if "observables/separation" in f else ""
     k = 0
     if a.body:
         if a.body not in rigid:
@@ -64,10 +68,10 @@ def main():
     rows = 3 if elements is not None else 2
     fig, ax = plt.subplots(rows, 1, figsize=(7, 2.4 * rows), sharex=True)
     ax[0].plot(t, spin, "C0")
-    ax[0].set_ylabel(f"|ω| of {body}")
+    ax[0].set_ylabel(labelled(f"|ω| of {body}", omega_unit))
     if elements is not None:
         ax[1].plot(t, elements[:, 0], "C1", label="a")
-        ax[1].set_ylabel("semi-major axis a", color="C1")
+        ax[1].set_ylabel(labelled("semi-major axis a", a_unit), color="C1")
         twin = ax[1].twinx()
         twin.plot(t, elements[:, 1], "C2")
         twin.set_ylabel("eccentricity e", color="C2")
@@ -75,13 +79,13 @@ def main():
     for j, name in enumerate(forces):
         last.plot(t, W[:, j], label=f"W, {name}")
     last.plot(t, drift, "k", lw=0.8, label="E − ΣW − E0")
-    last.set_ylabel("energy")
-    last.set_xlabel("t")
+    last.set_ylabel(labelled("energy", e_unit))
+    last.set_xlabel(labelled("t", t_unit))
     last.legend(fontsize=8)
     if a.title:
         ax[0].set_title(a.title)
     fig.tight_layout()
-    fig.savefig(a.png, dpi=90)
+    save(fig, a.png)
     print(f"plot: {a.png}")
     return 0
 

@@ -14,7 +14,7 @@ import argparse
 import math
 import sys
 
-from plot_common import pyplot
+from plot_common import labelled, pyplot, save, unit_of
 
 plt, h5py, np = pyplot(__file__, "h5py", "numpy")
 
@@ -46,6 +46,7 @@ def libration_angle(f, body, other):
     q = f["particles/bodies/orientation/value"][:frames, r, :]
     x = f["particles/bodies/position/value"][:frames]
     t = f["observables/energy/time"][:frames]
+    t_unit = unit_of(f["observables/energy/time"])
     L = f["observables/angular_momentum/value"][0]
     k = L / np.linalg.norm(L)
     angle = np.empty(frames)
@@ -55,7 +56,7 @@ def libration_angle(f, body, other):
         a, line = a - k * (k @ a), line - k * (k @ line)
         theta = math.atan2(np.cross(line, a) @ k, line @ a)
         angle[n] = (theta + math.pi / 2) % math.pi - math.pi / 2  # the long axis has no sign
-    return t, angle, names[j]
+    return t, t_unit, angle, names[j]
 
 
 def upward_crossings(t, y):
@@ -76,7 +77,7 @@ def main():
         if a.other is None:
             names = [n.decode() if isinstance(n, bytes) else str(n) for n in f["particles/bodies/name"][:]]
             a.other = next((n for n in names if n != a.body), a.body)
-        t, angle, other = libration_angle(f, a.body, a.other)
+        t, t_unit, angle, other = libration_angle(f, a.body, a.other)
     up = upward_crossings(t, angle)
     amplitude = float(np.max(np.abs(angle)))
     print(f"libration of {a.body} about the line to {other}, {len(t)} frames")
@@ -84,9 +85,9 @@ def main():
     period = None
     if len(up) >= 2:
         period = (up[-1] - up[0]) / (len(up) - 1)
-        print(f"period (zero crossings)          {period:.6g} ({len(up) - 1} cycles)")
+        print(f"period (zero crossings)          {period:.6g} {t_unit} ({len(up) - 1} cycles)")
     if a.expect:
-        print(f"period expected                  {a.expect:.6g}")
+        print(f"period expected                  {a.expect:.6g} {t_unit}")
         if period:
             print(f"relative difference              {period / a.expect - 1:.2e}")
     fig, ax = plt.subplots(figsize=(7, 3.5))
@@ -95,12 +96,12 @@ def main():
         ref = amplitude * np.sin(2 * math.pi * (t - up[0]) / a.expect)
         ax.plot(t, np.degrees(ref), "--", lw=0.8, color="0.4", label=f"linearisation: period {a.expect:.6g}")
     ax.axhline(0, color="0.7", lw=0.5)
-    ax.set_xlabel("t")
+    ax.set_xlabel(labelled("t", t_unit))
     ax.set_ylabel("libration angle [deg]")
     ax.legend(fontsize=7, loc="upper right")
     ax.set_title(a.title or f"{a.run}", fontsize=8)
     fig.tight_layout()
-    fig.savefig(a.png, dpi=90)
+    save(fig, a.png)
     print(f"plot: {a.png}")
     if period is None:
         sys.stderr.write("plot_libration.py: fewer than two upward zero crossings: run longer to measure a period\n")

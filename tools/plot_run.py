@@ -9,7 +9,7 @@ Uses Debian's python3-matplotlib and python3-h5py (installed by tools/install-de
 import argparse
 import os
 
-from plot_common import pyplot
+from plot_common import labelled, pyplot, unit_of
 
 plt, h5py = pyplot(__file__, "h5py")
 
@@ -31,20 +31,20 @@ def main():
         rigid = "orientation" in f["particles/bodies"]
         text = lambda v: v.decode() if isinstance(v, bytes) else str(v)  # noqa: E731
         integrator = text(f["parameters"].attrs["integrator"])
-        e_unit = text(obs["energy/value"].attrs.get("unit", ""))
-        t_unit = text(obs["energy/time"].attrs.get("unit", ""))
+        e_unit = unit_of(obs["energy/value"])
+        t_unit = unit_of(obs["energy/time"])
     fig, ax = plt.subplots(3 if rigid else 2, 1, figsize=(7, 8 if rigid else 5.5), sharex=True)
     ax[0].plot(t, T_tr, label="translational kinetic")
     ax[0].plot(t, T_rot, label="rotational kinetic")
     ax[0].plot(t, U, label="potential")
-    ax[0].set_ylabel(f"energy [{e_unit}]" if e_unit else "energy")
+    ax[0].set_ylabel(labelled("energy", e_unit))
     ax[0].legend(fontsize=8)
     ax[1].plot(t, E - E[0])
-    ax[1].set_ylabel(f"E − E0 [{e_unit}]" if e_unit else "E − E0")
+    ax[1].set_ylabel(labelled("E − E0", e_unit))
     if rigid:
         ax[2].semilogy(t, orth + 1e-18)
         ax[2].set_ylabel("‖I − RᵀR‖_F")
-    ax[-1].set_xlabel(f"t [{t_unit}]" if t_unit else "t")
+    ax[-1].set_xlabel(labelled("t", t_unit))
     fig.suptitle(args.title or f"{os.path.basename(args.run)} ({integrator})")
     fig.tight_layout()
     fig.savefig(args.png, dpi=90)
