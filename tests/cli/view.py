@@ -11,7 +11,8 @@ rasterised at pixel centres. At two times:
 - each body's centroid is its projected centre of mass within 2 px (ellipsoids, dots);
 - KW4 Beta's silhouette area changes as it turns (by > 5 %), and Alpha's, seen from Alpha's own
   body frame, does not (< 0.5 %).
-Also: a decimated page shows the frames it says, with their times; an ensemble's file, an existing
+Recorded massless particles are white dots where their positions project, and the run's impulses
+are reported with the frames nearest them. Also: a decimated page shows the frames it says, with their times; an ensemble's file, an existing
 page and too few frames are refused with a message.
 """
 import os
@@ -227,6 +228,38 @@ assert p.returncode == 2 and "is not an ensemble's file" in p.stderr, p.stderr
 p = subprocess.run([noether, "view", samples_file, os.path.join(work, "kw4-polyhedra.h5"), "-o", page, "--force"],
                    capture_output=True, text=True)
 assert p.returncode == 2 and "is a run of other bodies than" in p.stderr, p.stderr
+
+# Massless particles and an impulse (issue 63, item 5): each recorded particle a white dot (flat
+# mode) where its position in the file projects, unless a body hides it, and none elsewhere;
+# particles=0 hides them; the impulse is reported with the frame nearest it (a mark on the slider).
+cloud_h5 = run("didymos-particles.yaml", "particles", "run.t_end=7200",
+               "impulses=[{body: dimorphos, time: 3600, delta_v: [0, -0.0027, 0]}]")
+cloud_html, _ = view(cloud_h5)
+cloud = Run(cloud_h5)
+import h5py  # noqa: E402
+with h5py.File(cloud_h5, "r") as f:
+    particle_x = f["particles/test_particles/position/value"][:]
+camera = "camera=0,-800,6000&target=0,0,0&up=0,1,0&fov=45&view=centre:didymos"
+status, image = browse(cloud_html, f"{flat}&frame=10&{camera}", os.path.join(work, "particles.png"))
+assert status["particles"] == 24 and status["impulses"] == [{"t": 3600, "body": "dimorphos", "frame": 6}], status
+k = status["file_frame"]
+hidden = np.zeros((H, W), bool)
+for j in range(len(cloud.names)):
+    expected, _ = silhouette(cloud, k, j, status)
+    if expected is not None:
+        hidden |= expected
+pixels = project(particle_x[k] - cloud.x[k, cloud.names.index("didymos")], status)
+visible = [p for p in pixels if 2 <= p[0] < W - 2 and 2 <= p[1] < H - 2 and not hidden[int(p[1]), int(p[0])]]
+white = np.all(image == 255, axis=-1)
+for p in visible:
+    c, r = int(p[0]), int(p[1])
+    assert white[r - 2:r + 3, c - 2:c + 3].any(), f"particle at pixel {p.round(1)} not drawn"
+rows, cols = np.nonzero(white)
+near = [np.min(np.hypot(pixels[:, 0] - (c + 0.5), pixels[:, 1] - (r + 0.5))) for r, c in zip(rows, cols)]
+assert max(near) <= 2.5, f"a white pixel {max(near):.1f} px from every particle"
+print(f"particles: {len(visible)} of 24 in sight, each drawn where its position projects ({white.sum()} px)")
+status, image = browse(cloud_html, f"{flat}&frame=10&{camera}&particles=0", os.path.join(work, "no-particles.png"))
+assert status["particles"] == 0 and not np.all(image == 255, axis=-1).any(), status
 
 # Refusals: an existing page, too few frames, an ensemble's file, a file that is not a run.
 p = subprocess.run([noether, "view", h5, "-o", html], capture_output=True, text=True)

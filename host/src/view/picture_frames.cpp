@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 namespace noether::detail {
 
@@ -206,6 +207,13 @@ PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t
       out.t.push_back(f.state.t);
       out.x.push_back(f.state.x);
       out.R.push_back(f.state.R);
+      const std::span<const double> particles = f.series_named("particle_positions");
+      if (next == 0) out.particles = particles.size() / 3;
+      if (particles.size() != 3 * out.particles)
+        throw OutputError(file.string() + ": frame " + std::to_string(k) + " holds " +
+                          std::to_string(particles.size() / 3) + " recorded particles, frame " +
+                          std::to_string(out.shown[0]) + " " + std::to_string(out.particles));
+      out.particle_x.insert(out.particle_x.end(), particles.begin(), particles.end());
     }
   });
 
@@ -254,6 +262,21 @@ PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t
                           "records does not read here (" + scene_problem + ")");
     }
     out.shapes.push_back(std::move(s));
+  }
+
+  // The impulses, from the scene as run (its --set applied): times and bodies only.
+  if (parameters.valid()) {
+    const std::string as_run = io::read_string(parameters, "scene_as_run", true);
+    try {
+      const Params root = as_run.empty() ? Params() : parse_params(as_run, file.string() + ":/parameters/scene_as_run");
+      if (root.is_map() && root.has("impulses"))
+        for (const Params& impulse : root.at("impulses").items())
+          out.impulses.push_back({impulse.at("time").as_double(), impulse.at("body").as_string()});
+    } catch (const Error& e) {
+      out.impulses.clear();
+      out.notes.push_back(std::string("the run's impulses are not marked: its scene does not read here (") + e.what() +
+                          ")");
+    }
   }
 
   if (parameters.valid()) {

@@ -31,6 +31,12 @@ struct PictureShape {
   const char* name() const;  // "polyhedron", "ellipsoid", …
 };
 
+// An impulse of the run (the scene's `impulses`): when, and on which body.
+struct PictureImpulse {
+  double t = 0.0;
+  std::string body;
+};
+
 struct PictureFrames {
   std::vector<std::string> names;
   std::vector<double> masses;
@@ -41,6 +47,11 @@ struct PictureFrames {
   std::vector<double> t;                  // [frame kept]
   std::vector<Eigen::Matrix3Xd> x;        // [frame kept] positions [3][body]
   std::vector<std::vector<Mat3>> R;       // [frame kept][rigid body] attitudes, exact
+  // The recorded massless particles (particles.record; none without): their inertial positions
+  // at the frames kept, [frame kept][particle][3] row-major, verified against their checksums.
+  std::size_t particles = 0;
+  std::vector<double> particle_x;
+  std::vector<PictureImpulse> impulses;  // as the scene the file records gives them (after its --set)
   std::string unit_length = "L", unit_time = "T";
   std::vector<std::string> notes;  // what a picture shows differently from the run
 };

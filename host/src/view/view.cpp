@@ -107,7 +107,8 @@ std::string shape_json(const detail::PictureShape& s) {
 // Checks `params` ("key=value&…") against the page's parameters and the run's bodies.
 void check_params(const std::string& params, const std::vector<std::string>& names, const std::vector<int>& rigid_of_body) {
   static const std::vector<std::string> keys{"frame", "t", "view", "camera", "target", "up", "fov", "trails",
-                                             "trail", "labels", "axes", "hud", "size", "flat", "play"};
+                                             "trail", "labels", "axes", "hud", "size", "flat", "play",
+                                             "particles"};
   std::size_t start = 0;
   while (start <= params.size() && !params.empty()) {
     const std::size_t end = std::min(params.find('&', start), params.size());
@@ -265,6 +266,14 @@ std::string view_html(const std::vector<std::filesystem::path>& given, const Vie
   field("x", typed_array(x));
   field("q", typed_array(q));
   field("others", others);
+  field("particles", std::to_string(run.particles));
+  if (run.particles > 0) field("particle_x", typed_array(run.particle_x));
+  std::string impulses = "[";
+  for (const auto& impulse : run.impulses) {
+    if (impulses.size() > 1) impulses += ',';
+    ((((impulses += "{\"t\":") += json_number(impulse.t)) += ",\"body\":") += json_string(impulse.body)) += '}';
+  }
+  field("impulses", impulses += "]");
   std::string notes = "[";
   for (const auto& note : out.notes) (notes += json_string(note)) += ',';
   if (notes.size() > 1) notes.pop_back();

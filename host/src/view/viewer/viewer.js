@@ -5,7 +5,7 @@
 //   frame=K (the K-th frame shown, from 0) or t=T (the frame shown nearest T), play=1,
 //   view=inertial | barycentric | centre:NAME | frame:NAME (NAME's rotating body frame),
 //   camera=x,y,z  target=x,y,z  up=x,y,z  fov=DEG (vertical),
-//   trails=0, trail=N (frames), labels=0, axes=1, hud=0, size=WxH (the picture's pixels instead
+//   trails=0, trail=N (frames), labels=0, axes=1, particles=0, hud=0, size=WxH (the picture's pixels instead
 //   of the window's), flat=1 (surfaces only, unlit flat colours, no antialiasing: what the tests measure).
 // The page reports what it drew in <pre id="noether-status"> as JSON (the tests read it).
 'use strict';
@@ -38,6 +38,9 @@
     .concat((run.others || []).map((o) => ({ label: o.label, frames: o.frames, x: new Float64Array(buffer(o.x)),
                                               q: new Float32Array(buffer(o.q)) })));
   const rigidCount = run.bodies.filter((b) => b.rigid >= 0).length;
+  // The recorded massless particles (run 0's): inertial positions [frame][particle][3].
+  const particleCount = run.particles || 0;
+  const particleX = particleCount > 0 ? new Float64Array(buffer(run.particle_x)) : new Float64Array(0);
   const byName = new Map(run.bodies.map((b, j) => [b.name, j]));
 
   // Colours: distinct, and in flat mode pure, so that a test can find each body's pixels.
@@ -67,11 +70,11 @@
       for (let c = 0; c < 3; ++c) origin[c] = x[(i * n + k) * 3 + c];
       if (kind === 'frame') turn = attitude(i, k).conjugate();
     }
+    const place = (y, a) => new THREE.Vector3(y[a] - origin[0], y[a + 1] - origin[1], y[a + 2] - origin[2])
+      .applyQuaternion(turn);
     return {
-      position: (j, r = 0) => {
-        const y = runs[r].x, a = (i * n + j) * 3;
-        return new THREE.Vector3(y[a] - origin[0], y[a + 1] - origin[1], y[a + 2] - origin[2]).applyQuaternion(turn);
-      },
+      position: (j, r = 0) => place(runs[r].x, (i * n + j) * 3),
+      particle: (p) => place(particleX, (i * particleCount + p) * 3),
       attitude: (j, r = 0) => turn.clone().multiply(attitude(i, j, r)),
     };
   }
@@ -172,6 +175,26 @@
     return line;
   }));
 
+  // The particles: a dot each, of constant size on screen (white in flat mode: no body has it).
+  const particleDots = (() => {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * particleCount), 3));
+    const dots = new THREE.Points(g, new THREE.PointsMaterial({ color: flat ? 0xffffff : 0xcfd8e3, size: flat ? 3 : 2,
+                                                                sizeAttenuation: false }));
+    dots.frustumCulled = false;
+    dots.visible = particleCount > 0;
+    scene.add(dots);
+    return dots;
+  })();
+
+  // The impulses: marks on the slider at the frame nearest each, and a button that goes there.
+  const nearestFrame = (T) => {
+    let best = 0;
+    for (let i = 1; i < F; ++i) if (Math.abs(t[i] - T) < Math.abs(t[best] - T)) best = i;
+    return best;
+  };
+  const impulses = (run.impulses || []).map((m) => ({ t: m.t, body: m.body, frame: nearestFrame(m.t) }));
+
   // Labels and legend.
   const labelLayer = document.getElementById('labels');
   const labels = run.bodies.map((b, j) => {
@@ -260,6 +283,12 @@
         line.visible = trailsBox.checked;
       });
     });
+    if (particleCount > 0) {
+      const a = particleDots.geometry.attributes.position;
+      for (let p = 0; p < particleCount; ++p) { const q = v.particle(p); a.setXYZ(p, q.x, q.y, q.z); }
+      a.needsUpdate = true;
+      particleDots.visible = particlesBox.checked;
+    }
     slider.value = current;
     timeText.textContent = describeTime(current);
     render();
@@ -287,6 +316,7 @@
       width: renderer.domElement.width, height: renderer.domElement.height, fov: camera.fov,
       camera: camera.position.toArray(), target: controls.target.toArray(), up: camera.up.toArray(),
       colours: run.bodies.map((b, j) => colourOf(j)),
+      particles: particleDots.visible ? particleCount : 0, impulses,
       runs: runs.map((R, r) => ({ label: R.label, frames: R.frames, colours: run.bodies.map((b, j) => colourOf(j, r)) })),
     });
     publish();
@@ -296,7 +326,20 @@
   const slider = document.getElementById('slider'), play = document.getElementById('play');
   const speed = document.getElementById('speed'), frameSelect = document.getElementById('frame');
   const trailsBox = document.getElementById('trails'), labelsBox = document.getElementById('labels-on');
-  const axesBox = document.getElementById('axes');
+  const axesBox = document.getElementById('axes'), particlesBox = document.getElementById('particles');
+  particlesBox.checked = P.get('particles') !== '0';
+  particlesBox.parentElement.classList.toggle('hidden', particleCount === 0);
+  particlesBox.addEventListener('change', () => show(current));
+  const ticks = document.getElementById('impulse-frames'), jumps = document.getElementById('impulses');
+  ticks.innerHTML = impulses.map(() => '<option></option>').join('');
+  impulses.forEach((m, k) => {
+    ticks.options[k].value = m.frame;
+    const b = document.createElement('button');
+    b.textContent = 'impulse on ' + m.body + ', ' + describeTime(m.frame).split(' · ')[0];
+    b.title = 'go to the frame nearest the impulse (frame ' + (frameIndex[m.frame] + 1) + ' of the file)';
+    b.addEventListener('click', () => show(m.frame));
+    jumps.appendChild(b);
+  });
   slider.max = F - 1;
   trailsBox.checked = P.get('trails') !== '0';
   labelsBox.checked = P.get('labels') !== '0';
