@@ -20,7 +20,7 @@ std::string plugin_error(PluginRegistry& r, const std::string& name) {
 
 TEST(Plugins, BundledPluginsLoadByName) {
   auto r = test::bundled_plugins();
-  EXPECT_EQ(r.names(), (std::vector<std::string>{"central-field", "cvode", "jm-hybrid", "lgvi", "mutual-exact", "mutual-series", "point-mass", "prescribed-body", "radiation", "rk", "sphere-cluster", "spherical-harmonics", "tides"}));
+  EXPECT_EQ(r.names(), (std::vector<std::string>{"cannonball", "central-field", "cvode", "jm-hybrid", "lgvi", "mutual-exact", "mutual-series", "point-mass", "prescribed-body", "radiation", "rk", "sphere-cluster", "spherical-harmonics", "tides"}));
   EXPECT_EQ(r.info("lgvi").kind, PluginKind::Integrator);
   EXPECT_EQ(r.info("tides").kind, PluginKind::Force);
   EXPECT_EQ(r.info("sphere-cluster").kind, PluginKind::Potential);
@@ -30,7 +30,7 @@ TEST(Plugins, BundledPluginsLoadByName) {
 TEST(Plugins, UnknownNameListsTheNamesFound) {
   auto r = test::bundled_plugins();
   const std::string e = plugin_error(r, "lgiv");
-  EXPECT_NE(e.find("unknown plugin 'lgiv' (did you mean 'lgvi'?); plugins found: central-field cvode "
+  EXPECT_NE(e.find("unknown plugin 'lgiv' (did you mean 'lgvi'?); plugins found: cannonball central-field cvode "
                    "jm-hybrid lgvi mutual-exact mutual-series point-mass prescribed-body radiation rk sphere-cluster "
                    "spherical-harmonics tides"),
             std::string::npos)
@@ -58,7 +58,7 @@ TEST(Plugins, LoadAllReportsBrokenPluginsWithoutThrowing) {
   PluginRegistry r({NOETHER_FIXTURE_PLUGIN_DIR, NOETHER_TEST_PLUGIN_DIR});
   std::vector<std::string> failures;
   const auto found = r.load_all(failures);
-  EXPECT_EQ(found.size(), 17u);  // 13 bundled + 4 fixtures that load but misbehave later
+  EXPECT_EQ(found.size(), 18u);  // 14 bundled + 4 fixtures that load but misbehave later
   EXPECT_EQ(failures.size(), 2u);
 }
 
@@ -72,7 +72,7 @@ TEST(Plugins, KindAndParametersAreChecked) {
   } catch (const PluginError& e) {
     // The alternatives come from file names: no other library is loaded to learn its kind.
     EXPECT_NE(std::string(e.what()).find("'point-mass' is a potential, not an integrator; other plugins found: "
-                                         "central-field cvode jm-hybrid lgvi mutual-exact mutual-series prescribed-body "
+                                         "cannonball central-field cvode jm-hybrid lgvi mutual-exact mutual-series prescribed-body "
                                          "radiation rk spherical-harmonics tides (`noether plugins` shows the kind of each)"),
               std::string::npos) << e.what();
   }

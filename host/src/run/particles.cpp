@@ -83,8 +83,12 @@ ParticleSwarm::ParticleSwarm(const System& system, const ParticleSettings& setti
       const std::size_t first = pulls.size();
       const bool pulls_particles = term.model->pull_particles(bodies, pulls);
       if (pulls_particles) pulling_.push_back(term.model);
-      force_fields_.push_back(term.name + (pulls_particles ? ": point masses (its bodies' gravity)"
-                                                           : ": not felt by the particles"));
+      // A pull of negative G M is a push away from a point: the Sun's light (cannonball).
+      bool pushes = false;
+      for (std::size_t j = first; j < pulls.size(); ++j) pushes = pushes || pulls[j].mu < 0.0;
+      force_fields_.push_back(term.name + (!pulls_particles ? ": not felt by the particles"
+                                           : pushes         ? ": a push away from a point (the Sun's light)"
+                                                            : ": point masses (its bodies' gravity)"));
       for (std::size_t j = first; j < pulls.size(); ++j) {
         surfaces_.push_back(pulls.size() - first > 1 ? term.name + " #" + std::to_string(j - first) : term.name);
         pull_radius_.push_back(pulls[j].radius);
