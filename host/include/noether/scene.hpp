@@ -44,6 +44,13 @@ struct TrustThresholds {
   // 0.1, twice the frames' own sampling of the extremes at ten frames a libration period
   // (docs/user-guide.md, "Spin state").
   double libration = 0.1;
+  // A closest approach between frames (an encounter): its distance's estimated error — the run
+  // at half the step, and the frames' interpolation — over the distance (ClosestApproach):
+  // 1e-3, a kilometre at a thousand.
+  double closest_approach = 1e-3;
+  // The time of the event that stopped the run (a collision, an escape): its estimated error over
+  // the time run until it.
+  double event_time = 1e-3;
 };
 
 struct RunSettings {

@@ -2,6 +2,7 @@
 // Simulation: one run of a scene — plugins made by name, the integrator driven to t_end,
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
 #include <noether/chaos_values.hpp>
+#include <noether/closest_approach.hpp>
 #include <noether/derived_error.hpp>
 #include <noether/spin_state.hpp>
 #include <noether/diagnostics.hpp>
@@ -182,12 +183,20 @@ struct RunSummary {
   // The scene's units of energy and length when it declares units (empty otherwise): the
   // summary prints its numbers with them.
   std::string energy_unit, length_unit, angular_momentum_unit;
-  double min_distance = 0.0;                    // closest approach of two body centres seen
+  // The closest approach of two body centres: at the output frames (scenes of 13 to 64 bodies),
+  // or the least of closest_approaches (2 to 12 bodies).
+  double min_distance = 0.0;
   double t_of_min_distance = 0.0;
   std::string min_distance_pair;                // "a–b"
+  // Each pair's closest approach, located between the integrator's steps (scenes of 2 to 12
+  // bodies), the closest first; its errors set when a run finishes.
+  std::vector<ClosestApproach> closest_approaches;
   std::size_t frames = 0;
   std::int64_t interpolated_frames = 0;  // frames interpolated between the method's steps
   std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it
+  // An event's time (a collision's, an escape's: final_state.t) with its error by the run repeated
+  // at half the step, when it stopped the run at the same event (set when a run finishes).
+  DerivedError stop_time_error;
   State final_state;        // the state at the end of the run
   std::vector<PairModel> pair_models;  // what a tolerance-driven potential chose, per pair
   WorkCounters work;

@@ -53,6 +53,9 @@ bool librates(const SpinState& s) {
   return !s.other.empty() && !s.undersampled && std::isfinite(s.libration_amplitude) && s.libration_amplitude <= 90.0;
 }
 
+// A closest approach between steps: an encounter, not the start or the end of the run.
+bool encounter(const ClosestApproach& c) { return c.where == ClosestApproach::Where::kEncounter; }
+
 // Q(h), Q(h/2) and the method's order: the error of Q(h) (DerivedError).
 DerivedError estimate(double at_h, double at_half, double h, int order) {
   DerivedError e;
@@ -71,7 +74,9 @@ RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, Ru
   const bool changes = std::any_of(judged.period_changes.begin(), judged.period_changes.end(),
                                    [](const PeriodChange& c) { return c.measured(); });
   const bool librations = std::any_of(judged.spin_states.begin(), judged.spin_states.end(), librates);
-  if (judged.mutual_revolutions < 1 && !changes && !librations) return out;  // nothing derived to check
+  const bool encounters = std::any_of(judged.closest_approaches.begin(), judged.closest_approaches.end(), encounter);
+  const bool event = is_event(judged.stop_reason);
+  if (judged.mutual_revolutions < 1 && !changes && !librations && !encounters && !event) return out;  // nothing derived
   // Why no error is estimated: said on each number that asked.
   auto not_estimated = [&](const std::string& why) {
     if (judged.mutual_revolutions >= 1) out.mutual_period_error.why_not = why;
@@ -79,6 +84,9 @@ RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, Ru
       if (c.measured()) c.change_error.why_not = why;
     for (SpinState& spin : out.spin_states)
       if (librates(spin)) spin.libration_error.why_not = why;
+    for (ClosestApproach& c : out.closest_approaches)
+      if (encounter(c)) c.distance_error.why_not = why;
+    if (event) out.stop_time_error.why_not = why;
   };
   if (const std::string why = why_not_repeated(m, judged); !why.empty()) {
     not_estimated(why);
@@ -125,10 +133,40 @@ RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, Ru
     else
       spin.libration_error = estimate(spin.libration_amplitude, there->libration_amplitude, h, p);
   }
+  // Each pair's encounter against the same pair's at half the step (its distance's and time's
+  // errors with the frames' interpolation bounds added: the same frames in both runs, the
+  // Richardson difference cannot see them).
+  for (ClosestApproach& c : out.closest_approaches) {
+    if (!encounter(c)) continue;
+    const ClosestApproach* there = nullptr;
+    for (const ClosestApproach& d : at_half.closest_approaches)
+      if (d.pair == c.pair) there = &d;
+    if (!there || !encounter(*there)) {
+      c.distance_error.why_not = "at half the step the closest approach is not an encounter";
+      continue;
+    }
+    c.distance_error = estimate(c.distance, there->distance, h, p);
+    c.distance_error.error += c.frames_error;
+    c.time_error = estimate(c.t, there->t, h, p);
+    c.time_error.error += c.frames_time_error;
+  }
+  // The event that stopped the run (a collision, an escape) against the same event at half the
+  // step: the reasons alike but for their times.
+  if (event) {
+    auto what = [](const std::string& reason) { return reason.substr(0, reason.rfind(" at t = ")); };
+    if (what(at_half.stop_reason) != what(judged.stop_reason))
+      out.stop_time_error.why_not = "at half the step the run does not stop at the same event";
+    else
+      out.stop_time_error = estimate(judged.final_state.t, at_half.final_state.t, h, p);
+  }
   return out;
 }
 
 void with_derived_errors(const RunSummary& from, RunSummary& into) {
+  if (into.stop_reason == from.stop_reason) into.stop_time_error = from.stop_time_error;
+  for (ClosestApproach& c : into.closest_approaches)
+    for (const ClosestApproach& e : from.closest_approaches)
+      if (e.pair == c.pair) c.distance_error = e.distance_error, c.time_error = e.time_error;
   into.mutual_period_error = from.mutual_period_error;
   for (PeriodChange& c : into.period_changes)
     for (const PeriodChange& e : from.period_changes)

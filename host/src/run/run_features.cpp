@@ -3,6 +3,7 @@
 #include "run/run_features.hpp"
 
 #include "run/chaos_feature.hpp"
+#include "run/closest_approach_feature.hpp"
 #include "run/event_feature.hpp"
 #include "run/force_balance_feature.hpp"
 #include "run/binary_pair.hpp"
@@ -30,6 +31,8 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
   if (const auto pair = binary_pair(sc.system))
     features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
   if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));
+  if (sc.system.size() >= 2 && sc.system.size() <= ClosestApproachFeature::kMostBodies)
+    features.push_back(std::make_unique<ClosestApproachFeature>(sc.system));
   if (!sc.forces.empty()) features.push_back(std::make_unique<ForceBalanceFeature>(sc.forces.size()));
   if (!sc.run.sensitivities.empty())  // the tangent's last columns
     features.push_back(

@@ -161,10 +161,11 @@ const SummaryRow kRows[] = {
      .restore_number = [](RunSummary& s, double v) { s.conserves_angular_momentum = v != 0; }},
     {.key = "closest_approach", .dimension = Dimension::kLength, .uses = kCheckpoint | kEnsemble,
      .label = "closest approach",
-     .doc = "smallest distance between two body centres seen at the output frames (scenes of 2 to 64 bodies), the "
-            "pair and the time",
+     .doc = "smallest distance between two body centres: the least of `closest_approaches` (scenes of 2 to 12 "
+            "bodies; its line is theirs), else seen at the output frames (13 to 64 bodies); the pair and the time",
      .number = [](S s) { return s.min_distance; }, .has = approached,
      .line = [](const SummaryRow& r, S s) {
+       if (!s.closest_approaches.empty()) return closest_approaches_lines(r, s);
        return approached(s) ? summary_line(r.label, printed("%.6g", s.min_distance) + summary_unit(s.length_unit) + " (" +
                                                          s.min_distance_pair + ") at t = " +
                                                          printed("%.6g", s.t_of_min_distance) + summary_time_unit(s))
@@ -179,6 +180,14 @@ const SummaryRow kRows[] = {
      .doc = "the bodies of the closest approach, \"a–b\" (on its line)", .text = [](S s) { return s.min_distance_pair; },
      .has = approached,
      .restore_text = [](RunSummary& s, const std::string& v) { s.min_distance_pair = v; }},
+    {.key = "closest_approaches", .kind = Kind::structure,
+     .doc = "per pair of bodies (scenes of 2 to 12), the closest first: the least distance of their centres located "
+            "between frames on the Hermite of their relative motion (`where`: `encounter`, or the segment's `start` "
+            "when they recede from there, or the run's `end` when still closing), its time, their errors by the run "
+            "repeated at half the step (`distance_error`, which includes `frames_error`, the interpolation's bound; "
+            "`time_error`; `error_method`: how, or why not); the 10 closest on the closest approach lines "
+            "(docs/user-guide.md \"Closest approaches\")",
+     .json = closest_approaches_json},
     {.key = "smallest_gap", .dimension = Dimension::kLength, .uses = kCheckpoint,
      .doc = "the smallest gap seen between two bodies with radii: between their surfaces when one has a solid shape "
             "(docs/equations.md eq. 16.5), else ‖x_a − x_b‖ − (r_a + r_b)",
@@ -315,8 +324,16 @@ const SummaryRow kRows[] = {
     {.key = "stop_reason", .kind = Kind::text, .uses = kCheckpoint, .label = "stopped early",
      .doc = "why the run ended before t_end (an event, an interrupt, the wall-time budget); null: it reached t_end",
      .text = [](S s) { return s.stop_reason; }, .has = [](S s) { return !s.stop_reason.empty(); },
-     .line = [](const SummaryRow& r, S s) { return s.stop_reason.empty() ? "" : summary_line(r.label, s.stop_reason); },
+     .line = [](const SummaryRow& r, S s) {
+       if (s.stop_reason.empty()) return std::string();
+       const DerivedError& e = s.stop_time_error;
+       return summary_line(r.label, s.stop_reason + (e.estimated() ? " ± " + printed("%.3g", e.error) : std::string()));
+     },
      .restore_text = [](RunSummary& s, const std::string& v) { s.stop_reason = v; }},
+    {.key = "stop_time_error", .dimension = Dimension::kTime,
+     .doc = "the time of the event that stopped the run (a collision, an escape): its estimated error, by the run "
+            "repeated at half the step stopping at the same event (on its line)",
+     .number = [](S s) { return s.stop_time_error.error; }, .has = [](S s) { return s.stop_time_error.estimated(); }},
     {.key = "pair_models", .kind = Kind::structure, .label = "pair",
      .doc = "what a tolerance-driven potential chose per pair, its estimated error, and whether it was exceeded",
      .json = pair_models_json, .line = [](const SummaryRow&, S s) { return format_pair_models(s.pair_models); }},

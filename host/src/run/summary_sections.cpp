@@ -90,6 +90,40 @@ std::string error_method(const PeriodChange& c) {
 }
 }  // namespace
 
+std::string closest_approaches_json(const RunSummary& s) {  // docs/user-guide.md, "Closest approaches"
+  std::string out = "[";
+  for (const ClosestApproach& c : s.closest_approaches) {
+    const DerivedError& e = c.distance_error;
+    const std::string method = e.estimated() ? e.method() : e.why_not;
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"pair\": " + json_string(c.pair) + ", \"distance\": " +
+           json_number(c.distance) + ", \"t\": " + json_number(c.t) + ", \"where\": " + json_string(c.where_text()) +
+           ", \"distance_error\": " + error_json(c.distance_error) + ", \"time_error\": " + error_json(c.time_error) +
+           ", \"frames_error\": " + json_number(c.frames_error) +
+           ", \"frames_time_error\": " + json_number(c.frames_time_error) +
+           ", \"error_method\": " + (method.empty() ? "null" : json_string(method)) + "}";
+  }
+  return out + "]";
+}
+
+std::string closest_approaches_lines(const SummaryRow& row, const RunSummary& s) {
+  constexpr std::size_t kShown = 10;  // the closest pairs; JSON has them all
+  std::string out;
+  const std::string length = summary_unit(s.length_unit), time = summary_time_unit(s);
+  for (std::size_t k = 0; k < s.closest_approaches.size() && k < kShown; ++k) {
+    const ClosestApproach& c = s.closest_approaches[k];
+    auto error = [](const DerivedError& e) { return e.estimated() ? " ± " + printed("%.3g", e.error) : std::string(); };
+    const char* where = c.where == ClosestApproach::Where::kStart ? ", the start (receding from there)"
+                        : c.where == ClosestApproach::Where::kEnd ? ", the end (still closing)"
+                                                                  : "";
+    out += summary_line(row.label, printed("%.6g", c.distance) + error(c.distance_error) + length + " (" + c.pair +
+                                       ") at t = " + printed("%.6g", c.t) + error(c.time_error) + time + where);
+  }
+  if (s.closest_approaches.size() > kShown)
+    out += summary_line("", std::to_string(s.closest_approaches.size() - kShown) +
+                                " farther pairs in the JSON summary (closest_approaches)");
+  return out;
+}
+
 std::string period_changes_json(const RunSummary& s) {  // docs/user-guide.md, "Impulses"
   std::string out = "[";
   for (const PeriodChange& c : s.period_changes)

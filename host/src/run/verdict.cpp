@@ -1,6 +1,8 @@
 // The verdict on a run (docs/user-guide.md, "Verdict"): each check against run.trust.
 #include <noether/simulation.hpp>
 
+#include "run/event_watch.hpp"
+
 #include <cmath>
 #include <algorithm>
 #include <cstdio>
@@ -147,10 +149,11 @@ void judge(RunSummary& s, const Scene& scene) {
     const double fraction = e.error / std::abs(value);
     const double step = e.step * std::pow(tolerance / fraction, 1.0 / std::max(1, e.order));
     std::snprintf(why, sizeof why,
-                  "%s is not resolved: its estimated error %.3g %s is %.2e of it > %.0e (run.trust.%s; %s); a step of "
+                  "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.%s; %s); a step of "
                   "about %.3g %s or less meets it if the error is the step's (on a chaotic orbit none does: run.chaos "
                   "tells)",
-                  what.c_str(), e.error, unit.c_str(), fraction, tolerance, key, e.method().c_str(), step,
+                  what.c_str(), e.error, (unit.empty() ? "" : " " + unit).c_str(), fraction, tolerance, key,
+                  e.method().c_str(), step,
                   s.time_unit.c_str());
     v.reasons.push_back(why);
   };
@@ -169,6 +172,31 @@ void judge(RunSummary& s, const Scene& scene) {
   for (const SpinState& spin : s.spin_states)
     unresolved("the libration amplitude of " + spin.body, spin.libration_error, spin.libration_amplitude,
                limit.libration, "libration", "deg");
+  // The event that stopped the run: its time against the time run until it.
+  if (is_event(s.stop_reason))
+    unresolved("the time of the event that stopped the run (" + s.stop_reason.substr(0, s.stop_reason.find(':')) + ")",
+               s.stop_time_error, s.final_state.t - scene.initial.t, limit.event_time, "event_time", T);
+  // Each encounter's distance; where the frames' interpolation is most of its error, the remedy
+  // is frames closer together, not a smaller step.
+  for (const ClosestApproach& c : s.closest_approaches) {
+    const DerivedError& e = c.distance_error;
+    if (!e.estimated() || !(e.error > limit.closest_approach * c.distance)) continue;
+    char at[64];
+    std::snprintf(at, sizeof at, "%.6g %s", c.t, s.time_unit.c_str());
+    const std::string what = "the closest approach of " + c.pair + " at t = " + at;
+    if (c.frames_error < 0.5 * e.error) {
+      unresolved(what, e, c.distance, limit.closest_approach, "closest_approach", s.length_unit);
+      continue;
+    }
+    const std::string L = s.length_unit.empty() ? "" : " " + s.length_unit;
+    std::snprintf(why, sizeof why,
+                  "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.closest_approach), "
+                  "%.3g%s of it the frames' interpolation: frames closer together (a smaller run.output_every) "
+                  "locate it",
+                  what.c_str(), e.error, L.c_str(), e.error / c.distance, limit.closest_approach, c.frames_error,
+                  L.c_str());
+    v.reasons.push_back(why);
+  }
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).
   if (s.min_gap < -1e-6 * s.min_gap_reach) {

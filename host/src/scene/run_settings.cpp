@@ -26,7 +26,8 @@ TrustThresholds parse_trust(const Params& trust) {
   for (auto [key, value] : {std::pair<const char*, double*>{"energy", &t.energy}, {"momentum", &t.momentum},
                             {"orthogonality", &t.orthogonality}, {"position", &t.position},
                             {"particle_fates", &t.particle_fates}, {"period", &t.period},
-                            {"period_change", &t.period_change}, {"libration", &t.libration}}) {
+                            {"period_change", &t.period_change}, {"libration", &t.libration},
+                            {"closest_approach", &t.closest_approach}, {"event_time", &t.event_time}}) {
     *value = keys.number(trust, key);
     if (!(*value > 0.0))
       throw SceneError(trust.at(key).here() + "'run.trust." + key + "' must be a positive number");

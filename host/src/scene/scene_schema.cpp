@@ -32,7 +32,7 @@ constexpr SceneKey kScene[] = {
     {.key = "potential", .type = T::plugin, .required = true,
      .doc = "the mutual potential: a plugin, or a list of them (summed)"},
     {.key = "forces", .type = T::plugin, .absent = "none",
-     .doc = "forces beyond the potential (`tides`, `prescribed-body`, `radiation`): a plugin or a list "
+     .doc = "forces beyond the potential (`tides`, `prescribed-body`, `radiation`, `cannonball`): a plugin or a list "
             "(\"Forces beyond gravity\", docs/forces.md)"},
     {.key = "integrator", .type = T::plugin, .required = true, .doc = "the integrator (\"Integrators\")"},
     {.key = "run", .type = T::mapping, .required = true, .doc = "how long, what to write, when to stop", .section = "run"},
@@ -217,6 +217,12 @@ constexpr SceneKey kTrust[] = {
      .doc = "an impulse's period change ΔP: its estimated error over \\|ΔP\\|"},
     {.key = "libration", .type = T::number, .otherwise = "0.1",
      .doc = "a libration amplitude's estimated error (the run repeated at half the step) over the amplitude"},
+    {.key = "closest_approach", .type = T::number, .otherwise = "1e-3",
+     .doc = "an encounter's closest approach: its distance's estimated error (the run at half the step, and the "
+            "frames' interpolation) over the distance"},
+    {.key = "event_time", .type = T::number, .otherwise = "1e-3",
+     .doc = "the time of the event that stopped the run (a collision, an escape): its estimated error (the run "
+            "at half the step) over the time run until it"},
 };
 
 constexpr SceneKey kParticles[] = {
