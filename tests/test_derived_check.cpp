@@ -183,3 +183,22 @@ TEST(DerivedCheck, AnEventsTimeHasItsError) {
             std::string::npos)
       << strict.verdict.reasons.back();
 }
+
+// run.rerun_seconds: 0 repeats nothing (each number says so); a run longer than it is not repeated
+// (said with the numbers); a negative one is refused at its key.
+TEST(DerivedCheck, RerunSecondsSaysWhetherTheRunIsRepeated) {
+  const RunSummary never = didymos(600.0, {"run.rerun_seconds=0"});
+  EXPECT_FALSE(never.mutual_period_error.estimated());
+  EXPECT_EQ(never.mutual_period_error.why_not, "run.rerun_seconds is 0: the run is not repeated");
+  ASSERT_FALSE(never.closest_approaches.empty());
+  EXPECT_EQ(never.closest_approaches[0].distance_error.why_not, "run.rerun_seconds is 0: the run is not repeated");
+  const RunSummary brief = didymos(600.0, {"run.rerun_seconds=1e-12"});
+  EXPECT_NE(brief.mutual_period_error.why_not.find("more than the 1e-12 s up to which it is repeated at half the step "
+                                                   "(run.rerun_seconds)"),
+            std::string::npos)
+      << brief.mutual_period_error.why_not;
+  EXPECT_TRUE(didymos(600.0).mutual_period_error.estimated());  // the default 30 s
+  EXPECT_NE(test::scene_error(test::source_text("examples/collision.yaml"), {"run.rerun_seconds=-1"})
+                .find("'run.rerun_seconds' must be 0 (never repeat the run) or a positive wall time in seconds"),
+            std::string::npos);
+}

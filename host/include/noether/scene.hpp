@@ -54,6 +54,11 @@ struct TrustThresholds {
 };
 
 struct RunSettings {
+  // The longest run, in wall seconds, repeated whole when it finishes — at half the step, or an
+  // adaptive method at a tenfold tighter tolerance — for the errors of the numbers it derives and
+  // a small orbit's resolution (docs/user-guide.md "Verdict"); 0: never. run.rerun_seconds.
+  static constexpr double kRerunSecondsDefault = 30.0;
+  double rerun_seconds = kRerunSecondsDefault;
   double t_end = 0.0;
   double output_every = 0.0;
   double close_approach = 0.0;  // stop when two centres come closer (0: off)

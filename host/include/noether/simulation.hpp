@@ -77,7 +77,7 @@ struct ResolutionCheck {
   // How the run was repeated ("at half the step", "at a tenfold tighter tolerance", …), the change made
   // ("halving the step", …), and what lowers the difference ("a smaller step", …).
   std::string how = "at half the step", change = "halving the step", remedy = "a smaller step";
-  // A run that took at most kWholeRunSeconds is repeated whole at h/2 (whole_run); a longer one
+  // A run that took at most run.rerun_seconds is repeated whole at h/2 (whole_run); a longer one
   // over one period of the orbit at h and h/2, extrapolated linearly.
   bool whole_run = false;
   double window = 0.0;          // the time integrated twice (the run, or one period in whole steps)
@@ -87,8 +87,9 @@ struct ResolutionCheck {
   // the outcome itself is not resolved.
   std::string ends_differently;
 };
-// The wall time of a run up to which its step-halving check repeats it whole.
-inline constexpr double kWholeRunSeconds = 30.0;
+// The wall time of a run up to which its step-halving check repeats it whole, unless the scene's
+// run.rerun_seconds says otherwise (RunSettings::rerun_seconds).
+inline constexpr double kWholeRunSeconds = RunSettings::kRerunSecondsDefault;
 
 
 // The mutual period before and after a jump of the run (an impulse; docs/user-guide.md

@@ -39,10 +39,14 @@ std::string why_not_repeated(const Simulation::Impl& m, const RunSummary& judged
   if (!(m.integrator->fixed_step() > 0) || !m.scene.integrator.params.has("step"))
     return "integrator '" + m.scene.integrator.plugin + "' chooses its own steps: there is no step to halve";
   if (!m.registry) return "the run has no plugin registry to repeat it with";
-  if (judged.wall_seconds > kWholeRunSeconds) {
-    char text[160];
-    std::snprintf(text, sizeof text, "the run took %.3g s, more than the %.0f s up to which it is repeated at half the step",
-                  judged.wall_seconds, kWholeRunSeconds);
+  const double limit = m.scene.run.rerun_seconds;
+  if (!(limit > 0.0)) return "run.rerun_seconds is 0: the run is not repeated";
+  if (judged.wall_seconds > limit) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "the run took %.3g s, more than the %.3g s up to which it is repeated at half the step "
+                  "(run.rerun_seconds)",
+                  judged.wall_seconds, limit);
     return text;
   }
   return "";

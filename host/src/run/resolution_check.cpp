@@ -40,11 +40,12 @@ double tolerance(const Simulation::Impl& m, const std::string& key) {
 // the difference is nearly its error (global errors scale about with the tolerance). Where
 // rtol / 10 would ask for less than 1e-14, which double precision cannot meet, at a tenfold
 // looser one instead: the difference is then nearly that run's error, an upper bound of the
-// run's. Only a run that took at most kWholeRunSeconds and reached its end (not an event).
+// run's. Only a run that took at most run.rerun_seconds and reached its end (not an event).
 ResolutionCheck check_tolerance(const Simulation::Impl& m, const RunSummary& judged, ResolutionCheck check,
                                 std::size_t b, std::size_t a) {
   const double rtol = tolerance(m, "rtol"), atol = tolerance(m, "atol");
-  if (!(rtol > 0) || judged.wall_seconds > kWholeRunSeconds || !judged.stop_reason.empty() || !m.scene_trajectory)
+  if (!(rtol > 0) || !(judged.wall_seconds <= m.scene.run.rerun_seconds) || !(m.scene.run.rerun_seconds > 0) ||
+      !judged.stop_reason.empty() || !m.scene_trajectory)
     return ResolutionCheck{};
   const bool tighter = rtol / 10 >= 1e-14;
   const double factor = tighter ? 0.1 : 10.0;
@@ -106,11 +107,11 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
   if (!(h > 0)) return check_tolerance(m, judged, check, b, a);  // a method that chooses its steps
   if (!scene.integrator.params.has("step")) return ResolutionCheck{};
 
-  // A run that took at most kWholeRunSeconds is repeated whole at h/2 (twice its cost): the
+  // A run that took at most run.rerun_seconds is repeated whole at h/2 (twice its cost): the
   // difference at its end is measured, not extrapolated, which matters for chaotic motion
   // (a spacecraft near a binary), where one orbit's difference says little about the run's.
   // (Not a run whose state was set from outside, or loaded: the scene's is another trajectory.)
-  if (judged.wall_seconds <= kWholeRunSeconds && m.scene_trajectory) {
+  if (judged.wall_seconds <= scene.run.rerun_seconds && scene.run.rerun_seconds > 0 && m.scene_trajectory) {
     // To the end on the step grid: t_end, or the first step after the event (RunAtHalfStep).
     const HalfStepRun* run = half_step.get();
     if (!run) return ResolutionCheck{};  // the halved step failed: the energy's verdict stands

@@ -78,11 +78,11 @@ void judge(RunSummary& s, const Scene& scene) {
                   "%s's orbit about %s is not certified: the round-off floor of the energy's terms (%.2e: their sum "
                   "%.3e times the double's epsilon and 1 + sqrt(steps)) is %.2e of the orbit's two-body energy "
                   "(%.3e) > %.0e, so the energy cannot see its errors; no step or tolerance changes that. A run of "
-                  "at most %.0f s is checked by repeating it when it finishes (at half the step; an adaptive method "
-                  "at a tenfold tighter tolerance), or carry %s as a massless particle (particles:), whose orbit is "
-                  "integrated and judged on its own",
+                  "at most %.3g s (run.rerun_seconds) is checked by repeating it when it finishes (at half the step; "
+                  "an adaptive method at a tenfold tighter tolerance), or carry %s as a massless particle "
+                  "(particles:), whose orbit is integrated and judged on its own",
                   orbit.body.c_str(), orbit.about.c_str(), s.energy_roundoff, terms, orbit.relative_roundoff,
-                  orbit.energy_scale, limit.energy, kWholeRunSeconds, orbit.body.c_str());
+                  orbit.energy_scale, limit.energy, scene.run.rerun_seconds, orbit.body.c_str());
     v.reasons.push_back(why);
   } else if (!s.orbits.empty() && s.orbits.front().uncertified) {
     const OrbitScale& orbit = s.orbits.front();

@@ -69,6 +69,10 @@ RunSettings parse_run(const Params& run, const System& sys, const State& initial
   if (run.has("escape")) out.escape = parse_escape(run.at("escape"), sys);
   out.trust = parse_trust(run.has("trust") ? run.at("trust") : Params::map({}));
   out.close_approach = keys.number(run, "close_approach");
+  out.rerun_seconds = keys.number(run, "rerun_seconds");
+  if (!(out.rerun_seconds >= 0.0))
+    throw SceneError(run.at("rerun_seconds").here() + "'run.rerun_seconds' must be 0 (never repeat the run) or a "
+                     "positive wall time in seconds");
   out.collisions = keys.flag(run, "collisions");
   out.stm = keys.flag(run, "stm");
   out.chaos = keys.flag(run, "chaos");

@@ -191,6 +191,10 @@ constexpr SceneKey kRun[] = {
             "∂z(t)/∂key at every frame (`--sensitivity KEY`; docs/derivatives.md)"},
     {.key = "chaos", .type = T::flag, .otherwise = "false",
      .doc = "MEGNO and the fast Lyapunov indicator from a deviation vector the tangent map carries (`--chaos`)"},
+    {.key = "rerun_seconds", .type = T::number, .otherwise = "30",
+     .doc = "the longest run (wall seconds) repeated whole when it finishes — at half the step, an adaptive method "
+            "at a tenfold tighter tolerance — for its derived numbers' errors and a small orbit's resolution "
+            "(\"Verdict\"); 0: never (the summary then says which errors were not estimated)"},
 };
 
 constexpr SceneKey kEscape[] = {
