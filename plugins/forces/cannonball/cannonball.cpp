@@ -14,7 +14,7 @@
 // the same A/m and ρ, as a point source of negative G M at the Sun (no shadows for them).
 #include <noether/error.hpp>
 #include <noether/plugin.hpp>
-#include <noether/prescribed_conic.hpp>
+#include <noether/light_source.hpp>
 
 #include <cmath>
 #include <optional>
@@ -38,7 +38,7 @@ double positive(const Params& p, const char* key) {
 
 class Cannonball final : public noether::ForceModel {
  public:
-  Cannonball(const System& system, const Params& p) {
+  Cannonball(const System& system, const Params& p) : light_(system, p, "cannonball") {
     const double area_to_mass = positive(p, "area_to_mass");
     const double reflectivity = p.at("reflectivity").as_double();
     if (!(reflectivity >= 0.0 && reflectivity <= 1.0))
@@ -48,20 +48,7 @@ class Cannonball final : public noether::ForceModel {
     particles_ = p.at("particles").as_bool();
     for (const auto& b : system.bodies()) masses_.push_back(b.mass);
 
-    if (p.has("sun")) {
-      for (const char* key : {"position", "velocity", "mu", "epoch", "center"})
-        if (noether::given(p, key))
-          throw SceneError(p.at(key).here() + "cannonball: give the Sun either as a scene body ('sun') or by its "
-                                              "conic ('position', 'velocity', 'mu'), not both");
-      const std::string sun = p.at("sun").as_string();
-      sun_ = system.index_of(sun);
-      if (sun_ < 0) throw SceneError(p.at("sun").here() + "cannonball: no body named '" + sun + "' to be the Sun");
-    } else {
-      if (!p.has("position") || !p.has("velocity"))
-        throw SceneError(p.here() + "cannonball: give the Sun: 'sun', a scene body, or its conic 'position', "
-                                    "'velocity' and 'mu' relative to 'center'");
-      conic_.emplace(system, p, 0.0, "cannonball");
-    }
+    sun_ = light_.body();
 
     if (p.has("bodies")) {
       const Params& listed = p.at("bodies");
@@ -88,7 +75,7 @@ class Cannonball final : public noether::ForceModel {
 
   void evaluate(const State& s, Forces& out, noether::Workspace&) const override {
     out.set_zero();
-    const Vec3 sun = sun_ >= 0 ? Vec3(s.x.col(sun_)) : conic_->position(s);
+    const Vec3 sun = light_.position(s);
     for (const Eigen::Index i : bodies_) {
       const Vec3 from_sun = Vec3(s.x.col(i)) - sun;
       const double d2 = from_sun.squaredNorm();
@@ -102,9 +89,8 @@ class Cannonball final : public noether::ForceModel {
   // The particles feel the push as a point source of G M = −C_R P0 d0² A/m at the Sun (40.1).
   bool pull_particles(const State& s, std::vector<noether::PointPull>& pulls) const override {
     if (!particles_) return false;
-    const Vec3 sun = sun_ >= 0 ? Vec3(s.x.col(sun_)) : conic_->position(s);
-    const Vec3 sun_velocity = sun_ >= 0 ? Vec3::Zero() : conic_->velocity(s);
-    pulls.push_back({-push_, sun, sun_velocity, 0.0});
+    const double sun_mass = sun_ >= 0 ? masses_[static_cast<std::size_t>(sun_)] : 1.0;
+    pulls.push_back({-push_, light_.position(s), light_.velocity(s, sun_mass), 0.0});
     return true;
   }
 
@@ -130,7 +116,7 @@ class Cannonball final : public noether::ForceModel {
   double push_ = 0.0;  // C_R P0 d0² (A/m)
   bool particles_ = false;
   Eigen::Index sun_ = -1;
-  std::optional<noether::PrescribedConic> conic_;
+  noether::LightSource light_;
   std::vector<Eigen::Index> bodies_;
   std::vector<Occluder> occluders_;
   std::vector<double> masses_;

@@ -24,7 +24,7 @@
 #include <noether/evaluation_threads.hpp>
 #include <noether/occlusion_map.hpp>
 #include <noether/plugin.hpp>
-#include <noether/prescribed_conic.hpp>
+#include <noether/light_source.hpp>
 #include <noether/tessellated_ellipsoid.hpp>
 
 #include <algorithm>
@@ -109,7 +109,7 @@ constexpr std::size_t kBlock = 64;  // facets per block: Alpha's 9168 make 144, 
 
 class Radiation final : public noether::ForceModel {
  public:
-  Radiation(const System& system, const Params& p) {
+  Radiation(const System& system, const Params& p) : light_(system, p, "radiation") {
     const std::string name = p.at("body").as_string();
     const int index = system.index_of(name);
     if (index < 0) throw SceneError(p.at("body").here() + "radiation: no body named '" + name + "'");
@@ -150,21 +150,10 @@ class Radiation final : public noether::ForceModel {
     radius_ = b.solid->radius;
     if (p.at("self_shadowing").as_bool()) own_surface_ = {mesh};
 
-    if (p.has("sun")) {
-      for (const char* key : {"position", "velocity", "mu", "epoch", "center"})
-        if (noether::given(p, key))
-          throw SceneError(p.at(key).here() + "radiation: give the Sun either as a scene body ('sun') or by its conic "
-                                              "('position', 'velocity', 'mu'), not both");
-      const std::string sun = p.at("sun").as_string();
-      sun_ = system.index_of(sun);
-      if (sun_ < 0 || sun_ == body_)
-        throw SceneError(p.at("sun").here() + "radiation: 'sun' must name another body of the scene, not '" + sun + "'");
-    } else {
-      if (!p.has("position") || !p.has("velocity"))
-        throw SceneError(p.here() + "radiation: give the Sun: 'sun', a scene body, or its conic 'position', "
-                                    "'velocity' and 'mu' relative to 'center'");
-      conic_.emplace(system, p, 0.0, "radiation");
-    }
+    sun_ = light_.body();
+    if (sun_ == body_)
+      throw SceneError(p.at("sun").here() + "radiation: 'sun' must name another body of the scene, not the lit '" +
+                       name + "'");
 
     if (p.at("eclipses").as_bool()) {  // every other body that can stand in the light
       for (std::size_t j = 0; j < system.size(); ++j) {
@@ -199,8 +188,7 @@ class Radiation final : public noether::ForceModel {
   void evaluate(const State& s, Forces& out, noether::Workspace& workspace) const override {
     auto& w = noether::workspace_as<RadiationWorkspace>(workspace, "radiation");
     out.set_zero();
-    const Vec3 sun = sun_ >= 0 ? Vec3(s.x.col(sun_)) : conic_->position(s);
-    const Vec3 to_sun = sun - Vec3(s.x.col(body_));
+    const Vec3 to_sun = light_.position(s) - Vec3(s.x.col(body_));
     const double d2 = to_sun.squaredNorm();
     if (!(d2 > 0.0)) throw noether::IntegrationError("radiation: the body reached the Sun", s.t);
     const Mat3& R = s.R[static_cast<std::size_t>(rigid_)];
@@ -287,7 +275,7 @@ class Radiation final : public noether::ForceModel {
   std::vector<Facet> facets_;
   std::vector<noether::Mesh> own_surface_;  // the facets' mesh, with self_shadowing (else empty)
   std::vector<Occluder> occluders_;
-  std::optional<noether::PrescribedConic> conic_;
+  noether::LightSource light_;
 };
 
 const noether::ParamDoc params[] = {
