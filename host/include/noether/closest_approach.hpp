@@ -4,10 +4,15 @@
 // with its time and their errors by the run repeated at half the step (DerivedError).
 #include <noether/derived_error.hpp>
 
+#include <cstddef>
 #include <limits>
 #include <string>
 
 namespace noether {
+
+// The most bodies whose every pair's closest approach a run follows (66 pairs); larger scenes keep
+// only the closest centres seen at the frames (RunSummary::min_distance).
+inline constexpr std::size_t kClosestApproachMostBodies = 12;
 
 struct ClosestApproach {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

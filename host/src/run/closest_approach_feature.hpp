@@ -20,7 +20,6 @@ namespace noether::detail {
 
 class ClosestApproachFeature final : public RunFeature {
  public:
-  static constexpr std::size_t kMostBodies = 12;
   explicit ClosestApproachFeature(const System& system);
   std::string_view name() const override { return "closest_approach"; }
   void start(const State&, Eigen::Ref<Eigen::MatrixXd>) override {}

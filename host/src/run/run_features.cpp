@@ -31,7 +31,7 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
   if (const auto pair = binary_pair(sc.system))
     features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
   if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));
-  if (sc.system.size() >= 2 && sc.system.size() <= ClosestApproachFeature::kMostBodies)
+  if (sc.system.size() >= 2 && sc.system.size() <= kClosestApproachMostBodies)
     features.push_back(std::make_unique<ClosestApproachFeature>(sc.system));
   if (!sc.forces.empty()) features.push_back(std::make_unique<ForceBalanceFeature>(sc.forces.size()));
   if (!sc.run.sensitivities.empty())  // the tangent's last columns

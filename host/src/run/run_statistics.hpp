@@ -119,7 +119,10 @@ class RunStatistics final : public Observer {
           std::max(s_.max_rel_angular_momentum_error,
                    (d.angular_momentum - dL - s_.initial.angular_momentum).norm() / (L_scale_ + exchanged_L_));
     s_.max_orthogonality_error = std::max(s_.max_orthogonality_error, d.orthogonality_error);
-    if (state.x.cols() <= 64)  // closest approach of centres, O(n²): small scenes only
+    // Closest approach of centres at the frames, O(n²): scenes too large for every pair to be
+    // followed between frames (the closest approach feature, up to kClosestApproachMostBodies),
+    // and small enough.
+    if (state.x.cols() > static_cast<Eigen::Index>(kClosestApproachMostBodies) && state.x.cols() <= 64)
       for (Eigen::Index i = 0; i < state.x.cols(); ++i)
         for (Eigen::Index j = i + 1; j < state.x.cols(); ++j) {
           const double r = (state.x.col(i) - state.x.col(j)).norm();

@@ -277,9 +277,6 @@ PictureFrames read_picture_frames(const std::filesystem::path& file, std::size_t
       out.notes.push_back(std::string("the run's impulses are not marked: its scene does not read here (") + e.what() +
                           ")");
     }
-  }
-
-  if (parameters.valid()) {
     if (H5Aexists(parameters, "unit_length") > 0) out.unit_length = io::read_string(parameters, "unit_length", false);
     if (H5Aexists(parameters, "unit_time") > 0) out.unit_time = io::read_string(parameters, "unit_time", false);
   }
