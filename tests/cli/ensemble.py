@@ -128,6 +128,19 @@ else:
     if recorded[:2] != (summary["mutual_period"], summary["mutual_period_error"]) or recorded[2] == recorded[0]:
         failures.append(f"the ensemble's mutual period {recorded} against the run's {summary['mutual_period']} "
                         f"± {summary['mutual_period_error']}")
+    # and each body's rotation and libration periods, as its summary's spin states (eqs. 17.13, 17.14)
+    spins = {s["body"]: s for s in summary["spin_states"]}
+    with h5py.File("period.h5") as f:
+        periods = {"didymos.spin_period": f["indicators/didymos.spin_period"][0],
+                   "dimorphos.spin_period": f["indicators/dimorphos.spin_period"][0],
+                   "dimorphos.libration_period": f["indicators/dimorphos.libration_period"][0]}
+        unit = f["indicators/dimorphos.libration_period"].attrs["unit"]
+        unit = unit.decode() if isinstance(unit, bytes) else unit
+    expected = {"didymos.spin_period": spins["didymos"]["spin_period"],
+                "dimorphos.spin_period": spins["dimorphos"]["spin_period"],
+                "dimorphos.libration_period": spins["dimorphos"]["libration_period"]}
+    if periods != expected or unit != "s" or not 8130 < periods["didymos.spin_period"] < 8140:
+        failures.append(f"the ensemble's spin periods {periods} [{unit}] against the run's {expected}")
 
 # 1b. Across processes: `mpirun -n 2` (oversubscribed where there are fewer cores) gives the same file.
 mpirun = "/usr/bin/mpirun"

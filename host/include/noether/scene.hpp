@@ -34,13 +34,14 @@ struct TrustThresholds {
   double particle_fates = 0.05;
   // A mutual orbit period's estimated error over the period (RunSummary::mutual_period_error):
   // 1e-3, 43 s of Didymos' 11.9 h, well inside the ±1 min to which DART's ΔP of −33 min was
-  // measured (docs/user-guide.md, "Verdict").
+  // measured (docs/user-guide.md, "Verdict"); and a rotation period's (SpinState::spin_period_error).
   double period = 1e-3;
   // An impulse's period change ΔP: its estimated error over |ΔP| (PeriodChange::change_error):
   // 1e-3, half the 2.2e-3 to which DART's was measured (Scheirich et al. 2024: −33.240 ± 0.072
   // min).
   double period_change = 1e-3;
-  // A libration amplitude's estimated error over the amplitude (SpinState::libration_error):
+  // A libration amplitude's estimated error over the amplitude (SpinState::libration_error),
+  // and a libration period's over the period (libration_period_error):
   // 0.1, twice the frames' own sampling of the extremes at ten frames a libration period
   // (docs/user-guide.md, "Spin state").
   double libration = 0.1;

@@ -151,11 +151,13 @@ std::vector<Indicator> ensemble_indicators(const Scene& scene) {
     const std::string per_time = scene.units.declared ? "1/" + scene.units.of_time() : "1/time";
     out.insert(out.end(), {{"megno", "1"}, {"fli", "1"}, {"lyapunov", per_time}});
   }
+  const std::string time = scene.units.declared ? scene.units.of_time() : "time";
   for (const SpinState& spin : spin_state_template(scene)) {
     if (!spin.other.empty())
-      out.insert(out.end(), {{spin.body + ".libration_amplitude", "deg"}, {spin.body + ".turns", "1"},
-                             {spin.body + ".max_pitch", "deg"}, {spin.body + ".max_roll", "deg"}});
-    out.push_back({spin.body + ".max_nutation", "deg"});
+      out.insert(out.end(), {{spin.body + ".libration_amplitude", "deg"}, {spin.body + ".libration_period", time},
+                             {spin.body + ".turns", "1"}, {spin.body + ".max_pitch", "deg"},
+                             {spin.body + ".max_roll", "deg"}});
+    out.insert(out.end(), {{spin.body + ".max_nutation", "deg"}, {spin.body + ".spin_period", time}});
   }
   return out;
 }
@@ -167,8 +169,9 @@ std::vector<double> indicator_values(const Scene& scene, const RunSummary& s) {
   if (spins.size() != scene.system.rigid_count()) spins = spin_state_template(scene);  // a run that never started
   for (const SpinState& spin : spins) {
     if (!spin.other.empty())
-      out.insert(out.end(), {spin.libration_amplitude, spin.turns, spin.max_pitch, spin.max_roll});
-    out.push_back(spin.max_nutation);
+      out.insert(out.end(),
+                 {spin.libration_amplitude, spin.libration_period, spin.turns, spin.max_pitch, spin.max_roll});
+    out.insert(out.end(), {spin.max_nutation, spin.spin_period});
   }
   return out;
 }

@@ -163,8 +163,8 @@ class EnsembleFile {
         string_attribute(group, "description",
                          "each sample's indicators at its end: with run.chaos MEGNO <Y>, the FLI, ln|delta|/t "
                          "(docs/derivatives.md); for each rigid body its spin state, <body>.libration_amplitude, "
-                         ".turns, .max_pitch, .max_roll (one of the binary) and .max_nutation (docs/user-guide.md, "
-                         "\"Spin state\")");
+                         ".libration_period, .turns, .max_pitch, .max_roll (one of the binary), .max_nutation and "
+                         ".spin_period (docs/user-guide.md, \"Spin state\")");
         for (const auto& indicator : indicators_)
           with_unit(create(group, indicator.name.c_str(), H5T_NATIVE_DOUBLE, {}), indicator.unit);
       }

@@ -8,7 +8,7 @@
 #include <noether/simulation.hpp>
 
 #include "run/event_watch.hpp"
-#include "run/half_step_run.hpp"
+#include "run/refined_run.hpp"
 #include "run/simulation_impl.hpp"
 
 #include <cmath>
@@ -26,67 +26,43 @@ Vec3 relative_position(const State& s, std::size_t body, std::size_t about) {
   return s.x.col(static_cast<Eigen::Index>(body)) - s.x.col(static_cast<Eigen::Index>(about));
 }
 
-// The integrator's tolerance `key` ("rtol", "atol"): the scene's, or the plugin's documented
-// default; NaN when it has none.
-double tolerance(const Simulation::Impl& m, const std::string& key) {
-  const Params& given = m.scene.integrator.params;
-  if (given.has(key)) return given.at(key).as_double();
-  for (const ParamDoc& doc : m.registry->info(m.scene.integrator.plugin).params)
-    if (doc.name == key && doc.default_value && doc.default_value[0] != '(') return std::stod(doc.default_value);
-  return std::numeric_limits<double>::quiet_NaN();
-}
-
 // An adaptive method's run repeated whole at a tenfold tighter tolerance (rtol and atol / 10):
 // the difference is nearly its error (global errors scale about with the tolerance). Where
 // rtol / 10 would ask for less than 1e-14, which double precision cannot meet, at a tenfold
 // looser one instead: the difference is then nearly that run's error, an upper bound of the
-// run's. Only a run that took at most run.rerun_seconds and reached its end (not an event).
+// run's. Only a run that took at most run.rerun_seconds and reached its end (not an event): the
+// run the derived numbers' errors are measured by too (RefinedRun).
 ResolutionCheck check_tolerance(const Simulation::Impl& m, const RunSummary& judged, ResolutionCheck check,
-                                std::size_t b, std::size_t a) {
-  const double rtol = tolerance(m, "rtol"), atol = tolerance(m, "atol");
-  if (!(rtol > 0) || !(judged.wall_seconds <= m.scene.run.rerun_seconds) || !(m.scene.run.rerun_seconds > 0) ||
-      !judged.stop_reason.empty() || !m.scene_trajectory)
-    return ResolutionCheck{};
-  const bool tighter = rtol / 10 >= 1e-14;
-  const double factor = tighter ? 0.1 : 10.0;
-  Params integrator = m.scene.integrator.params;
-  auto set = [&integrator](const char* key, double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.17g", value);
-    integrator.set(key, Params::scalar(text));
-  };
-  set("rtol", rtol * factor);
-  if (atol > 0) set("atol", atol * factor);
-  HalfStepRun run;
-  try {
-    run = rerun_scene(m, integrator, m.state.t, m.scene.run.output_every);
-  } catch (const Error&) {
-    return ResolutionCheck{};  // the other tolerance failed: the energy's verdict stands
-  }
+                                std::size_t b, std::size_t a, RefinedRun& refined) {
+  const Refinement* r = refined.refinement();
+  if (!r || !(r->tolerance_factor > 0) || !judged.stop_reason.empty()) return ResolutionCheck{};
+  const Rerun* run = refined.get();
+  if (!run) return ResolutionCheck{};  // the other tolerance failed: the energy's verdict stands
+  const bool tighter = r->tolerance_factor < 1.0;
   check.done = check.whole_run = true;
   check.window = m.state.t - m.scene.initial.t;
   check.how = tighter ? "at a tenfold tighter tolerance" : "at a tenfold looser tolerance (an upper bound)";
   check.change = tighter ? "tightening the tolerance tenfold" : "loosening the tolerance tenfold";
   check.remedy = "a tighter tolerance";
-  if (!run.stop.reason.empty()) {
-    check.ends_differently = "it stops: " + run.stop.reason;
+  if (!run->stop.reason.empty()) {
+    check.ends_differently = "it stops: " + run->stop.reason;
     check.per_window = check.over_run = std::numeric_limits<double>::infinity();
     return check;
   }
-  const Vec3 r = relative_position(m.state, b, a);
-  check.per_window = check.over_run = (r - relative_position(run.end, b, a)).norm() / r.norm();
+  const Vec3 r_end = relative_position(m.state, b, a);
+  check.per_window = check.over_run = (r_end - relative_position(run->end, b, a)).norm() / r_end.norm();
   return check;
 }
 
 // The scene run from t0 at step `step` to t_end (events on); the state and stop where it ended.
 std::pair<State, StopInfo> rerun(const Simulation::Impl& m, double step, double t_end) {
-  HalfStepRun run = rerun_scene(m, step, t_end, t_end - m.scene.initial.t);
+  Rerun run = rerun_scene(m, step, t_end, t_end - m.scene.initial.t);
   return {std::move(run.end), run.stop};
 }
 
 }  // namespace
 
-ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step) {
+ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RefinedRun& refined) {
   ResolutionCheck check;
   const Scene& scene = m.scene;
   const double h = m.integrator->fixed_step();
@@ -104,7 +80,7 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
   const double run_length = m.state.t - initial.t;
   check.body = orbit.body;
   check.about = orbit.about;
-  if (!(h > 0)) return check_tolerance(m, judged, check, b, a);  // a method that chooses its steps
+  if (!(h > 0)) return check_tolerance(m, judged, check, b, a, refined);  // a method that chooses its steps
   if (!scene.integrator.params.has("step")) return ResolutionCheck{};
 
   // A run that took at most run.rerun_seconds is repeated whole at h/2 (twice its cost): the
@@ -112,8 +88,8 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
   // (a spacecraft near a binary), where one orbit's difference says little about the run's.
   // (Not a run whose state was set from outside, or loaded: the scene's is another trajectory.)
   if (judged.wall_seconds <= scene.run.rerun_seconds && scene.run.rerun_seconds > 0 && m.scene_trajectory) {
-    // To the end on the step grid: t_end, or the first step after the event (RunAtHalfStep).
-    const HalfStepRun* run = half_step.get();
+    // To the end on the step grid: t_end, or the first step after the event (RefinedRun).
+    const Rerun* run = refined.get();
     if (!run) return ResolutionCheck{};  // the halved step failed: the energy's verdict stands
     const State& half = run->end;
     const StopInfo& stop = run->stop;

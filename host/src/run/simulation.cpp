@@ -7,7 +7,7 @@
 #include <noether/stepping.hpp>
 
 #include "scene/start_apart.hpp"
-#include "run/half_step_run.hpp"
+#include "run/refined_run.hpp"
 #include "run/simulation_impl.hpp"
 
 #include <algorithm>
@@ -364,11 +364,11 @@ RunSummary Simulation::summary() const { return impl_->summary_now(); }
 
 RunSummary Simulation::finish() {
   Impl& m = *impl_;
-  if (!m.finished && m.failure.empty()) {  // the step-halving checks, on one run at half the step
+  if (!m.finished && m.failure.empty()) {  // the checks on one run repeated finer
     const RunSummary judged = summary();
-    RunAtHalfStep half_step(m, judged);
-    m.summary.resolution = check_resolution(m, judged, half_step);
-    m.derived = check_derived(m, judged, half_step);
+    RefinedRun refined(m, judged);
+    m.summary.resolution = check_resolution(m, judged, refined);
+    m.derived = check_derived(m, judged, refined);
   }
   RunSummary s = summary();
   if (!m.finished && m.writer)

@@ -352,15 +352,15 @@ struct Simulation::Impl {
   }
 };
 
-// The step-halving check of the smallest orbit, when the energy cannot certify it and the
-// integrator has a fixed step (resolution_check.cpp); `judged` is the summary so far.
-// `half_step`: the run repeated at half its step, made at most once for both checks.
-class RunAtHalfStep;
-ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step);
+// The resolution check of the smallest orbit, when the energy cannot certify it
+// (resolution_check.cpp); `judged` is the summary so far. `refined`: the run repeated finer (at
+// half its step, or at a tenfold tighter tolerance), made at most once for both checks.
+class RefinedRun;
+ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& judged, RefinedRun& refined);
 
 // The errors of the numbers the run derives from its trajectory (the mutual period, the period
-// changes, the libration amplitudes), by the run repeated at half the step (derived_check.cpp):
-// `judged`, the summary so far, with them.
-RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RunAtHalfStep& half_step);
+// changes, the libration, the rotation periods, the encounters, an event's time), by the run
+// repeated finer (derived_check.cpp): `judged`, the summary so far, with them.
+RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RefinedRun& refined);
 
 }  // namespace noether

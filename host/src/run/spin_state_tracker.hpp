@@ -36,9 +36,19 @@ class SpinStateTracker {
     Vec3 axis = Vec3::UnitZ();  // largest_moment_axis of the body's J
     double t = 0.0, yaw = 0.0, first = 0.0, low = 0.0, high = 0.0;  // yaw unwrapped (radians)
     double rate = 0.0;       // the yaw's rate at the last frame (radians per unit time)
+    double t_before = 0.0, rate_before = 0.0;  // the frame before it (for a quadratic root)
     double pitch = 0.0, roll = 0.0, nutation = 0.0, max_nutation = 0.0;
     bool seen = false, undersampled = false;
+    // Eq. 17.13: the yaw's turning points, the first and the last, with their interpolation errors.
+    int frames = 0, turning = 0;
+    double first_turn = 0.0, last_turn = 0.0, first_turn_error = 0.0, last_turn_error = 0.0;
+    // Eq. 17.14: the inertial direction k of R Π at the first frame it is not zero, the body axis
+    // followed about it, that axis' angle unwrapped (radians) since spin_t0, and its rate.
+    Vec3 spin_axis = Vec3::Zero(), reference = Vec3::UnitX();
+    double spin = 0.0, spin_first = 0.0, spin_t0 = 0.0, spin_t = 0.0, spin_rate = 0.0;
+    bool spinning = false, spin_undersampled = false, spin_tumbling = false;
   };
+  void follow_spin(Track& t, double time, const Mat3& R, const Vec3& Pi) const;  // eq. 17.14
   const System& system_;
   std::vector<Track> tracks_;  // one per rigid body
 };

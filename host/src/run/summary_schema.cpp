@@ -238,12 +238,12 @@ const SummaryRow kRows[] = {
                                         (s.mutual_revolutions == 1 ? "" : "s") + " of the trajectory)" + error);
      }},
     {.key = "mutual_period_error", .dimension = Dimension::kTime, .uses = kEnsemble,
-     .doc = "the mutual period's estimated error, by the run repeated at half the step (docs/user-guide.md "
-            "\"Verdict\"; on its line)",
+     .doc = "the mutual period's estimated error, by the run repeated at half the step, or at a tenfold tighter "
+            "tolerance (docs/user-guide.md \"Verdict\"; on its line)",
      .number = [](S s) { return s.mutual_period_error.error; },
      .has = [](S s) { return s.mutual_period_error.estimated(); }},
     {.key = "mutual_period_at_half_step", .dimension = Dimension::kTime,
-     .doc = "the mutual period of the run repeated at half the step (on its line)",
+     .doc = "the mutual period of the run repeated at half the step, or at the other tolerance (on its line)",
      .number = [](S s) { return s.mutual_period_error.at_half_step; },
      .has = [](S s) { return s.mutual_period_error.estimated(); }},
     {.key = "mutual_period_error_method", .kind = Kind::text,
@@ -268,8 +268,9 @@ const SummaryRow kRows[] = {
             "`error_method`: how, or why not); docs/user-guide.md \"Impulses\"",
      .json = period_changes_json, .line = period_changes_lines},
     {.key = "spin_states", .kind = Kind::structure, .label = "spin state",
-     .doc = "per rigid body: libration about its binary's line of centres, or its turns, and nutation "
-            "(docs/user-guide.md \"Spin state\")",
+     .doc = "per rigid body: libration about its binary's line of centres (amplitude and period, with their "
+            "errors), or its turns; its rotation period with its error; and nutation (docs/user-guide.md \"Spin "
+            "state\")",
      .json = spin_states_json, .line = spin_states_lines},
     {.key = "chaos", .kind = Kind::structure, .label = "chaos indicators",
      .doc = "MEGNO, its ⟨Y⟩, FLI, ln‖δ‖/t and the time, with run.chaos (docs/derivatives.md)",

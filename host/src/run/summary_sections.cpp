@@ -168,7 +168,14 @@ std::string spin_states_json(const RunSummary& s) {
     out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(spin.body) +
            ", \"other\": " + (spin.other.empty() ? "null" : json_string(spin.other)) +
            ", \"libration_amplitude\": " + json_number(spin.libration_amplitude) +
-           ", \"libration_amplitude_error\": " + json_number(spin.libration_error.error) + ", \"turns\": " +
+           ", \"libration_amplitude_error\": " + json_number(spin.libration_error.error) + ", \"turning_points\": " + std::to_string(spin.turning_points) +
+           ", \"libration_period\": " + json_number(spin.libration_period) +
+           ", \"libration_period_error\": " + json_number(spin.libration_period_error.error) +
+           ", \"libration_period_frames_error\": " + json_number(spin.libration_period_frames_error) +
+           ", \"spin_turns\": " + json_number(spin.spin_turns) + ", \"spin_period\": " + json_number(spin.spin_period) +
+           ", \"spin_period_error\": " + json_number(spin.spin_period_error.error) +
+           ", \"spin_undersampled\": " + flag(spin.spin_undersampled) +
+           ", \"spin_tumbling\": " + flag(spin.spin_tumbling) + ", \"turns\": " +
            json_number(spin.turns) + ", \"max_pitch\": " + json_number(spin.max_pitch) +
            ", \"max_roll\": " + json_number(spin.max_roll) + ", \"undersampled\": " + flag(spin.undersampled) +
            ", \"nutation\": " + json_number(spin.nutation) + ", \"max_nutation\": " + json_number(spin.max_nutation) + "}";
@@ -177,9 +184,12 @@ std::string spin_states_json(const RunSummary& s) {
 
 std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // docs/user-guide.md, "Spin state"
   std::string out;
-  char part[256];
+  char part[320];
+  const std::string& T = s.time_unit;
+  auto error = [](const DerivedError& e) { return e.estimated() ? " ± " + printed("%.3g", e.error) : std::string(); };
+  auto hours = [&](double t) { return T == "s" ? printed(" = %.6g h", t / 3600.0) : std::string(); };
   for (const SpinState& spin : s.spin_states) {
-    std::string what;
+    std::string what, periods;
     if (!spin.other.empty()) {
       if (spin.undersampled) {
         what = "libration not measured: the frames are too far apart to follow the yaw (lower run.output_every)";
@@ -187,12 +197,22 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
         std::snprintf(part, sizeof part, "circulates, %+.4g turns relative to the line of centres (max pitch %.3g, roll %.3g deg)",
                       spin.turns, spin.max_pitch, spin.max_roll);
         what = part;
-      } else if (std::isfinite(spin.libration_amplitude)) {
-        const std::string error =
-            spin.libration_error.estimated() ? " ± " + printed("%.3g", spin.libration_error.error) : std::string();
-        std::snprintf(part, sizeof part, "librates +-%.4g%s deg about the line of centres (max pitch %.3g, roll %.3g deg)",
-                      spin.libration_amplitude, error.c_str(), spin.max_pitch, spin.max_roll);
+      } else if (std::isfinite(spin.libration_amplitude) && spin.turning_points < 2) {
+        std::snprintf(part, sizeof part,
+                      "swept %.4g deg relative to the line of centres without turning back each way: too short a run "
+                      "to tell libration from circulation (max pitch %.3g, roll %.3g deg)",
+                      2.0 * spin.libration_amplitude, spin.max_pitch, spin.max_roll);
         what = part;
+      } else if (std::isfinite(spin.libration_amplitude)) {
+        std::snprintf(part, sizeof part, "librates +-%.4g%s deg about the line of centres (max pitch %.3g, roll %.3g deg)",
+                      spin.libration_amplitude, error(spin.libration_error).c_str(), spin.max_pitch, spin.max_roll);
+        what = part;
+        if (std::isfinite(spin.libration_period)) {
+          std::snprintf(part, sizeof part, "libration period %.8g%s %s%s (%d turning points)", spin.libration_period,
+                        error(spin.libration_period_error).c_str(), T.c_str(), hours(spin.libration_period).c_str(),
+                        spin.turning_points);
+          periods = part;
+        }
       }
     }
     if (std::isfinite(spin.max_nutation))
@@ -202,6 +222,22 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
     what += (what.empty() ? "" : "; ") + std::string(part);
     std::snprintf(part, sizeof part, "%s %-18s", std::string(row.label).c_str(), spin.body.c_str());
     out += summary_line(part, what);
+    // The rotation period (eq. 17.14), and the libration's, on a line of their own.
+    std::string rotation;
+    if (std::isfinite(spin.spin_period)) {
+      std::snprintf(part, sizeof part, "rotation period %.10g%s %s%s (%.4g turns)", spin.spin_period,
+                    error(spin.spin_period_error).c_str(), T.c_str(), hours(spin.spin_period).c_str(), spin.spin_turns);
+      rotation = part;
+    } else if (spin.spin_tumbling) {
+      rotation = "rotation period not measured: it tumbles (the axis followed came within 30 deg of its spin's first "
+                 "direction)";
+    } else if (spin.spin_undersampled) {
+      rotation = "rotation period not measured: the frames are too far apart (lower run.output_every)";
+    } else if (std::isfinite(spin.spin_turns)) {
+      rotation = printed("rotation period not measured: %.3g of a turn in the run", std::abs(spin.spin_turns));
+    }
+    if (!periods.empty() || !rotation.empty())
+      out += summary_line("", periods + (periods.empty() || rotation.empty() ? "" : "; ") + rotation);
   }
   return out;
 }

@@ -140,21 +140,33 @@ void judge(RunSummary& s, const Scene& scene) {
     moved(particles.position, " in flight", "their distance from the centre");
     moved(particles.landing_point, "' landing points", "the body's radius");
   }
-  // The numbers the run derives, against their errors estimated by the run at half the step
+  // The numbers the run derives, against their errors estimated by the run repeated finer
   // (derived_check.cpp): the step that would meet the tolerance, h (tolerance / error)^(1/p) —
-  // with p = 1 when the method does not declare its order, a step small enough for any p ≥ 1.
+  // with p = 1 when the method does not declare its order, a step small enough for any p ≥ 1 —,
+  // or for a method that chooses its steps the rtol, rtol (tolerance / error)^(1/q), q = p/(p+1)
+  // (0.5 when not declared).
   auto unresolved = [&](const std::string& what, const DerivedError& e, double value, double tolerance,
                         const char* key, const std::string& unit) {
     if (!e.estimated() || !(e.error > tolerance * std::abs(value))) return;
     const double fraction = e.error / std::abs(value);
-    const double step = e.step * std::pow(tolerance / fraction, 1.0 / std::max(1, e.order));
+    const double shrink = std::pow(tolerance / fraction, 1.0 / e.exponent());
+    char remedy[256];
+    if (e.tolerance_factor == 0.0)
+      std::snprintf(remedy, sizeof remedy, "a step of about %.3g %s or less meets it if the error is the step's",
+                    e.step * shrink, s.time_unit.c_str());
+    else if (e.tolerance * shrink >= 1e-14)
+      std::snprintf(remedy, sizeof remedy, "an rtol of about %.2g or less meets it if the error is the tolerance's",
+                    e.tolerance * shrink);
+    else
+      std::snprintf(remedy, sizeof remedy,
+                    "it would take an rtol of about %.2g, below what double precision meets: a method of higher "
+                    "order, or a fixed-step one whose error is estimated by halving its step",
+                    e.tolerance * shrink);
     std::snprintf(why, sizeof why,
-                  "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.%s; %s); a step of "
-                  "about %.3g %s or less meets it if the error is the step's (on a chaotic orbit none does: run.chaos "
-                  "tells)",
+                  "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.%s; %s); %s (on a "
+                  "chaotic orbit none does: run.chaos tells)",
                   what.c_str(), e.error, (unit.empty() ? "" : " " + unit).c_str(), fraction, tolerance, key,
-                  e.method().c_str(), step,
-                  s.time_unit.c_str());
+                  e.method().c_str(), remedy);
     v.reasons.push_back(why);
   };
   const std::string& T = s.time_unit;
@@ -169,9 +181,27 @@ void judge(RunSummary& s, const Scene& scene) {
     unresolved("the period change ΔP of " + s.mutual_pair + " at t = " + at, c.change_error, c.change(),
                limit.period_change, "period_change", T);
   }
-  for (const SpinState& spin : s.spin_states)
+  // Each body's libration (amplitude and period: run.trust.libration; where the turning points'
+  // interpolation is most of the period's error, frames closer together are the remedy) and
+  // rotation period (run.trust.period, as the mutual period's).
+  for (const SpinState& spin : s.spin_states) {
     unresolved("the libration amplitude of " + spin.body, spin.libration_error, spin.libration_amplitude,
                limit.libration, "libration", "deg");
+    const DerivedError& e = spin.libration_period_error;
+    if (!(spin.libration_period_frames_error >= 0.5 * e.error)) {
+      unresolved("the libration period of " + spin.body, e, spin.libration_period, limit.libration, "libration", T);
+    } else if (e.estimated() && e.error > limit.libration * spin.libration_period) {
+      std::snprintf(why, sizeof why,
+                    "the libration period of %s is not resolved: its estimated error %.3g %s is %.2e of it > %.0e "
+                    "(run.trust.libration), %.3g %s of it the turning points' interpolation between frames: frames "
+                    "closer together (a smaller run.output_every) time them",
+                    spin.body.c_str(), e.error, T.c_str(), e.error / spin.libration_period, limit.libration,
+                    spin.libration_period_frames_error, T.c_str());
+      v.reasons.push_back(why);
+    }
+    unresolved("the rotation period of " + spin.body, spin.spin_period_error, spin.spin_period, limit.period, "period",
+               T);
+  }
   // The event that stopped the run: its time against the time run until it.
   if (is_event(s.stop_reason))
     unresolved("the time of the event that stopped the run (" + s.stop_reason.substr(0, s.stop_reason.find(':')) + ")",

@@ -216,11 +216,13 @@ constexpr SceneKey kTrust[] = {
     {.key = "particle_fates", .type = T::number, .otherwise = "0.05",
      .doc = "the fraction of the checked particles whose fate changes at half their step"},
     {.key = "period", .type = T::number, .otherwise = "1e-3",
-     .doc = "a mutual orbit period's estimated error (the run repeated at half the step) over the period"},
+     .doc = "a mutual orbit period's, or a body's rotation period's, estimated error (the run repeated at half the "
+            "step, or at a tighter tolerance) over the period"},
     {.key = "period_change", .type = T::number, .otherwise = "1e-3",
      .doc = "an impulse's period change ΔP: its estimated error over \\|ΔP\\|"},
     {.key = "libration", .type = T::number, .otherwise = "0.1",
-     .doc = "a libration amplitude's estimated error (the run repeated at half the step) over the amplitude"},
+     .doc = "a libration amplitude's or period's estimated error (the run repeated finer; the period's with "
+            "its turning points' interpolation) over the amplitude or period"},
     {.key = "closest_approach", .type = T::number, .otherwise = "1e-3",
      .doc = "an encounter's closest approach: its distance's estimated error (the run at half the step, and the "
             "frames' interpolation) over the distance"},
