@@ -3,6 +3,7 @@
 // diagnostics at every output frame, the HDF5 file written as it goes, and a summary.
 #include <noether/chaos_values.hpp>
 #include <noether/closest_approach.hpp>
+#include <noether/orbit_period.hpp>
 #include <noether/derived_error.hpp>
 #include <noether/spin_state.hpp>
 #include <noether/diagnostics.hpp>
@@ -192,6 +193,10 @@ struct RunSummary {
   // Each pair's closest approach, located between the integrator's steps (scenes of 2 to 12
   // bodies), the closest first; its errors set when a run finishes.
   std::vector<ClosestApproach> closest_approaches;
+  // Each body's orbit about the body it is bound to closest at the start but the binary's (timed as
+  // mutual_period), its period measured from the trajectory (scenes of 3 to 64 bodies); its
+  // errors set when a run finishes.
+  std::vector<OrbitPeriod> orbit_periods;
   std::size_t frames = 0;
   std::int64_t interpolated_frames = 0;  // frames interpolated between the method's steps
   std::string stop_reason;  // empty when the run reached t_end; else the event that stopped it

@@ -5,8 +5,9 @@
 // estimate of its error (DerivedError): for a step and a method of order p by Richardson
 // extrapolation, Q(h) − Q* ≈ (Q(h) − Q(h/2)) · 2^p / (2^p − 1). These are the mutual period, the
 // periods before and after each impulse and their difference ΔP — ΔP from its own change, in
-// which the errors the two periods share cancel —, each libration's amplitude and period, each
-// body's rotation period, each encounter and the time of the event that stopped the run. For the
+// which the errors the two periods share cancel —, every other attracting pair's orbit period,
+// each libration's amplitude and period, each body's rotation period, each encounter and the
+// time of the event that stopped the run. For the
 // Didymos scene the period's estimate at 1200 s is 443 s against a true 444 s
 // (tests/test_derived_check.cpp). The errors are kept beside the run (Simulation::Impl::derived)
 // and put on every later summary's numbers, which the features rebuild each time
@@ -80,16 +81,18 @@ DerivedError estimate(double value, double finer, const Refinement& r) {
 
 }  // namespace
 
-RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RefinedRun& refined) {
+RunSummary check_derived(const RunSummary& judged, RefinedRun& refined) {
   RunSummary out = judged;
   const bool changes = std::any_of(judged.period_changes.begin(), judged.period_changes.end(),
                                    [](const PeriodChange& c) { return c.measured(); });
   const bool librations = std::any_of(judged.spin_states.begin(), judged.spin_states.end(), librates);
   const bool spins = std::any_of(judged.spin_states.begin(), judged.spin_states.end(),
                                  [](const SpinState& s) { return std::isfinite(s.spin_period); });
+  const bool orbits = std::any_of(judged.orbit_periods.begin(), judged.orbit_periods.end(),
+                                  [](const OrbitPeriod& o) { return o.revolutions >= 1; });
   const bool encounters = std::any_of(judged.closest_approaches.begin(), judged.closest_approaches.end(), encounter);
   const bool event = is_event(judged.stop_reason);
-  if (judged.mutual_revolutions < 1 && !changes && !librations && !spins && !encounters && !event)
+  if (judged.mutual_revolutions < 1 && !changes && !librations && !spins && !orbits && !encounters && !event)
     return out;  // nothing derived
   // Why no error is estimated: said on each number that asked.
   auto not_estimated = [&](const std::string& why) {
@@ -103,6 +106,8 @@ RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, Re
     }
     for (ClosestApproach& c : out.closest_approaches)
       if (encounter(c)) c.distance_error.why_not = why;
+    for (OrbitPeriod& o : out.orbit_periods)
+      if (o.revolutions >= 1) o.error.why_not = why;
     if (event) out.stop_time_error.why_not = why;
   };
   if (!refined.refinement()) {
@@ -170,6 +175,17 @@ RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, Re
         spin.spin_period_error = estimate(spin.spin_period, there->spin_period, h);
     }
   }
+  // Each attracting pair's orbit period against the same pair's.
+  for (OrbitPeriod& o : out.orbit_periods) {
+    if (o.revolutions < 1) continue;
+    const OrbitPeriod* there = nullptr;
+    for (const OrbitPeriod& d : finer_run.orbit_periods)
+      if (d.body == o.body && d.about == o.about) there = &d;
+    if (!there || there->revolutions < 1)
+      o.error.why_not = at + " the orbit makes no whole revolution";
+    else
+      o.error = estimate(o.period, there->period, h);
+  }
   // Each pair's encounter against the same pair's at half the step (its distance's and time's
   // errors with the frames' interpolation bounds added: the same frames in both runs, the
   // Richardson difference cannot see them).
@@ -205,6 +221,9 @@ void with_derived_errors(const RunSummary& from, RunSummary& into) {
     for (const ClosestApproach& e : from.closest_approaches)
       if (e.pair == c.pair) c.distance_error = e.distance_error, c.time_error = e.time_error;
   into.mutual_period_error = from.mutual_period_error;
+  for (OrbitPeriod& o : into.orbit_periods)
+    for (const OrbitPeriod& e : from.orbit_periods)
+      if (e.body == o.body && e.about == o.about) o.error = e.error;
   for (PeriodChange& c : into.period_changes)
     for (const PeriodChange& e : from.period_changes)
       if (e.t == c.t) c.before_error = e.before_error, c.after_error = e.after_error, c.change_error = e.change_error;

@@ -2,6 +2,7 @@
 // test (docs/architecture.md, "Run features").
 #include "run/run_features.hpp"
 
+#include "run/attracting_pairs.hpp"
 #include "run/chaos_feature.hpp"
 #include "run/closest_approach_feature.hpp"
 #include "run/event_feature.hpp"
@@ -9,6 +10,7 @@
 #include "run/binary_pair.hpp"
 #include "run/impulse_feature.hpp"
 #include "run/mutual_orbit_feature.hpp"
+#include "run/orbit_periods_feature.hpp"
 #include "run/particle_feature.hpp"
 #include "run/sensitivity_feature.hpp"
 #include "run/spin_state_feature.hpp"
@@ -28,8 +30,11 @@ std::vector<std::unique_ptr<RunFeature>> make_run_features(const FeatureContext&
     features.push_back(std::make_unique<ParticleFeature>(sc, c.integrator, c.initial, c.forcing, c.threads));
   if (auto events = std::make_unique<EventFeature>(sc.system, sc.run); events->watches_any())
     features.push_back(std::move(events));
-  if (const auto pair = binary_pair(sc.system))
-    features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
+  const auto pair = binary_pair(sc.system);
+  if (pair) features.push_back(std::make_unique<MutualOrbitFeature>(sc.system, pair->primary, pair->secondary));
+  if (sc.system.size() >= 3 && sc.system.size() <= kAttractingPairsMostBodies)  // (two: the binary's alone)
+    features.push_back(std::make_unique<OrbitPeriodsFeature>(
+        sc.system, pair ? std::optional(std::pair(pair->primary, pair->secondary)) : std::nullopt));
   if (sc.system.rigid_count() > 0) features.push_back(std::make_unique<SpinStateFeature>(sc.system));
   if (sc.system.size() >= 2 && sc.system.size() <= kClosestApproachMostBodies)
     features.push_back(std::make_unique<ClosestApproachFeature>(sc.system));

@@ -7,6 +7,7 @@
 #include <noether/simulation.hpp>
 #include <noether/stepping.hpp>
 
+#include "run/attracting_pairs.hpp"
 #include "run/event_watch.hpp"
 #include "run/summary_schema.hpp"
 
@@ -182,38 +183,22 @@ class RunStatistics final : public Observer {
   }
 
  private:
-  // Each body's orbit about the body that attracts it most (largest G m_j / r²) at t0, one per
-  // pair, with the pair's two-body energy as its scale (RunSummary::orbits). Scenes of more than
-  // 64 bodies are judged on E0 alone (O(n²)).
+  // Each body's orbit about the body that attracts it most at t0 (attracting_pairs.hpp), with the
+  // pair's two-body energy as its scale (RunSummary::orbits). Scenes of more than 64 bodies are
+  // judged on E0 alone (O(n²)).
   std::vector<OrbitScale> orbit_scales(const State& state) const {
     std::vector<OrbitScale> orbits;
-    const Eigen::Index n = state.x.cols();
-    if (n < 2 || n > 64) return orbits;
     const double G = system_.G();
-    std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      Eigen::Index best = -1;
-      double strongest = 0.0;
-      for (Eigen::Index j = 0; j < n; ++j) {
-        if (j == i) continue;
-        const double r2 = (state.x.col(i) - state.x.col(j)).squaredNorm();
-        const double pull = system_.body(static_cast<std::size_t>(j)).mass / r2;
-        if (r2 > 0 && pull > strongest) strongest = pull, best = j;
-      }
-      if (best < 0) continue;
-      const std::pair<Eigen::Index, Eigen::Index> pair(std::min(i, best), std::max(i, best));
-      if (std::find(pairs.begin(), pairs.end(), pair) != pairs.end()) continue;
-      pairs.push_back(pair);
-      const Body &a = system_.body(static_cast<std::size_t>(i)), &b = system_.body(static_cast<std::size_t>(best));
+    for (const AttractingPair& pair : attracting_pairs(system_, state)) {
+      const auto i = static_cast<Eigen::Index>(pair.body), j = static_cast<Eigen::Index>(pair.about);
+      const Body &a = system_.body(pair.body), &b = system_.body(pair.about);
       const double mu = a.mass * b.mass / (a.mass + b.mass);
-      const Vec3 v = state.p.col(i) / a.mass - state.p.col(best) / b.mass;
+      const Vec3 v = state.p.col(i) / a.mass - state.p.col(j) / b.mass;
       const double kinetic = 0.5 * mu * v.squaredNorm(),
-                   potential = G * a.mass * b.mass / (state.x.col(i) - state.x.col(best)).norm();
+                   potential = G * a.mass * b.mass / (state.x.col(i) - state.x.col(j)).norm();
       const double bound = std::abs(kinetic - potential);
-      // The lighter body's orbit about the heavier one (a near-parabolic pair: the sum of the parts).
-      const bool lighter = a.mass <= b.mass;
-      orbits.push_back({lighter ? a.name : b.name, lighter ? b.name : a.name,
-                        bound >= 1e-3 * (kinetic + potential) ? bound : kinetic + potential, 0.0});
+      // (A near-parabolic pair: the sum of the parts.)
+      orbits.push_back({a.name, b.name, bound >= 1e-3 * (kinetic + potential) ? bound : kinetic + potential, 0.0});
     }
     std::sort(orbits.begin(), orbits.end(),
               [](const OrbitScale& x, const OrbitScale& y) { return x.energy_scale < y.energy_scale; });

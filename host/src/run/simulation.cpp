@@ -368,7 +368,7 @@ RunSummary Simulation::finish() {
     const RunSummary judged = summary();
     RefinedRun refined(m, judged);
     m.summary.resolution = check_resolution(m, judged, refined);
-    m.derived = check_derived(m, judged, refined);
+    m.derived = check_derived(judged, refined);
   }
   RunSummary s = summary();
   if (!m.finished && m.writer)

@@ -361,6 +361,6 @@ ResolutionCheck check_resolution(const Simulation::Impl& m, const RunSummary& ju
 // The errors of the numbers the run derives from its trajectory (the mutual period, the period
 // changes, the libration, the rotation periods, the encounters, an event's time), by the run
 // repeated finer (derived_check.cpp): `judged`, the summary so far, with them.
-RunSummary check_derived(const Simulation::Impl& m, const RunSummary& judged, RefinedRun& refined);
+RunSummary check_derived(const RunSummary& judged, RefinedRun& refined);
 
 }  // namespace noether

@@ -260,6 +260,13 @@ const SummaryRow kRows[] = {
      .doc = "the frames were more than a third of a turn of the mutual orbit apart: its period is not measured "
             "(on its line)",
      .number = [](S s) { return s.mutual_undersampled ? 1.0 : 0.0; }},
+    {.key = "orbit_periods", .kind = Kind::structure, .label = "orbit period",
+     .doc = "each body's orbit about the body, at least as heavy, to which it is bound with the smallest "
+            "semi-major axis at the start, but the binary's (scenes of 3 to 64 bodies): `period` measured from the "
+            "trajectory as the mutual period is, over `revolutions` since the start or the last impulse (NaN before "
+            "one; `undersampled`: frames too far apart; `radial`: a fall), "
+            "`period_error` by the run repeated finer (`error_method`); docs/user-guide.md \"Orbit periods\"",
+     .json = orbit_periods_json, .line = orbit_periods_lines},
     {.key = "period_changes", .kind = Kind::structure, .label = "period change",
      .doc = "per impulse (jumps at one instant are one) of a two-body-like scene: the mutual period timed before "
             "and after it (`before`, `after`, from the jump before or the start, to the next or the end; "

@@ -124,6 +124,46 @@ std::string closest_approaches_lines(const SummaryRow& row, const RunSummary& s)
   return out;
 }
 
+std::string orbit_periods_json(const RunSummary& s) {  // docs/user-guide.md, "Orbit periods"
+  std::string out = "[";
+  for (const OrbitPeriod& o : s.orbit_periods) {
+    const std::string method = o.error.estimated() ? o.error.method() : o.error.why_not;
+    out += std::string(out.size() > 1 ? ", " : "") + "{\"body\": " + json_string(o.body) +
+           ", \"about\": " + json_string(o.about) + ", \"period\": " + json_number(o.period) +
+           ", \"revolutions\": " + std::to_string(o.revolutions) + ", \"undersampled\": " + flag(o.undersampled) +
+           ", \"radial\": " + flag(o.radial) + ", \"period_error\": " + error_json(o.error) +
+           ", \"error_method\": " + (method.empty() ? "null" : json_string(method)) + "}";
+  }
+  return out + "]";
+}
+
+std::string orbit_periods_lines(const SummaryRow& row, const RunSummary& s) {
+  constexpr std::size_t kShown = 10;  // JSON has them all
+  std::string out;
+  std::size_t shown = 0, measured = 0;
+  for (const OrbitPeriod& o : s.orbit_periods) {
+    if (o.revolutions < 1 && !o.undersampled) continue;  // less than a revolution (JSON: NaN)
+    if (++measured > kShown) continue;
+    ++shown;
+    const std::string pair = o.body + " about " + o.about + ": ";
+    if (o.undersampled) {
+      out += summary_line(row.label, pair + "not measured: the frames are more than a third of a turn of its orbit apart "
+                                            "(lower run.output_every)");
+      continue;
+    }
+    const DerivedError& e = o.error;
+    const std::string error = e.estimated() ? " ± " + printed("%.3g", e.error) : std::string();
+    const std::string hours = s.time_unit == "s" ? printed(" = %.6g h", o.period / 3600.0) : std::string();
+    out += summary_line(row.label, pair + printed("%.10g", o.period) + error + " " + s.time_unit + hours + " (" +
+                                       std::to_string(o.revolutions) + " revolution" + (o.revolutions == 1 ? "" : "s") +
+                                       ")");
+    if (!e.estimated() && !e.why_not.empty()) out += summary_line("", "its error not estimated: " + e.why_not);
+  }
+  if (measured > shown)
+    out += summary_line("", std::to_string(measured - shown) + " more in the JSON summary (orbit_periods)");
+  return out;
+}
+
 std::string period_changes_json(const RunSummary& s) {  // docs/user-guide.md, "Impulses"
   std::string out = "[";
   for (const PeriodChange& c : s.period_changes)

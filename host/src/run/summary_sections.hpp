@@ -14,6 +14,8 @@ std::string particles_json(const RunSummary& s);
 std::string particles_lines(const SummaryRow& row, const RunSummary& s);
 std::string closest_approaches_json(const RunSummary& s);
 std::string closest_approaches_lines(const SummaryRow& row, const RunSummary& s);
+std::string orbit_periods_json(const RunSummary& s);
+std::string orbit_periods_lines(const SummaryRow& row, const RunSummary& s);
 std::string period_changes_json(const RunSummary& s);
 std::string period_changes_lines(const SummaryRow& row, const RunSummary& s);
 std::string spin_states_json(const RunSummary& s);

@@ -171,6 +171,8 @@ void judge(RunSummary& s, const Scene& scene) {
   };
   const std::string& T = s.time_unit;
   unresolved("the mutual period of " + s.mutual_pair, s.mutual_period_error, s.mutual_period, limit.period, "period", T);
+  for (const OrbitPeriod& o : s.orbit_periods)
+    unresolved("the orbit period of " + o.body + " about " + o.about, o.error, o.period, limit.period, "period", T);
   // Each impulse: the period timed before it (those after are the next one's before, or the one
   // above), and ΔP on its own scale.
   for (const PeriodChange& c : s.period_changes) {
