@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -17,6 +18,20 @@ namespace noether::test {
 
 inline std::string source_path(const std::string& relative) {
   return std::string(NOETHER_SOURCE_DIR) + "/" + relative;
+}
+
+// A file of the archived reference data that lies beside the clone, never in it
+// (../shared/data/RELATIVE, or $NOETHER_SHARED_DATA/RELATIVE), or "" when it is absent: the test
+// then skips, saying so (GTEST_SKIP() << absent_data(relative)).
+inline std::string shared_data(const std::string& relative) {
+  const char* given = std::getenv("NOETHER_SHARED_DATA");
+  const std::string root = given && *given ? std::string(given) : std::string(NOETHER_SOURCE_DIR) + "/../shared/data";
+  const std::string path = root + "/" + relative;
+  return std::ifstream(path).good() ? path : std::string();
+}
+inline std::string absent_data(const std::string& relative) {
+  return "../shared/data/" + relative + " is absent (archived data is not in the repository: it lies beside the "
+         "clone, or where NOETHER_SHARED_DATA points)";
 }
 
 // A registry of the plugins built in this tree only (no NOETHER_PLUGIN_PATH, no install).

@@ -30,7 +30,8 @@ double scene_gravitational_constant(const Params& root, const Units& units) {
   return G;
 }
 
-System parse_bodies(const Params& root, const Units& units, double G, const std::filesystem::path& folder) {
+System parse_bodies(const Params& root, const Units& units, double G, const std::filesystem::path& folder,
+                    std::vector<std::string>& notes) {
   const SceneSection& body_keys = scene_section("bodies[]");
   const Params& bodies = root.at("bodies");
   if (!bodies.is_sequence() || bodies.size() == 0)
@@ -63,6 +64,7 @@ System parse_bodies(const Params& root, const Units& units, double G, const std:
     FieldBody field;
     if (b.has("gravity")) {
       field = parse_field_body(b, body.name, folder, units, G);
+      notes.insert(notes.end(), field.notes.begin(), field.notes.end());
       body.field = field.field;
       body.radius = field.radius;
     }

@@ -7,6 +7,7 @@
 #include <noether/stokes_file.hpp>
 
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 namespace noether::detail {
@@ -16,8 +17,8 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
   const std::string who = "body '" + body + "'";
   const Params& g = b.at("gravity");
   if (!g.is_map() || !g.has("stokes"))
-    throw SceneError(g.here() + who + ": 'gravity' needs 'stokes: FILE' (an ICGEM .gfc file, a PDS SHADR .tab "
-                     "table or a table of n m C S)");
+    throw SceneError(g.here() + who + ": 'gravity' needs 'stokes: FILE' (an ICGEM .gfc file, a PDS3 label .lbl "
+                     "and its table, a PDS SHADR .tab table or a table of n m C S)");
   scene_section("bodies[].gravity").check(g, "the gravity field of " + who);
   for (const char* key : {"shape", "density"})
     if (b.has(key))
@@ -26,19 +27,23 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
   const std::filesystem::path path = scene_file(g.at("stokes"), folder, who, "gravity-field file");
   const std::string format = g.has("format") ? g.at("format").as_string() : stokes_format_of(path);
   if (format.empty())
-    throw SceneError(g.at("stokes").here() + who + ": say the field file's 'format' (icgem, shadr or table); "
-                     "its name does not tell (.gfc is icgem, .tab shadr)");
-  if (format != "icgem" && format != "shadr" && format != "table")
-    throw SceneError(g.at("format").here() + who + ": unknown gravity-field format '" + format +
-                     "'; use icgem (.gfc), shadr (PDS .tab) or table (n m C S)");
+    throw SceneError(g.at("stokes").here() + who + ": say the field file's 'format' (icgem, pds, shadr or table); "
+                     "its name does not tell (.gfc is icgem, .lbl pds, .tab shadr or, with its label beside it, pds)");
+  if (format != "icgem" && format != "shadr" && format != "table" && format != "pds")
+    throw SceneError((g.has("format") ? g.at("format") : g.at("stokes")).here() + who +
+                     ": unknown gravity-field format '" + format +
+                     "'; use icgem (.gfc), pds (a PDS3 label .lbl), shadr (PDS .tab) or table (n m C S)");
   StokesFile file;
   try {
     file = read_stokes_file(path, format);
   } catch (const SceneError& e) {
     throw SceneError(g.at("stokes").here() + who + ": " + e.what());
   }
-  // The reference radius, GM and normalization are the file's (the scene may repeat them, not
-  // contradict them); a table's come from the scene.
+  FieldBody out;
+  for (const std::string& defect : file.defects) out.notes.push_back(who + ": " + defect);
+  // The reference radius, GM and normalization are the file's; the scene may repeat them, or
+  // override an archived file's defect (NLR393V3's label prints 1600 m for 16 km), said in the
+  // warnings; a table's come from the scene.
   if (file.gm && !units.declared)
     throw SceneError(g.here() + who + ": the " + format + " file gives GM in m^3/s^2 and its reference radius in "
                      "m; declare the scene's units ('units: SI', or {length: km, ...}) so they can be converted");
@@ -47,9 +52,13 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
     const double given = g.at("reference_radius").as_double();
     if (!(given > 0.0) || !std::isfinite(given))
       throw SceneError(g.at("reference_radius").here() + who + ": the reference radius must be positive");
-    if (file.reference_radius && std::abs(given - R) > 1e-9 * R)
-      throw SceneError(g.at("reference_radius").here() + who + ": reference_radius " + g.at("reference_radius").as_string() +
-                       " contradicts the file's " + std::to_string(R) + " (in the scene's length unit); omit it");
+    if (file.reference_radius && std::abs(given - R) > 1e-9 * R) {
+      std::ostringstream note;
+      note.precision(10);
+      note << who << ": gravity.reference_radius " << given << " overrides the file's " << R
+           << " (the scene's length unit); the coefficients are taken about the scene's";
+      out.notes.push_back(note.str());
+    }
     R = given;
   } else if (!file.reference_radius) {
     throw SceneError(g.here() + who + ": a table does not say its reference radius: give gravity.reference_radius "
@@ -81,7 +90,6 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
     throw SceneError(g.at("stokes").here() + who + ": the field has degree " + std::to_string(degree) +
                      "; a rigid body needs degree 2 (its inertia)");
   cs = truncated(cs, degree, normalized);
-  FieldBody out;
   if (b.has("mass")) {
     out.mass = b.at("mass").as_double();
   } else if (file.gm) {
@@ -92,6 +100,22 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
   if (!std::isfinite(out.mass) || out.mass <= 0.0)
     throw SceneError((b.has("mass") ? b.at("mass") : g).here() + who + ": mass must be positive");
   cs.mass = out.mass;
+  // A reference radius far from any body of this mass's size: less than half the radius of a
+  // sphere of it at 8000 kg/m³ (iron; the expansion's sphere would lie inside the body), or more
+  // than ten times one at 500 kg/m³ (a units slip, or NLR393V3's label's "1600m" for 16 km).
+  if (units.declared) {
+    const double mass_kg = out.mass * units.mass_si, R_m = R * units.length_si;
+    const double dense = std::cbrt(3 * mass_kg / (4 * std::numbers::pi * 8000.0)), light = std::cbrt(3 * mass_kg / (4 * std::numbers::pi * 500.0));
+    if (R_m < 0.5 * dense || R_m > 10 * light) {
+      std::ostringstream note;
+      note.precision(4);
+      note << who << ": the field's reference radius " << R_m << " m is " << (R_m < 0.5 * dense ? "less than half" : "more than ten times")
+           << " the radius of a sphere of its mass at " << (R_m < 0.5 * dense ? "8000" : "500") << " kg/m^3 ("
+           << (R_m < 0.5 * dense ? dense : light) << " m): a unit slipped? (give gravity.reference_radius to override "
+           << "the file's)";
+      out.notes.push_back(note.str());
+    }
+  }
   // The inertia: the field's degree 2 fixes all but its trace (31.4).
   if (g.has("polar_moment") == b.has("inertia"))
     throw SceneError(g.here() + who + ": give the body's 'inertia' (body frame) or gravity.polar_moment (C/(M R^2) "

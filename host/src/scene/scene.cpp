@@ -50,7 +50,8 @@ Scene parse_scene(const std::string& text, const std::string& file,
 
   // Bodies: constants into System, initial values into State.
   if (root.has("units")) scene.units = parse_units(root.at("units"));
-  scene.system = parse_bodies(root, scene.units, scene_gravitational_constant(root, scene.units), folder);
+  std::vector<std::string> notes;  // the bodies' field files' defects and overrides (warnings, first)
+  scene.system = parse_bodies(root, scene.units, scene_gravitational_constant(root, scene.units), folder, notes);
   scene.initial = initial_state(root.at("bodies"), scene.system, keys.flag(root, "barycentric"));
 
   // Models, integrator, run.
@@ -65,6 +66,7 @@ Scene parse_scene(const std::string& text, const std::string& file,
   scene.run = parse_run(root.at("run"), scene.system, scene.initial, root.at("bodies"));
   scene.root = std::move(root);
   scene.warnings = input_warnings(scene);
+  scene.warnings.insert(scene.warnings.begin(), notes.begin(), notes.end());
   return scene;
 }
 

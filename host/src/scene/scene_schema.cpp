@@ -151,12 +151,13 @@ constexpr SceneKey kSphere[] = {
 
 constexpr SceneKey kGravity[] = {
     {.key = "stokes", .type = T::file, .required = true,
-     .doc = "the coefficient file: an ICGEM `.gfc`, a PDS SHADR `.tab` or a table of `n m C S`"},
+     .doc = "the coefficient file: an ICGEM `.gfc`, a PDS3 label `.lbl` (or the `.tab` beside it), a PDS SHADR "
+            "`.tab` or a table of `n m C S`"},
     {.key = "format", .type = T::text, .absent = "from the file's extension",
-     .doc = "`icgem`, `shadr` or `table`"},
+     .doc = "`icgem`, `pds`, `shadr` or `table`"},
     {.key = "degree", .type = T::integer, .absent = "the file's", .doc = "use the field to this degree, ≥ 2"},
     {.key = "reference_radius", .type = T::number, .unit = U::length, .absent = "the file's (required for a table)",
-     .doc = "may repeat the file's, not contradict it"},
+     .doc = "may repeat the file's, or override it (said among the warnings: an archived file's defect)"},
     {.key = "normalized", .type = T::flag, .absent = "the file's (required for a table)",
      .doc = "fully normalized (geodesy's 4π) or not; may repeat the file's, not contradict it"},
     {.key = "polar_moment", .type = T::number, .absent = "the body's `inertia`",

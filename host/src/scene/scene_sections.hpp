@@ -32,6 +32,9 @@ struct FieldBody {
   std::shared_ptr<const StokesCoefficients> field;
   double mass = 0.0, radius = 0.0;
   Mat3 inertia = Mat3::Zero();
+  // What the scene should be told: the file's defects as archived, values of the scene's that
+  // override the file's (Scene::warnings).
+  std::vector<std::string> notes;
 };
 FieldBody parse_field_body(const Params& b, const std::string& body, const std::filesystem::path& folder,
                            const Units& units, double G);
@@ -39,7 +42,8 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
 // bodies.cpp — G (as given, or from the declared units, eq. 17.1, or 1) and the bodies'
 // constants: the System.
 double scene_gravitational_constant(const Params& root, const Units& units);
-System parse_bodies(const Params& root, const Units& units, double G, const std::filesystem::path& folder);
+System parse_bodies(const Params& root, const Units& units, double G, const std::filesystem::path& folder,
+                    std::vector<std::string>& notes);  // `notes`: the bodies' FieldBody::notes
 
 // initial_state.cpp — an `orbit:` mapping's osculating elements for `who` ("body 'moon'",
 // "particle 3"), and the bodies' initial state (docs/user-guide.md, "Initial states").

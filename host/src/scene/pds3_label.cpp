@@ -1,0 +1,216 @@
+// A PDS3 label as archived (noether/pds3_label.hpp).
+#include <noether/error.hpp>
+#include <noether/pds3_label.hpp>
+
+#include <cctype>
+#include <fstream>
+#include <sstream>
+
+namespace noether {
+
+const Pds3Value* Pds3Object::find(const std::string& key) const {
+  for (const auto& [k, v] : keys)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+const Pds3Object* Pds3Object::object(const std::string& wanted) const {
+  for (const Pds3Object& o : objects)
+    if (o.name == wanted) return &o;
+  return nullptr;
+}
+
+namespace {
+
+// Reads the statements of a label's text, character by character, counting lines.
+class Reader {
+ public:
+  Reader(const std::string& text, const std::string& name) : text_(text), name_(name) {}
+
+  Pds3Object label() {
+    Pds3Object root;
+    root.line = 1;
+    std::vector<Pds3Object*> open{&root};
+    while (true) {
+      skip_blanks();
+      if (at_end()) throw error("the label has no END statement (a label cut short?)");
+      const std::size_t line = line_;
+      const std::string key = word();
+      if (key.empty()) throw error(std::string("expected a keyword, not '") + text_[pos_] + "'");
+      if (key == "END") {
+        skip_blanks_on_line();
+        if (open.size() > 1)
+          throw error_at(open.back()->line, open.back()->kind + " " + open.back()->name + " is not closed by END_" +
+                                                open.back()->kind + " before END");
+        return root;
+      }
+      if (key == "END_OBJECT" || key == "END_GROUP") {
+        const std::string kind = key.substr(4);
+        // END_OBJECT may repeat the name (`= TABLE`), or close the innermost block without one.
+        skip_blanks_on_line();
+        std::string closes;
+        if (!at_end() && text_[pos_] == '=') {
+          ++pos_;
+          closes = rest_of_line_word();
+        }
+        if (open.size() < 2 || open.back()->kind != kind)
+          throw error_at(line, key + (closes.empty() ? "" : " = " + closes) + " closes no open " + kind);
+        if (!closes.empty() && closes != open.back()->name)
+          throw error_at(line, key + " = " + closes + " closes " + kind + " " + open.back()->name + " (opened on line " +
+                                   std::to_string(open.back()->line) + ")");
+        open.pop_back();
+        continue;
+      }
+      skip_blanks();
+      if (at_end() || text_[pos_] != '=') throw error_at(line, "'" + key + "' has no '= value'");
+      ++pos_;
+      skip_blanks();
+      if (key == "OBJECT" || key == "GROUP") {
+        Pds3Object child;
+        child.kind = key;
+        child.line = line;
+        child.name = word();
+        if (child.name.empty()) throw error_at(line, key + " without a name");
+        open.back()->objects.push_back(std::move(child));
+        open.push_back(&open.back()->objects.back());
+        continue;
+      }
+      open.back()->keys.emplace_back(key, value(line));
+    }
+  }
+
+ private:
+  bool at_end() const { return pos_ >= text_.size(); }
+  SceneError error(const std::string& what) const { return error_at(line_, what); }
+  SceneError error_at(std::size_t line, const std::string& what) const {
+    return SceneError(name_ + ":" + std::to_string(line) + ": " + what);
+  }
+
+  void advance() {
+    if (text_[pos_] == '\n') ++line_;
+    ++pos_;
+  }
+  // Blanks, line ends (CR LF or LF) and /* comments */.
+  void skip_blanks() {
+    while (!at_end()) {
+      const char c = text_[pos_];
+      if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\0') {
+        advance();
+      } else if (c == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*') {
+        const std::size_t line = line_;
+        pos_ += 2;
+        while (!at_end() && !(text_[pos_] == '*' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '/')) advance();
+        if (at_end()) throw error_at(line, "a /* comment */ is not closed");
+        pos_ += 2;
+      } else {
+        return;
+      }
+    }
+  }
+  void skip_blanks_on_line() {
+    while (!at_end() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\r')) ++pos_;
+  }
+  // A keyword, name or bare value: letters, digits, _ ^ : . + - (a namespace, a pointer, a date).
+  std::string word() {
+    std::string out;
+    while (!at_end()) {
+      const char c = text_[pos_];
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '^' || c == ':' || c == '.' || c == '+' ||
+          c == '-')
+        out += c, ++pos_;
+      else
+        break;
+    }
+    return out;
+  }
+  // What follows `END_OBJECT =` on its line (a name, or nothing).
+  std::string rest_of_line_word() {
+    skip_blanks_on_line();
+    if (at_end() || text_[pos_] == '\n') return "";
+    return word();
+  }
+  // Up to the closing `close`, quotes inside kept whole; line breaks kept.
+  std::string until(char close, std::size_t line) {
+    std::string out;
+    while (!at_end() && text_[pos_] != close) {
+      if (text_[pos_] == '"') {
+        out += text_[pos_];
+        advance();
+        while (!at_end() && text_[pos_] != '"') out += text_[pos_], advance();
+        if (at_end()) break;
+      }
+      if (text_[pos_] != '\r') out += text_[pos_];
+      advance();
+    }
+    if (at_end()) throw error_at(line, std::string("a value opened on this line has no closing '") + close + "'");
+    advance();
+    return out;
+  }
+
+  Pds3Value value(std::size_t line) {
+    Pds3Value v;
+    v.line = line;
+    if (at_end()) throw error_at(line, "a keyword without a value at the end of the label");
+    const char c = text_[pos_];
+    if (c == '"') {  // free text, over as many lines as it takes
+      advance();
+      v.text = until('"', line);
+      v.quoted = true;
+    } else if (c == '\'') {  // a symbol
+      advance();
+      v.text = until('\'', line);
+    } else if (c == '(' || c == '{') {  // a sequence or a set, kept whole
+      advance();
+      const std::string inside = until(c == '(' ? ')' : '}', line);
+      v.text = std::string(1, c);
+      for (const char k : inside)  // blanks and line breaks as one space: "(3, 4, 5)"
+        if (k == ' ' || k == '\t' || k == '\n') {
+          if (v.text.back() != ' ' && v.text.back() != c) v.text += ' ';
+        } else {
+          if (v.text.back() == ' ' && (k == ',' || k == ')' || k == '}')) v.text.pop_back();
+          v.text += k;
+        }
+      if (v.text.back() == ' ') v.text.pop_back();
+      v.text += c == '(' ? ')' : '}';
+    } else {
+      // A number, a date, an unquoted symbol — to the end of its line, a <unit> split off.
+      std::string rest;
+      while (!at_end() && text_[pos_] != '\n') rest += text_[pos_++];
+      while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t' || rest.back() == '\r')) rest.pop_back();
+      if (const auto open = rest.find('<'); open != std::string::npos) {
+        const auto close = rest.find('>', open);
+        if (close == std::string::npos) throw error_at(line, "a unit '<' without its '>'");
+        v.unit = rest.substr(open + 1, close - open - 1);
+        rest = rest.substr(0, open);
+        while (!rest.empty() && rest.back() == ' ') rest.pop_back();
+      }
+      if (rest.empty()) throw error_at(line, "a keyword without a value");
+      v.text = rest;
+    }
+    return v;
+  }
+
+  const std::string& text_;
+  std::string name_;
+  std::size_t pos_ = 0, line_ = 1;
+};
+
+}  // namespace
+
+Pds3Object parse_pds3_label(const std::string& text, const std::string& name) { return Reader(text, name).label(); }
+
+Pds3Object read_pds3_label(const std::filesystem::path& file) {
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 24;  // labels are kilobytes
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw SceneError(file.string() + ": the PDS3 label is not a regular file");
+  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxBytes)
+    throw SceneError(file.string() + ": " + std::to_string(bytes) + " bytes is no PDS3 label (at most 16 MiB are read)");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SceneError(file.string() + ": cannot be read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_pds3_label(text.str(), file.string());
+}
+
+}  // namespace noether
