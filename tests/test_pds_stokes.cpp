@@ -41,6 +41,7 @@ TEST(Pds3Label, ReadsALabelAsArchived) {
       "  Reference Radius:  16.0km                      \r\n"
       "  GM: 4.4E-04 km^3/s^2\"                          \r\n"
       "MAP_SCALE                 = 0.5 <KM/PIXEL>       \r\n"
+      "PRODUCT_CREATION_TIME = 2001-01-12 /* Model Creation Date */ \r\n"
       "CORE_ITEMS                = (3, 4,               \r\n"
       "  5)                                             \r\n"
       "OBJECT     = TABLE                               \r\n"
@@ -62,10 +63,11 @@ TEST(Pds3Label, ReadsALabelAsArchived) {
   EXPECT_EQ(description->text.find('\r'), std::string::npos);
   EXPECT_EQ(label.find("MAP_SCALE")->text, "0.5");
   EXPECT_EQ(label.find("MAP_SCALE")->unit, "KM/PIXEL");
+  EXPECT_EQ(label.find("PRODUCT_CREATION_TIME")->text, "2001-01-12");  // (the comment after it is not)
   EXPECT_EQ(label.find("CORE_ITEMS")->text, "(3, 4, 5)");
   const Pds3Object* table = label.object("TABLE");
   ASSERT_NE(table, nullptr);
-  EXPECT_EQ(table->line, 11u);
+  EXPECT_EQ(table->line, 12u);
   EXPECT_EQ(table->find("ROWS")->text, "135");
   ASSERT_EQ(table->objects.size(), 1u);
   EXPECT_EQ(table->objects[0].find("NAME")->text, "DEGREE");

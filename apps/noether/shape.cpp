@@ -3,6 +3,7 @@
 
 #include <noether/body_stokes.hpp>
 #include <noether/error.hpp>
+#include <noether/pds_plate_model.hpp>
 #include <noether/scene.hpp>
 #include <noether/stokes_file.hpp>
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <sstream>
 
 namespace noether::app {
@@ -32,7 +34,7 @@ struct StokesOptions {
 bool is_mesh_file(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".obj";
+  return ext == ".obj" || !pds3_label_of(path).empty();  // an OBJ, or a PDS3 plate model (its label or table)
 }
 
 // A mesh file given instead of a scene: the scene of one homogeneous body of that shape, in SI
@@ -42,7 +44,8 @@ Scene mesh_scene(StokesOptions& o) {
   if (!(o.density > 0.0) || !std::isfinite(o.density))
     throw SceneError(o.scene + ": a mesh alone needs --density (kg/m^3, the homogeneous body's; it gives the mass "
                      "and GM, not the normalized coefficients)");
-  if (o.units.empty())
+  const bool pds = !pds3_label_of(mesh).empty();  // a PDS3 plate model says its unit
+  if (o.units.empty() && !pds)
     throw SceneError(o.scene + ": a mesh file does not say its units: give --units m or --units km");
   if (o.body.empty()) o.body = mesh.stem().string();
   char density[32];
@@ -55,7 +58,8 @@ Scene mesh_scene(StokesOptions& o) {
   };
   const std::string text = "units: SI\nbodies:\n  - {name: " + quoted(o.body) + ", density: " + density +
                            ", position: [0, 0, 0], shape: {polyhedron: {file: " + quoted(mesh.filename().string()) +
-                           ", units: " + quoted(o.units) + (o.frame.empty() ? "" : ", frame: " + quoted(o.frame)) +
+                           (o.units.empty() ? "" : ", units: " + quoted(o.units)) +
+                           (o.frame.empty() ? "" : ", frame: " + quoted(o.frame)) +
                            "}}}\npotential: {plugin: point-mass}\nintegrator: {plugin: lgvi, step: 1}\n"
                            "run: {t_end: 1, output_every: 1}\n";
   return parse_scene(text, o.scene, o.overrides);
@@ -87,6 +91,19 @@ int shape_stokes(StokesOptions o) {
   about.emplace_back(line);
   std::snprintf(line, sizeof line, "polar moment C/(M R^2) %.17g (gravity.polar_moment)", s.polar_moment);
   about.emplace_back(line);
+  // A shape file's own origin and axes are not the expansion's: say where the homogeneous body's
+  // centre of mass lies in the file (an archived plate model's origin is its tracked centre of
+  // mass, about which a published field is taken) and how the axes turn.
+  if (const int k = scene.system.index_of(o.body); k >= 0)
+    if (const auto& solid = scene.system.body(static_cast<std::size_t>(k)).solid;
+        solid && solid->kind == Solid::Kind::Polyhedron) {
+      std::snprintf(line, sizeof line,
+                    "the homogeneous body's centre of mass lies at (%.6g, %.6g, %.6g) in the file's frame, %.4g from "
+                    "its origin; axes turned by %.4g deg onto the body frame",
+                    solid->offset.x(), solid->offset.y(), solid->offset.z(), solid->offset.norm(),
+                    log_so3(solid->rotation).norm() * 180.0 / std::numbers::pi);
+      about.emplace_back(line);
+    }
   std::ostringstream text;
   if (format == "icgem") {
     if (!scene.units.declared)
@@ -123,13 +140,17 @@ void add_shape_command(CLI::App& app, Command& chosen) {
   auto* cmd = shape->add_subcommand(
       "stokes", "a body's Stokes coefficients from its shape (or field, or inertia) about its centre of mass, in its "
                 "body frame (docs/gravity-fields.md)");
-  cmd->add_option("scene", o->scene, "the scene (YAML), or a mesh file (.obj) with --density and --units")->required();
+  cmd->add_option("scene", o->scene,
+                  "the scene (YAML), or a mesh file (.obj, with --density and --units; a PDS3 plate model's .lbl or "
+                  ".tab, with --density)")
+      ->required();
   cmd->add_option("--body", o->body, "the body's name (a scene's; for a mesh the file's name, as the output names it)");
   cmd->add_option("--density", o->density, "a mesh's homogeneous density in kg/m^3 (its mass and GM)");
-  cmd->add_option("--units", o->units, "a mesh file's length unit: m or km (a file does not say)");
+  cmd->add_option("--units", o->units, "a mesh file's length unit: m or km (an OBJ does not say; a PDS3 label does)");
   cmd->add_option("--frame", o->frame,
-                  "a mesh's body frame: principal (default: its principal axes about its centre of mass) or mesh (the "
-                  "file's axes, moved to the centre of mass: a published field's frame)");
+                  "a mesh's body frame: principal (an OBJ's default: its principal axes about its centre of mass) or "
+                  "mesh (the file's axes, moved to the centre of mass: a published field's frame; a PDS3 plate "
+                  "model's default)");
   cmd->add_option("--degree", o->degree, "the highest degree")->capture_default_str();
   cmd->add_option("--radius", o->radius, "the reference radius, in the scene's length unit (default: the body's radius)");
   cmd->add_flag("--unnormalized", o->unnormalized, "unnormalized coefficients (default: fully normalized, geodesy's 4π)");

@@ -7,8 +7,10 @@ A command is a line of an indented or ```sh code block, or an inline `code` span
 with `noether` (or a path to it) and names no placeholder (SCENE, FILE, [options], ...); a
 backslash continues it. Each one is
   - run here, from a scratch folder that sees the repository's examples/ and tests/ (so outputs
-    such as -o dumbbells.h5 or --plot docs/img/x.png land in the scratch folder), and must exit
-    with status 0 — or the status the doc states next to it ("exits 2"); or
+    such as -o dumbbells.h5 or --plot docs/img/x.png land in the scratch folder) and, as
+    ../shared/data, the archived data beside the clone (a command that reads it is skipped, saying
+    so, where it is absent), and must exit with status 0 — or the status the doc states next to
+    it ("exits 2"); or
   - listed in COVERED_ELSEWHERE with the test that runs it (commands that build or install).
 A command that is neither fails the test, so docs cannot show a command nothing runs.
 When the lines after a command in the same block show its output ("label   value" lines, as
@@ -163,7 +165,14 @@ def main():
     noether = os.path.abspath(sys.argv[3])
     failures = []
     scratch_dir = tempfile.TemporaryDirectory(prefix="noether-docs-")
-    scratch = scratch_dir.name
+    # The scratch folder sits one level down, beside a link to the archived data that lies beside
+    # the clone (../shared), so `../shared/data/...` in a doc's command means what it does there.
+    scratch = os.path.join(scratch_dir.name, "work")
+    os.makedirs(scratch)
+    shared = os.path.join(src, os.pardir, "shared")
+    has_shared = os.path.isdir(os.path.join(shared, "data"))
+    if has_shared:
+        os.symlink(os.path.abspath(shared), os.path.join(scratch_dir.name, "shared"))
     for name in ("examples", "tests"):
         os.symlink(os.path.join(src, name), os.path.join(scratch, name))
     os.makedirs(os.path.join(scratch, "docs", "img"))
@@ -198,6 +207,9 @@ def main():
             text = re.search(r"^(\./build/release/bin/noether .*?)(\s+#.*)?$", demo, re.M).group(1)
         elif not STARTS.match(text):
             failures.append(f"{where}: `{text}` is neither run by this test nor listed in COVERED_ELSEWHERE")
+            continue
+        if "../shared/data" in text and not has_shared:
+            print(f"{where}: {text}  → skipped: ../shared/data is absent beside the clone", flush=True)
             continue
         argv = shlex.split(text)
         if argv[0].startswith("tools/"):  # the repository's scripts, with Debian's python3

@@ -33,6 +33,16 @@ struct Pds3Object {
   const Pds3Object* object(const std::string& name) const;
 };
 
+// Where a detached label's pointer (^TABLE, ^VERTEX_TABLE, …) points: `"NAME.TAB"` or
+// `("NAME.TAB", record)`, the file beside the label with its name's case as the disk has it
+// (archives print names upper case), and the 1-based record its object starts at. Throws
+// SceneError (no such pointer, a pointer into the label's own file, a file not there).
+struct Pds3Pointer {
+  std::filesystem::path file;
+  std::size_t record = 1;
+};
+Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const std::filesystem::path& label_file);
+
 // The label of `file`: the root object, `file` named in each error. Throws SceneError.
 Pds3Object read_pds3_label(const std::filesystem::path& file);
 // The same from text (`name` in errors).

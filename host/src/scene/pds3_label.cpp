@@ -174,8 +174,11 @@ class Reader {
       v.text += c == '(' ? ')' : '}';
     } else {
       // A number, a date, an unquoted symbol — to the end of its line, a <unit> split off.
+      // (A /* comment */ after it on its line is the comment's, left for skip_blanks.)
       std::string rest;
-      while (!at_end() && text_[pos_] != '\n') rest += text_[pos_++];
+      while (!at_end() && text_[pos_] != '\n' &&
+             !(text_[pos_] == '/' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '*'))
+        rest += text_[pos_++];
       while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t' || rest.back() == '\r')) rest.pop_back();
       if (const auto open = rest.find('<'); open != std::string::npos) {
         const auto close = rest.find('>', open);
@@ -198,6 +201,51 @@ class Reader {
 }  // namespace
 
 Pds3Object parse_pds3_label(const std::string& text, const std::string& name) { return Reader(text, name).label(); }
+
+namespace {
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+}  // namespace
+
+Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const std::filesystem::path& file) {
+  const Pds3Value* pointer = label.find(key);
+  const std::string where = file.string() + ":" + std::to_string(pointer ? pointer->line : label.line) + ": ";
+  if (!pointer) throw SceneError(where + "the label has no " + key + " pointer");
+  Pds3Pointer out;
+  std::string name = pointer->text;
+  if (!name.empty() && name.front() == '(') {  // ("NAME", start record)
+    const auto open = name.find('"'), close = name.find('"', open + 1);
+    if (open == std::string::npos || close == std::string::npos)
+      throw SceneError(where + key + " = " + pointer->text + " names no file");
+    const std::string start = name.substr(close + 1);
+    const auto digit = start.find_first_of("0123456789");
+    if (digit == std::string::npos) throw SceneError(where + key + " = " + pointer->text + " has no start record");
+    if (start.find("<BYTES>") != std::string::npos)
+      throw SceneError(where + key + " = " + pointer->text + ": an offset in bytes is not read (records are)");
+    out.record = std::stoul(start.substr(digit));
+    if (out.record < 1) throw SceneError(where + key + " = " + pointer->text + ": records count from 1");
+    name = name.substr(open + 1, close - open - 1);
+  } else if (!pointer->quoted) {
+    throw SceneError(where + key + " = " + pointer->text +
+                     ": an object inside the label's own file (an attached label) is not read; noether reads "
+                     "detached labels (.lbl beside the .tab)");
+  }
+  const std::filesystem::path folder = file.parent_path();
+  std::error_code ec;
+  if (std::filesystem::exists(folder / name, ec)) {
+    out.file = folder / name;
+    return out;
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec))
+    if (upper(entry.path().filename().string()) == upper(name)) {
+      out.file = entry.path();
+      return out;
+    }
+  throw SceneError(where + "its " + key.substr(1) + " '" + name + "' is not beside it (looked in " +
+                   (folder.empty() ? std::string(".") : folder.string()) + ", any case)");
+}
 
 Pds3Object read_pds3_label(const std::filesystem::path& file) {
   constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 24;  // labels are kilobytes

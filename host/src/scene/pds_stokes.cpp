@@ -29,37 +29,6 @@ std::string upper(std::string s) {
   return s;
 }
 
-// The table file a label's ^TABLE points at: `"NAME.TAB"` or `("NAME.TAB", record)`, beside the
-// label, its name's case as the disk has it (archives print names upper case, disks differ).
-std::filesystem::path table_file(const Pds3Object& label, const std::filesystem::path& file) {
-  const Pds3Value* pointer = label.find("^TABLE");
-  if (!pointer)
-    throw SceneError(file.string() + ": the label has no ^TABLE pointer: it describes no table of coefficients");
-  std::string name = pointer->text;
-  if (!name.empty() && name.front() == '(') {  // ("NAME", start record)
-    const auto open = name.find('"'), close = name.find('"', open + 1);
-    if (open == std::string::npos || close == std::string::npos)
-      throw SceneError(file.string() + ":" + std::to_string(pointer->line) + ": ^TABLE " + pointer->text +
-                       " names no file");
-    const std::string start = name.substr(close + 1);
-    if (start.find_first_of("23456789") != std::string::npos)
-      throw SceneError(file.string() + ":" + std::to_string(pointer->line) + ": ^TABLE " + pointer->text +
-                       ": a table that starts past the file's first record is not read");
-    name = name.substr(open + 1, close - open - 1);
-  } else if (!pointer->quoted) {
-    throw SceneError(file.string() + ":" + std::to_string(pointer->line) + ": ^TABLE = " + pointer->text +
-                     ": a table inside the label's own file (an attached label) is not read; noether reads detached "
-                     "labels (.lbl beside the .tab)");
-  }
-  const std::filesystem::path folder = file.parent_path();
-  std::error_code ec;
-  if (std::filesystem::exists(folder / name, ec)) return folder / name;
-  for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec))
-    if (upper(entry.path().filename().string()) == upper(name)) return entry.path();
-  throw SceneError(file.string() + ":" + std::to_string(pointer->line) + ": its table '" + name + "' is not beside it" +
-                   " (looked in " + (folder.empty() ? std::string(".") : folder.string()) + ", any case)");
-}
-
 // The text after `phrase` (any case) in `text`, or nothing.
 std::optional<std::string> after(const std::string& text, const std::string& phrase) {
   const std::string t = upper(text), p = upper(phrase);
@@ -205,26 +174,30 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
                           "gravity.normalized must");
 
   // The table: ROWS records of ROW_BYTES, each column where the label puts it.
-  const std::filesystem::path tab = table_file(label, file);
+  const Pds3Pointer pointer = pds3_pointer(label, "^TABLE", file);
+  const std::filesystem::path tab = pointer.file;
+  const std::size_t record_bytes =
+      label.find("RECORD_BYTES") ? whole(label, "RECORD_BYTES", "a record's bytes") : row_bytes;
+  const std::size_t first = (pointer.record - 1) * record_bytes;  // where the table starts in its file
   std::ifstream in(tab, std::ios::binary);
   if (!in) throw SceneError(tab.string() + ": cannot be read");
   std::stringstream bytes;
   bytes << in.rdbuf();
   const std::string data = bytes.str();
-  if (data.size() < rows * row_bytes)
+  if (data.size() < first + rows * row_bytes)
     throw SceneError(tab.string() + ": " + std::to_string(data.size()) + " bytes, short of the " +
                      std::to_string(rows) + " rows of " + std::to_string(row_bytes) + " bytes its label (" + name +
                      ") declares: the file is cut short; fetch it whole again");
-  if (data.size() > rows * row_bytes)
+  if (first == 0 && data.size() > rows * row_bytes)
     out.defects.push_back(tab.string() + ": " + std::to_string(data.size() - rows * row_bytes) +
                           " bytes past the label's " + std::to_string(rows) + " rows, not read");
   Rows read;
   const std::string tab_name = tab.string();
   for (std::size_t r = 0; r < rows; ++r) {
-    const Where where{tab_name, r + 1};
+    const Where where{tab_name, first / row_bytes + r + 1};
     auto cell = [&](Role role) {
       const Column& c = *columns[static_cast<int>(role)];
-      return trim(data.substr(r * row_bytes + c.start, c.bytes));
+      return trim(data.substr(first + r * row_bytes + c.start, c.bytes));
     };
     const int n = integer(cell(Role::kDegree), where, "degree");
     const int m = integer(cell(Role::kOrder), where, "order");

@@ -126,12 +126,13 @@ constexpr SceneKey kEllipsoid[] = {
 
 constexpr SceneKey kPolyhedron[] = {
     {.key = "file", .type = T::file, .absent = "`vertices` and `facets`",
-     .doc = "a Wavefront OBJ file (`v` and `f` lines, 1-based, polygons fanned)"},
+     .doc = "a Wavefront OBJ file (`v` and `f` lines, 1-based, polygons fanned), or a PDS3 plate model's label "
+            "`.lbl` (or its `.tab` beside it: 0-based offsets, the label's unit)"},
     {.key = "vertices", .type = T::file, .absent = "`file`", .doc = "GUBAS's CSV of rows `id, x, y, z`, with `facets`"},
     {.key = "facets", .type = T::file, .absent = "`file`", .doc = "GUBAS's CSV of 1-based rows `i, j, k`"},
-    {.key = "units", .type = T::text, .required = true,
-     .doc = "the file's length unit, `m`, `km` or `au` (a shape file does not say it)"},
-    {.key = "frame", .type = T::text, .otherwise = "principal",
+    {.key = "units", .type = T::text, .absent = "a PDS3 label's (required otherwise)",
+     .doc = "the file's length unit, `m`, `km` or `au` (an OBJ or CSV file does not say it)"},
+    {.key = "frame", .type = T::text, .absent = "`principal`; `mesh` for a PDS3 plate model (its archive's body-fixed frame)",
      .doc = "`principal` (the mesh rotated onto its principal axes) or `mesh` (its own axes)"},
     {.key = "scale", .type = T::vector, .absent = "[1, 1, 1]",
      .doc = "the mesh stretched along the body axes about its centre of mass (a shape's extents as parameters)"},

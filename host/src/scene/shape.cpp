@@ -6,6 +6,7 @@
 
 #include <noether/error.hpp>
 #include <noether/mesh.hpp>
+#include <noether/pds_plate_model.hpp>
 
 #include <cmath>
 #include <sstream>
@@ -25,28 +26,45 @@ std::shared_ptr<const Solid> parse_solid(const Params& shape, const std::string&
   }
   const Params& p = shape.at("polyhedron");
   const SceneSection& keys = scene_section("bodies[].shape.polyhedron");
-  keys.check(p, "the polyhedron of " + who);  // with its 'units' (a shape file does not say them)
-  const std::string units = p.at("units").as_string();
-  const double file_unit = length_unit_in_metres(units);
-  if (file_unit == 0.0)
-    throw SceneError(p.at("units").here() + who + ": unknown units '" + units +
-                     "'; use m, km or au");
+  keys.check(p, "the polyhedron of " + who);
+  auto resolve = [&](const Params& f) { return scene_file(f, folder, who, "shape file"); };
+  if (p.has("file") == (p.has("vertices") || p.has("facets")))
+    throw SceneError(p.here() + who + ": give either 'file' (Wavefront OBJ, or a PDS3 plate model's label) or "
+                     "'vertices' and 'facets' (CSV pair)");
+  // A PDS3 plate model says its unit and is in its archive's body-fixed frame; an OBJ or CSV file
+  // says neither.
+  const std::filesystem::path pds = p.has("file") ? pds3_label_of(resolve(p.at("file"))) : std::filesystem::path();
+  double file_unit = 0.0;
+  if (p.has("units")) {
+    const std::string units = p.at("units").as_string();
+    file_unit = length_unit_in_metres(units);
+    if (file_unit == 0.0)
+      throw SceneError(p.at("units").here() + who + ": unknown units '" + units + "'; use m, km or au");
+  } else if (pds.empty()) {
+    throw SceneError(p.here() + who + ": give the shape file's 'units' (m, km or au): an OBJ or CSV file does not say "
+                     "them");
+  }
   // Into the scene's length unit; metres when the scene declares none.
   const double scale = file_unit / scene_units.length_si;
-  const std::string frame = keys.text(p, "frame");
+  const std::string frame = p.has("frame") ? keys.text(p, "frame") : pds.empty() ? "principal" : "mesh";
   if (frame != "principal" && frame != "mesh")
     throw SceneError(p.at("frame").here() + who + ": frame must be 'principal' (rotate the "
                      "mesh onto its principal axes) or 'mesh' (keep its axes), not '" + frame + "'");
-  auto resolve = [&](const Params& f) { return scene_file(f, folder, who, "shape file"); };
   Mesh mesh;
-  if (p.has("file") == (p.has("vertices") || p.has("facets")))
-    throw SceneError(p.here() + who + ": give either 'file' (Wavefront OBJ) or 'vertices' and "
-                     "'facets' (CSV pair)");
   const std::filesystem::path first = resolve(p.at(p.has("file") ? "file" : "vertices"));
   const std::filesystem::path facets = p.has("file") ? std::filesystem::path() : resolve(p.at("facets"));
   std::shared_ptr<const Solid> solid;
   try {
-    mesh = p.has("file") ? read_obj(first, scale) : read_vertex_facet_csv(first, facets, scale);
+    if (!pds.empty()) {
+      PdsPlateModel model = read_pds_plate_model(pds, 1.0 / scene_units.length_si);
+      if (p.has("units") && std::abs(file_unit - model.unit_in_metres) > 1e-12 * model.unit_in_metres)
+        throw SceneError(p.at("units").here() + who + ": units '" + p.at("units").as_string() + "' contradict " +
+                         pds.string() + ", whose vertices are in " + std::to_string(model.unit_in_metres) +
+                         " m; omit 'units'");
+      mesh = std::move(model.mesh);
+    } else {
+      mesh = p.has("file") ? read_obj(first, scale) : read_vertex_facet_csv(first, facets, scale);
+    }
     solid = make_polyhedron(std::move(mesh), 1.0, frame == "principal");
   } catch (const SceneError& e) {
     throw SceneError(p.here() + who + ": " + e.what());
