@@ -196,3 +196,46 @@ TEST(PdsStokes, AFileCutShortIsRefused) {
   }
   std::filesystem::remove_all(dir);
 }
+
+// gravity.draw samples the published uncertainty: C + σ z, z independent standard normals from
+// (seed, coefficient). Over 400 draws of NEAR15A, C20's and S22's mean lies within 4 σ/√400 of
+// the published value and their spread within 10 % of σ; draw 0 is the published field, one seed
+// is one field; a file without uncertainties (NLR393V3) is refused by name.
+TEST(PdsStokes, AFieldIsDrawnFromItsSigma) {
+  const std::string label = test::shared_data("fields/n15acoeff.lbl");
+  if (label.empty()) GTEST_SKIP() << test::absent_data("fields/n15acoeff.lbl");
+  const StokesFile published = read_stokes_file(label, "pds");
+  auto field = [&](long draw, const std::string& file) {
+    const std::string scene = "units: SI\nbodies:\n  - name: eros\n    gravity: {stokes: " + file +
+                              ", polar_moment: 0.4, draw: " + std::to_string(draw) +
+                              "}\n    position: [0, 0, 0]\npotential: {plugin: mutual-series}\n"
+                              "integrator: {plugin: lgvi, step: 10}\nrun: {t_end: 10, output_every: 10}\n";
+    return *parse_scene(scene, "eros.yaml").system.body(0).field;
+  };
+  EXPECT_EQ(field(0, label).C, published.coefficients.C);
+  EXPECT_EQ(field(7, label).C, field(7, label).C);
+  EXPECT_NE(field(7, label).C, field(8, label).C);
+  const auto c20 = static_cast<std::size_t>(StokesCoefficients::index(2, 0));
+  const auto s22 = static_cast<std::size_t>(StokesCoefficients::index(2, 2));
+  constexpr int kDraws = 400;
+  double sum[2] = {0, 0}, squares[2] = {0, 0};
+  for (long d = 1; d <= kDraws; ++d) {
+    const StokesCoefficients cs = field(d, label);
+    const double dz[2] = {(cs.C[c20] - published.coefficients.C[c20]) / published.sigma_C[c20],
+                          (cs.S[s22] - published.coefficients.S[s22]) / published.sigma_S[s22]};
+    for (int k = 0; k < 2; ++k) sum[k] += dz[k], squares[k] += dz[k] * dz[k];
+  }
+  for (int k = 0; k < 2; ++k) {
+    const double mean = sum[k] / kDraws, spread = std::sqrt(squares[k] / kDraws - mean * mean);
+    EXPECT_LT(std::abs(mean), 4.0 / std::sqrt(kDraws)) << k;
+    EXPECT_NEAR(spread, 1.0, 0.1) << k;
+  }
+  const std::string nlr = test::shared_data("fields/n393coeff.lbl");
+  try {
+    field(1, nlr);
+    ADD_FAILURE() << "a field without uncertainties was drawn";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("gives no uncertainties of its coefficients to draw from"), std::string::npos)
+        << e.what();
+  }
+}

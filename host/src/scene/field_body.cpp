@@ -1,4 +1,5 @@
 // A body given by its gravity field (scene_sections.hpp; docs/user-guide.md "Gravity fields").
+#include "scene/portable_random.hpp"
 #include "scene/scene_schema.hpp"
 #include "scene/scene_sections.hpp"
 #include "scene/scene_values.hpp"
@@ -76,6 +77,26 @@ FieldBody parse_field_body(const Params& b, const std::string& body, const std::
                      "fully normalized, geodesy's 4π; false: unnormalized)");
   }
   StokesCoefficients cs = file.coefficients;
+  // A draw from the file's 1σ: C + σ z, z independent standard normals from (seed, coefficient),
+  // the same on every platform (portable_random.hpp) — the published uncertainty sampled (the 1σ
+  // columns, not a covariance: correlations between coefficients are not drawn).
+  if (g.has("draw")) {
+    const long draw = g.at("draw").as_int();
+    if (draw < 0) throw SceneError(g.at("draw").here() + who + ": draw must be 0 (as published) or a positive seed");
+    if (draw > 0 && file.sigma_C.empty())
+      throw SceneError(g.at("draw").here() + who + ": " + g.at("stokes").as_string() +
+                       " gives no uncertainties of its coefficients to draw from");
+    if (draw > 0)
+      for (std::size_t k = 0; k < cs.C.size(); ++k)
+        for (int part = 0; part < 2; ++part) {
+          const double sigma = part == 0 ? file.sigma_C[k] : file.sigma_S[k];
+          if (!(sigma > 0.0)) continue;
+          const auto seed = static_cast<std::uint64_t>(draw), stream = static_cast<std::uint64_t>(2 * part);
+          const double u1 = uniform01(seed, k, stream), u2 = uniform01(seed, k, stream + 1);
+          const double z = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);  // Box–Muller
+          (part == 0 ? cs.C[k] : cs.S[k]) += sigma * z;
+        }
+  }
   cs.normalized = normalized;
   cs.reference_radius = R;
   int degree = cs.degree;

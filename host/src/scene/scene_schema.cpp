@@ -161,6 +161,9 @@ constexpr SceneKey kGravity[] = {
      .doc = "may repeat the file's, or override it (said among the warnings: an archived file's defect)"},
     {.key = "normalized", .type = T::flag, .absent = "the file's (required for a table)",
      .doc = "fully normalized (geodesy's 4π) or not; may repeat the file's, not contradict it"},
+    {.key = "draw", .type = T::integer, .otherwise = "0",
+     .doc = "the coefficients drawn from the file's 1σ (independent normal draws, this seed; 0: as published) — "
+            "`noether ensemble --vary 'bodies.B.gravity.draw=grid(1, N, N)'` samples the field's uncertainty"},
     {.key = "polar_moment", .type = T::number, .absent = "the body's `inertia`",
      .doc = "C/(M R²) about the field's z axis (R the reference radius): the field fixes the inertia only up to "
             "its trace; give this or `inertia`"},
