@@ -7,6 +7,7 @@
 #include "test_support.hpp"
 
 #include <noether/body_stokes.hpp>
+#include <noether/pds3_label.hpp>
 #include <noether/pds_plate_model.hpp>
 #include <noether/scene.hpp>
 #include <noether/stokes_file.hpp>

@@ -3,7 +3,7 @@
 
 #include <noether/body_stokes.hpp>
 #include <noether/error.hpp>
-#include <noether/pds_plate_model.hpp>
+#include <noether/pds3_label.hpp>
 #include <noether/scene.hpp>
 #include <noether/stokes_file.hpp>
 

@@ -5,6 +5,7 @@
 // OBJECT/GROUP blocks closed by END_OBJECT/END_GROUP, the END statement; CRLF line ends and space
 // padding to fixed-length records are read as they are. Errors name the file and line.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -42,6 +43,16 @@ struct Pds3Pointer {
   std::size_t record = 1;
 };
 Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const std::filesystem::path& label_file);
+
+// What the readers of a label's products share: names compared upper case, as PDS3 writes them;
+// a positive count of an object (ROWS, BYTES, START_BYTE, …), SceneError naming the file and line
+// when it is absent or not one; a product's file read whole, a regular file of at most
+// `max_bytes`; and the label of a product given by either file (`file` when it is a .lbl, else the
+// .lbl or .LBL of its name beside it, else "").
+std::string pds3_upper(std::string text);
+std::size_t pds3_count(const Pds3Object& object, const std::string& key, const std::string& file);
+std::string read_pds3_file(const std::filesystem::path& file, std::uintmax_t max_bytes);
+std::filesystem::path pds3_label_of(const std::filesystem::path& file);
 
 // The label of `file`: the root object, `file` named in each error. Throws SceneError.
 Pds3Object read_pds3_label(const std::filesystem::path& file);

@@ -21,8 +21,4 @@ struct PdsPlateModel {
 // to metres (1 for metres; 1/1000 for a scene in km). Throws SceneError.
 PdsPlateModel read_pds_plate_model(const std::filesystem::path& label, double scale_per_metre);
 
-// The label of a plate model or gravity table given by either file: `file` when it is a .lbl,
-// else the .lbl/.LBL of its name beside it when there is one, else "".
-std::filesystem::path pds3_label_of(const std::filesystem::path& file);
-
 }  // namespace noether

@@ -25,8 +25,6 @@ std::string printed(const char* format, double value) {
   std::snprintf(text, sizeof text, format, value);
   return text;
 }
-// " = 11.9326 h" after a time in seconds (none in other units).
-std::string hours(double t, const std::string& unit) { return unit == "s" ? printed(" = %.6g h", t / 3600.0) : ""; }
 
 bool conserves_p(S s) { return s.conserves_linear_momentum; }
 bool conserves_L(S s) { return s.conserves_angular_momentum; }
@@ -233,7 +231,7 @@ const SummaryRow kRows[] = {
        const std::string error = e.estimated() ? " ± " + printed("%.3g", e.error) + " " + s.time_unit + " (" + e.method() + ")"
                                  : e.why_not.empty() ? ""
                                                      : "; its error not estimated: " + e.why_not;
-       return summary_line(r.label, printed("%.10g", s.mutual_period) + " " + s.time_unit + hours(s.mutual_period, s.time_unit) +
+       return summary_line(r.label, printed("%.10g", s.mutual_period) + " " + s.time_unit + summary_hours(s.mutual_period, s.time_unit) +
                                         " (" + s.mutual_pair + ", " + std::to_string(s.mutual_revolutions) + " revolution" +
                                         (s.mutual_revolutions == 1 ? "" : "s") + " of the trajectory)" + error);
      }},
@@ -399,6 +397,9 @@ std::string summary_line(std::string_view label, const std::string& text) {
 
 std::string summary_unit(const std::string& unit) { return unit.empty() ? "" : " " + unit; }
 std::string summary_time_unit(const RunSummary& s) { return summary_unit(s.energy_unit.empty() ? "" : s.time_unit); }
+std::string summary_hours(double t, const std::string& unit) {
+  return unit == "s" ? printed(" = %.6g h", t / 3600.0) : "";
+}
 
 std::string summary_value_text(const SummaryRow& row, const RunSummary& s) {
   switch (row.kind) {

@@ -86,6 +86,8 @@ std::string summary_line(std::string_view label, const std::string& text);
 // unit of time after a time, likewise (RunSummary::time_unit is set even without units).
 std::string summary_unit(const std::string& unit);
 std::string summary_time_unit(const RunSummary& summary);
+// " = 11.9326 h" after a time `t` in seconds ("" in other units: `unit` is the scene's time unit).
+std::string summary_hours(double t, const std::string& unit);
 
 // The checkpointed rows' values (Simulation::save), and the summary restored from them
 // (Simulation::load): throws Error naming the first key a checkpoint lacks.

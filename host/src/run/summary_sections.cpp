@@ -153,8 +153,8 @@ std::string orbit_periods_lines(const SummaryRow& row, const RunSummary& s) {
     }
     const DerivedError& e = o.error;
     const std::string error = e.estimated() ? " ± " + printed("%.3g", e.error) : std::string();
-    const std::string hours = s.time_unit == "s" ? printed(" = %.6g h", o.period / 3600.0) : std::string();
-    out += summary_line(row.label, pair + printed("%.10g", o.period) + error + " " + s.time_unit + hours + " (" +
+    out += summary_line(row.label, pair + printed("%.10g", o.period) + error + " " + s.time_unit +
+                                       summary_hours(o.period, s.time_unit) + " (" +
                                        std::to_string(o.revolutions) + " revolution" + (o.revolutions == 1 ? "" : "s") +
                                        ")");
     if (!e.estimated() && !e.why_not.empty()) out += summary_line("", "its error not estimated: " + e.why_not);
@@ -227,7 +227,6 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
   char part[320];
   const std::string& T = s.time_unit;
   auto error = [](const DerivedError& e) { return e.estimated() ? " ± " + printed("%.3g", e.error) : std::string(); };
-  auto hours = [&](double t) { return T == "s" ? printed(" = %.6g h", t / 3600.0) : std::string(); };
   for (const SpinState& spin : s.spin_states) {
     std::string what, periods;
     if (!spin.other.empty()) {
@@ -249,7 +248,7 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
         what = part;
         if (std::isfinite(spin.libration_period)) {
           std::snprintf(part, sizeof part, "libration period %.8g%s %s%s (%d turning points)", spin.libration_period,
-                        error(spin.libration_period_error).c_str(), T.c_str(), hours(spin.libration_period).c_str(),
+                        error(spin.libration_period_error).c_str(), T.c_str(), summary_hours(spin.libration_period, T).c_str(),
                         spin.turning_points);
           periods = part;
         }
@@ -266,7 +265,7 @@ std::string spin_states_lines(const SummaryRow& row, const RunSummary& s) {  // 
     std::string rotation;
     if (std::isfinite(spin.spin_period)) {
       std::snprintf(part, sizeof part, "rotation period %.10g%s %s%s (%.4g turns)", spin.spin_period,
-                    error(spin.spin_period_error).c_str(), T.c_str(), hours(spin.spin_period).c_str(), spin.spin_turns);
+                    error(spin.spin_period_error).c_str(), T.c_str(), summary_hours(spin.spin_period, T).c_str(), spin.spin_turns);
       rotation = part;
     } else if (spin.spin_tumbling) {
       rotation = "rotation period not measured: it tumbles (the axis followed came within 30 deg of its spin's first "

@@ -145,10 +145,21 @@ void judge(RunSummary& s, const Scene& scene) {
   // with p = 1 when the method does not declare its order, a step small enough for any p ≥ 1 —,
   // or for a method that chooses its steps the rtol, rtol (tolerance / error)^(1/q), q = p/(p+1)
   // (0.5 when not declared).
+  // `frames`: the part of the error that is the frames' interpolation (the same in both runs);
+  // where it is most of the error, the remedy is frames closer together, not a smaller step.
   auto unresolved = [&](const std::string& what, const DerivedError& e, double value, double tolerance,
-                        const char* key, const std::string& unit) {
+                        const char* key, const std::string& unit, double frames = 0.0) {
     if (!e.estimated() || !(e.error > tolerance * std::abs(value))) return;
     const double fraction = e.error / std::abs(value);
+    const std::string u = unit.empty() ? "" : " " + unit;
+    if (frames >= 0.5 * e.error) {
+      std::snprintf(why, sizeof why,
+                    "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.%s), %.3g%s of it "
+                    "the frames' interpolation: frames closer together (a smaller run.output_every) locate it",
+                    what.c_str(), e.error, u.c_str(), fraction, tolerance, key, frames, u.c_str());
+      v.reasons.push_back(why);
+      return;
+    }
     const double shrink = std::pow(tolerance / fraction, 1.0 / e.exponent());
     char remedy[256];
     if (e.tolerance_factor == 0.0)
@@ -165,8 +176,7 @@ void judge(RunSummary& s, const Scene& scene) {
     std::snprintf(why, sizeof why,
                   "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.%s; %s); %s (on a "
                   "chaotic orbit none does: run.chaos tells)",
-                  what.c_str(), e.error, (unit.empty() ? "" : " " + unit).c_str(), fraction, tolerance, key,
-                  e.method().c_str(), remedy);
+                  what.c_str(), e.error, u.c_str(), fraction, tolerance, key, e.method().c_str(), remedy);
     v.reasons.push_back(why);
   };
   const std::string& T = s.time_unit;
@@ -183,24 +193,13 @@ void judge(RunSummary& s, const Scene& scene) {
     unresolved("the period change ΔP of " + s.mutual_pair + " at t = " + at, c.change_error, c.change(),
                limit.period_change, "period_change", T);
   }
-  // Each body's libration (amplitude and period: run.trust.libration; where the turning points'
-  // interpolation is most of the period's error, frames closer together are the remedy) and
-  // rotation period (run.trust.period, as the mutual period's).
+  // Each body's libration (amplitude and period: run.trust.libration) and rotation period
+  // (run.trust.period, as the mutual period's).
   for (const SpinState& spin : s.spin_states) {
     unresolved("the libration amplitude of " + spin.body, spin.libration_error, spin.libration_amplitude,
                limit.libration, "libration", "deg");
-    const DerivedError& e = spin.libration_period_error;
-    if (!(spin.libration_period_frames_error >= 0.5 * e.error)) {
-      unresolved("the libration period of " + spin.body, e, spin.libration_period, limit.libration, "libration", T);
-    } else if (e.estimated() && e.error > limit.libration * spin.libration_period) {
-      std::snprintf(why, sizeof why,
-                    "the libration period of %s is not resolved: its estimated error %.3g %s is %.2e of it > %.0e "
-                    "(run.trust.libration), %.3g %s of it the turning points' interpolation between frames: frames "
-                    "closer together (a smaller run.output_every) time them",
-                    spin.body.c_str(), e.error, T.c_str(), e.error / spin.libration_period, limit.libration,
-                    spin.libration_period_frames_error, T.c_str());
-      v.reasons.push_back(why);
-    }
+    unresolved("the libration period of " + spin.body, spin.libration_period_error, spin.libration_period,
+               limit.libration, "libration", T, spin.libration_period_frames_error);
     unresolved("the rotation period of " + spin.body, spin.spin_period_error, spin.spin_period, limit.period, "period",
                T);
   }
@@ -208,26 +207,12 @@ void judge(RunSummary& s, const Scene& scene) {
   if (is_event(s.stop_reason))
     unresolved("the time of the event that stopped the run (" + s.stop_reason.substr(0, s.stop_reason.find(':')) + ")",
                s.stop_time_error, s.final_state.t - scene.initial.t, limit.event_time, "event_time", T);
-  // Each encounter's distance; where the frames' interpolation is most of its error, the remedy
-  // is frames closer together, not a smaller step.
+  // Each encounter's distance.
   for (const ClosestApproach& c : s.closest_approaches) {
-    const DerivedError& e = c.distance_error;
-    if (!e.estimated() || !(e.error > limit.closest_approach * c.distance)) continue;
     char at[64];
     std::snprintf(at, sizeof at, "%.6g %s", c.t, s.time_unit.c_str());
-    const std::string what = "the closest approach of " + c.pair + " at t = " + at;
-    if (c.frames_error < 0.5 * e.error) {
-      unresolved(what, e, c.distance, limit.closest_approach, "closest_approach", s.length_unit);
-      continue;
-    }
-    const std::string L = s.length_unit.empty() ? "" : " " + s.length_unit;
-    std::snprintf(why, sizeof why,
-                  "%s is not resolved: its estimated error %.3g%s is %.2e of it > %.0e (run.trust.closest_approach), "
-                  "%.3g%s of it the frames' interpolation: frames closer together (a smaller run.output_every) "
-                  "locate it",
-                  what.c_str(), e.error, L.c_str(), e.error / c.distance, limit.closest_approach, c.frames_error,
-                  L.c_str());
-    v.reasons.push_back(why);
+    unresolved("the closest approach of " + c.pair + " at t = " + at, c.distance_error, c.distance,
+               limit.closest_approach, "closest_approach", s.length_unit, c.frames_error);
   }
   // Bodies inside each other (their surfaces when shaped, else their spheres) by more than the
   // event's root tolerance (a run stopped by a collision ends at contact, to ~1e-10).

@@ -3,6 +3,7 @@
 #include <noether/pds3_label.hpp>
 
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -202,12 +203,10 @@ class Reader {
 
 Pds3Object parse_pds3_label(const std::string& text, const std::string& name) { return Reader(text, name).label(); }
 
-namespace {
-std::string upper(std::string s) {
+std::string pds3_upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return s;
 }
-}  // namespace
 
 Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const std::filesystem::path& file) {
   const Pds3Value* pointer = label.find(key);
@@ -239,7 +238,7 @@ Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const 
     return out;
   }
   for (const auto& entry : std::filesystem::directory_iterator(folder.empty() ? "." : folder, ec))
-    if (upper(entry.path().filename().string()) == upper(name)) {
+    if (pds3_upper(entry.path().filename().string()) == pds3_upper(name)) {
       out.file = entry.path();
       return out;
     }
@@ -249,16 +248,40 @@ Pds3Pointer pds3_pointer(const Pds3Object& label, const std::string& key, const 
 
 Pds3Object read_pds3_label(const std::filesystem::path& file) {
   constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 24;  // labels are kilobytes
+  return parse_pds3_label(read_pds3_file(file, kMaxBytes), file.string());
+}
+
+std::string read_pds3_file(const std::filesystem::path& file, std::uintmax_t max_bytes) {
   std::error_code ec;
   if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
-    throw SceneError(file.string() + ": the PDS3 label is not a regular file");
-  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxBytes)
-    throw SceneError(file.string() + ": " + std::to_string(bytes) + " bytes is no PDS3 label (at most 16 MiB are read)");
+    throw SceneError(file.string() + ": not a regular file");
+  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > max_bytes)
+    throw SceneError(file.string() + ": " + std::to_string(bytes) + " bytes; noether reads at most " +
+                     std::to_string(max_bytes) + " of it");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneError(file.string() + ": cannot be read");
   std::stringstream text;
   text << in.rdbuf();
-  return parse_pds3_label(text.str(), file.string());
+  return text.str();
+}
+
+std::size_t pds3_count(const Pds3Object& o, const std::string& key, const std::string& file) {
+  const Pds3Value* v = o.find(key);
+  if (!v) throw SceneError(file + ":" + std::to_string(o.line) + ": " + o.name + " has no " + key);
+  char* end = nullptr;
+  const long n = std::strtol(v->text.c_str(), &end, 10);
+  if (end == v->text.c_str() || *end != '\0' || n <= 0 || n > (1L << 30))
+    throw SceneError(file + ":" + std::to_string(v->line) + ": " + key + " = " + v->text + " is not a count");
+  return static_cast<std::size_t>(n);
+}
+
+std::filesystem::path pds3_label_of(const std::filesystem::path& file) {
+  const std::string ext = pds3_upper(file.extension().string());
+  if (ext == ".LBL") return file;
+  std::error_code ec;
+  for (const char* label : {".lbl", ".LBL"})
+    if (const auto p = std::filesystem::path(file).replace_extension(label); std::filesystem::exists(p, ec)) return p;
+  return {};
 }
 
 }  // namespace noether

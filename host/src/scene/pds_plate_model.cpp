@@ -3,45 +3,24 @@
 #include <noether/pds3_label.hpp>
 #include <noether/pds_plate_model.hpp>
 
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 namespace noether {
 
 namespace {
 
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // A table object of the label, where its rows lie in the file and how its three-item column is
 // laid out (START_BYTE, ITEM_BYTES), with its flag column's letter position when it has one.
 struct Layout {
   std::filesystem::path file;
-  std::size_t first = 0;       // byte offset of its first row in the file
+  std::size_t first = 0, first_record = 0;  // byte offset of its first row in the file, its record (0-based)
   std::size_t rows = 0, row_bytes = 0;
   std::size_t start = 0, item_bytes = 0;  // the three items, 0-based start
   std::string unit;            // the column's UNIT ("" when none)
   std::size_t flag = std::string::npos;  // the flag column's byte, 0-based
 };
-
-std::size_t count(const Pds3Object& o, const char* key, const std::string& file, bool required = true) {
-  const Pds3Value* v = o.find(key);
-  if (!v) {
-    if (!required) return 0;
-    throw SceneError(file + ":" + std::to_string(o.line) + ": " + o.name + " has no " + key);
-  }
-  char* end = nullptr;
-  const long n = std::strtol(v->text.c_str(), &end, 10);
-  if (end == v->text.c_str() || *end != '\0' || n <= 0 || n > (1L << 30))
-    throw SceneError(file + ":" + std::to_string(v->line) + ": " + key + " = " + v->text + " is not a count");
-  return static_cast<std::size_t>(n);
-}
 
 Layout layout(const Pds3Object& label, const std::string& object, const std::filesystem::path& label_file) {
   const std::string name = label_file.string();
@@ -50,18 +29,20 @@ Layout layout(const Pds3Object& label, const std::string& object, const std::fil
   Layout out;
   const Pds3Pointer pointer = pds3_pointer(label, "^" + object, label_file);
   out.file = pointer.file;
-  out.rows = count(*table, "ROWS", name);
-  out.row_bytes = table->find("ROW_BYTES") ? count(*table, "ROW_BYTES", name) : count(label, "RECORD_BYTES", name);
-  const std::size_t record = label.find("RECORD_BYTES") ? count(label, "RECORD_BYTES", name) : out.row_bytes;
-  out.first = (pointer.record - 1) * record;
+  out.rows = pds3_count(*table, "ROWS", name);
+  out.row_bytes =
+      table->find("ROW_BYTES") ? pds3_count(*table, "ROW_BYTES", name) : pds3_count(label, "RECORD_BYTES", name);
+  const std::size_t record = label.find("RECORD_BYTES") ? pds3_count(label, "RECORD_BYTES", name) : out.row_bytes;
+  out.first_record = pointer.record - 1;
+  out.first = out.first_record * record;
   bool found = false;
   for (const Pds3Object& c : table->objects) {
     if (c.name != "COLUMN") continue;
-    const std::size_t start = count(c, "START_BYTE", name) - 1;
+    const std::size_t start = pds3_count(c, "START_BYTE", name) - 1;
     if (const Pds3Value* items = c.find("ITEMS"); items && items->text == "3") {
       out.start = start;
-      out.item_bytes = c.find("ITEM_BYTES") ? count(c, "ITEM_BYTES", name) : count(c, "BYTES", name) / 3;
-      if (const Pds3Value* unit = c.find("UNIT")) out.unit = upper(unit->text);
+      out.item_bytes = c.find("ITEM_BYTES") ? pds3_count(c, "ITEM_BYTES", name) : pds3_count(c, "BYTES", name) / 3;
+      if (const Pds3Value* unit = c.find("UNIT")) out.unit = pds3_upper(unit->text);
       found = true;
     } else if (c.find("BYTES") && c.find("BYTES")->text == "1") {
       out.flag = start;
@@ -76,28 +57,7 @@ Layout layout(const Pds3Object& label, const std::string& object, const std::fil
   return out;
 }
 
-std::string file_text(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (const auto bytes = std::filesystem::file_size(file, ec); !ec && bytes > kMaxShapeFileBytes)
-    throw SceneError(file.string() + ": " + std::to_string(bytes) + " bytes; shape files of at most 1 GiB are read");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw SceneError(file.string() + ": cannot be read");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
-
-std::filesystem::path pds3_label_of(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".lbl") return file;
-  std::error_code ec;
-  for (const char* label : {".lbl", ".LBL"})
-    if (const auto p = std::filesystem::path(file).replace_extension(label); std::filesystem::exists(p, ec)) return p;
-  return {};
-}
 
 PdsPlateModel read_pds_plate_model(const std::filesystem::path& label_file, double scale_per_metre) {
   const Pds3Object label = read_pds3_label(label_file);
@@ -115,8 +75,8 @@ PdsPlateModel read_pds_plate_model(const std::filesystem::path& label_file, doub
                      " plates; noether reads at most " + std::to_string(kMaxMeshFaces) + " faces");
   if (const Pds3Value* id = label.find("PRODUCT_ID")) out.model = id->text;
   else out.model = label_file.filename().string();
-  const std::string vertices_text = file_text(v.file);
-  const std::string facets_text = f.file == v.file ? std::string() : file_text(f.file);
+  const std::string vertices_text = read_pds3_file(v.file, kMaxShapeFileBytes);
+  const std::string facets_text = f.file == v.file ? std::string() : read_pds3_file(f.file, kMaxShapeFileBytes);
   const std::string& facets_data = f.file == v.file ? vertices_text : facets_text;
   auto row_of = [](const Layout& t, const std::string& data, std::size_t r) {
     const std::size_t at = t.first + r * t.row_bytes;
@@ -132,7 +92,7 @@ PdsPlateModel read_pds_plate_model(const std::filesystem::path& label_file, doub
     return b == std::string::npos ? std::string() : cell.substr(b, cell.find_last_not_of(' ') - b + 1);
   };
   // The record's line in the file (for messages): its row number counted from the file's start.
-  auto line_of = [](const Layout& t, std::size_t r) { return t.first / t.row_bytes + r + 1; };
+  auto line_of = [](const Layout& t, std::size_t r) { return t.first_record + r + 1; };
   Mesh& mesh = out.mesh;
   mesh.source = v.file.string();
   mesh.vertices.resize(3, static_cast<Eigen::Index>(v.rows));

@@ -11,12 +11,10 @@
 
 #include "scene/stokes_rows.hpp"
 
-#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 namespace noether {
 
@@ -24,14 +22,9 @@ namespace {
 
 using namespace detail;
 
-std::string upper(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The text after `phrase` (any case) in `text`, or nothing.
 std::optional<std::string> after(const std::string& text, const std::string& phrase) {
-  const std::string t = upper(text), p = upper(phrase);
+  const std::string t = pds3_upper(text), p = pds3_upper(phrase);
   const auto at = t.find(p);
   if (at == std::string::npos) return std::nullopt;
   return text.substr(at + phrase.size());
@@ -82,7 +75,7 @@ struct Column {
 
 enum class Role { kDegree, kOrder, kC, kS, kSigmaC, kSigmaS, kOther };
 Role role_of(const std::string& name) {
-  const std::string n = upper(name);
+  const std::string n = pds3_upper(name);
   if (n == "DEGREE" || n == "N" || n == "L") return Role::kDegree;
   if (n == "ORDER" || n == "M") return Role::kOrder;
   const bool sigma = n.find("UNC") != std::string::npos || n.find("SIG") != std::string::npos ||
@@ -99,18 +92,10 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
   const Pds3Object label = read_pds3_label(file);
   const Pds3Object* table = label.object("TABLE");
   if (!table) throw SceneError(name + ": the label describes no TABLE object");
-  auto whole = [&](const Pds3Object& o, const char* key, const std::string& what) {
-    const Pds3Value* v = o.find(key);
-    if (!v) throw SceneError(name + ":" + std::to_string(o.line) + ": " + o.name + " has no " + key + " (" + what + ")");
-    char* end = nullptr;
-    const long n = std::strtol(v->text.c_str(), &end, 10);
-    if (end == v->text.c_str() || *end != '\0' || n <= 0 || n > (1L << 30))
-      throw SceneError(name + ":" + std::to_string(v->line) + ": " + key + " = " + v->text + " is not a count");
-    return static_cast<std::size_t>(n);
-  };
-  const std::size_t rows = whole(*table, "ROWS", "the table's rows");
+  auto whole = [&](const Pds3Object& o, const char* key) { return pds3_count(o, key, name); };
+  const std::size_t rows = whole(*table, "ROWS");
   const std::size_t row_bytes =
-      table->find("ROW_BYTES") ? whole(*table, "ROW_BYTES", "a row's bytes") : whole(label, "RECORD_BYTES", "a record's bytes");
+      table->find("ROW_BYTES") ? whole(*table, "ROW_BYTES") : whole(label, "RECORD_BYTES");
   // The columns, by role.
   std::optional<Column> columns[6];
   for (const Pds3Object& o : table->objects) {
@@ -119,7 +104,7 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
     if (!column_name) throw SceneError(name + ":" + std::to_string(o.line) + ": a COLUMN without a NAME");
     const Role role = role_of(column_name->text);
     if (role == Role::kOther) continue;
-    Column c{column_name->text, whole(o, "START_BYTE", "where the column starts") - 1, whole(o, "BYTES", "its width")};
+    Column c{column_name->text, whole(o, "START_BYTE") - 1, whole(o, "BYTES")};
     if (c.start + c.bytes > row_bytes)
       throw SceneError(name + ":" + std::to_string(o.line) + ": column " + c.name + " ends past the row's " +
                        std::to_string(row_bytes) + " bytes");
@@ -162,7 +147,7 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
   }
   if (const auto normalized = after(text, "coefficients normalized:")) {
     const std::vector<std::string> words = fields(normalized->substr(0, normalized->find('\n')));
-    const std::string word = words.empty() ? "" : upper(words[0]);
+    const std::string word = words.empty() ? "" : pds3_upper(words[0]);
     if (word == "YES") out.normalized = true;
     else if (word == "NO") out.normalized = false;
   }
@@ -177,13 +162,10 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
   const Pds3Pointer pointer = pds3_pointer(label, "^TABLE", file);
   const std::filesystem::path tab = pointer.file;
   const std::size_t record_bytes =
-      label.find("RECORD_BYTES") ? whole(label, "RECORD_BYTES", "a record's bytes") : row_bytes;
+      label.find("RECORD_BYTES") ? whole(label, "RECORD_BYTES") : row_bytes;
   const std::size_t first = (pointer.record - 1) * record_bytes;  // where the table starts in its file
-  std::ifstream in(tab, std::ios::binary);
-  if (!in) throw SceneError(tab.string() + ": cannot be read");
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  const std::string data = bytes.str();
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;  // as read_stokes_file's
+  const std::string data = read_pds3_file(tab, kMaxBytes);
   if (data.size() < first + rows * row_bytes)
     throw SceneError(tab.string() + ": " + std::to_string(data.size()) + " bytes, short of the " +
                      std::to_string(rows) + " rows of " + std::to_string(row_bytes) + " bytes its label (" + name +
@@ -194,7 +176,7 @@ StokesFile read_pds_stokes(const std::filesystem::path& file) {
   Rows read;
   const std::string tab_name = tab.string();
   for (std::size_t r = 0; r < rows; ++r) {
-    const Where where{tab_name, first / row_bytes + r + 1};
+    const Where where{tab_name, first / record_bytes + r + 1};
     auto cell = [&](Role role) {
       const Column& c = *columns[static_cast<int>(role)];
       return trim(data.substr(first + r * row_bytes + c.start, c.bytes));

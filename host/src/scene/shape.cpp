@@ -6,6 +6,7 @@
 
 #include <noether/error.hpp>
 #include <noether/mesh.hpp>
+#include <noether/pds3_label.hpp>
 #include <noether/pds_plate_model.hpp>
 
 #include <cmath>

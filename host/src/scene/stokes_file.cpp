@@ -1,5 +1,6 @@
 // Gravity-field files: ICGEM .gfc, PDS SHADR and plain tables (stokes_file.hpp).
 #include <noether/error.hpp>
+#include <noether/pds3_label.hpp>
 #include <noether/stokes_file.hpp>
 
 #include "scene/stokes_rows.hpp"
@@ -162,16 +163,15 @@ std::string stokes_format_of(const std::filesystem::path& file) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".gfc") return "icgem";
   if (ext == ".lbl") return "pds";
-  if (ext == ".tab") {
-    std::error_code ec;
-    for (const char* label : {".lbl", ".LBL"})
-      if (std::filesystem::exists(std::filesystem::path(file).replace_extension(label), ec)) return "pds";
-    return "shadr";
-  }
+  if (ext == ".tab") return pds3_label_of(file).empty() ? "shadr" : "pds";
   return "";
 }
 
 StokesFile read_stokes_file(const std::filesystem::path& file, const std::string& format) {
+  if (format == "pds") {  // the label; given the table, its label beside it
+    const std::filesystem::path label = pds3_label_of(file);
+    return read_pds_stokes(label.empty() ? file : label);
+  }
   // A regular file of bounded size (a FIFO or a device such as /dev/zero would be read without end).
   constexpr std::uintmax_t kMaxBytes = std::uintmax_t{1} << 30;
   std::error_code ec;
@@ -185,14 +185,6 @@ StokesFile read_stokes_file(const std::filesystem::path& file, const std::string
   if (format == "icgem") return read_icgem(in, file.string());
   if (format == "shadr") return read_shadr(in, file.string());
   if (format == "table") return read_table(in, file.string());
-  if (format == "pds") {  // the label; given the table, its label beside it
-    std::filesystem::path label = file;
-    if (stokes_format_of(file) == "pds" && file.extension() != ".lbl" && file.extension() != ".LBL")
-      for (const char* ext : {".lbl", ".LBL"})
-        if (std::error_code ec; std::filesystem::exists(std::filesystem::path(file).replace_extension(ext), ec))
-          label = std::filesystem::path(file).replace_extension(ext);
-    return read_pds_stokes(label);
-  }
   throw SceneError(file.string() + ": unknown gravity-field format '" + format + "' (icgem, shadr, table or pds)");
 }
 
